@@ -1,0 +1,42 @@
+#include <iostream>
+
+#include "cli.hpp"
+#include "ftsense/reference_plugins.hpp"
+
+namespace ftsense::cli {
+
+int check_command(const std::vector<std::string>& args) {
+  const std::vector<OptionSpec> specs{{"config", true, true, "pipeline config (JSON) to check"}};
+  const auto options = parse_options("check", args, specs);
+  if (options.count("help")) {
+    std::cout << usage_text("check",
+                            "Builds the pipeline of --config without running it and lists every\n"
+                            "problem (exit 2) or says ok (exit 0).",
+                            specs);
+    return kExitOk;
+  }
+  const std::string& path = options.at("config");
+  const Pipeline pipeline = load_pipeline(path);
+  std::cout << "ok: " << path << ": " << pipeline.inputs().size() << " inputs, " << pipeline.stage_count()
+            << " stages";
+  if (pipeline.has_monitor()) std::cout << ", " << pipeline.monitor().channels.size() << " monitored channels";
+  std::cout << '\n';
+  return kExitOk;
+}
+
+Pipeline load_pipeline(const std::string& config_path) {
+  try {
+    const Json config = parse_json_text(read_text_file(config_path, "config file"), config_path);
+    Pipeline pipeline = Pipeline::build(config, reference_plugins::registry());
+    for (const auto& w : pipeline.warnings()) std::cerr << "warning: " << config_path << ":" << w.text() << '\n';
+    return pipeline;
+  } catch (const ConfigError& e) {
+    std::vector<Diagnostic> problems = e.problems();
+    for (auto& p : problems) {
+      if (p.path.rfind(config_path, 0) != 0) p.path = config_path + ":" + p.path;
+    }
+    throw ConfigError(std::move(problems));
+  }
+}
+
+}  // namespace ftsense::cli

@@ -1,0 +1,93 @@
+#include "log_runner.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace ftsense::cli {
+
+ColumnMap ColumnMap::make(const Pipeline& pipeline, const io::CsvLogReader& log) {
+  ColumnMap map;
+  Diagnostics diag;
+  for (const auto& input : pipeline.inputs()) {
+    for (std::size_t c = 0; c < input.columns.size(); ++c) {
+      const auto index = log.find_column(input.columns[c]);
+      if (!index) {
+        // The log may have hundreds of columns: name the closest one, not all of them.
+        const std::string closest = closest_match(input.columns[c], log.columns());
+        diag.error(json_pointer_append(json_pointer_append("/inputs", input.name) + "/columns", c),
+                   "column '" + input.columns[c] + "' is not in " + log.path() + "; " +
+                       (closest.empty() ? std::string() : "did you mean '" + closest + "'? ") +
+                       "map the input to the log's column names in the config");
+        continue;
+      }
+      map.log_column.push_back(*index);
+    }
+  }
+  diag.throw_if_errors();
+  return map;
+}
+
+std::vector<std::string> monitor_columns(const Monitor& monitor) {
+  std::vector<std::string> columns{"time_s"};
+  const std::string unit = "_" + monitor.unit;
+  for (const auto& ch : monitor.channels) {
+    columns.push_back(ch + "/measured" + unit);
+    columns.push_back(ch + "/virtual" + unit);
+    columns.push_back(ch + "/fault_estimate" + unit);
+    columns.push_back(ch + "/recovered" + unit);
+    columns.push_back(ch + "/fault");
+    columns.push_back(ch + "/fault_type");
+  }
+  return columns;
+}
+
+RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnMap& map,
+                        io::CsvLogWriter& out) {
+  const Monitor& m = pipeline.monitor();
+  const std::size_t channels = m.channels.size();
+  RunSummary summary;
+  summary.first_fault_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> row;
+  std::vector<double> out_row(1 + 6 * channels);
+  const double period = pipeline.sample_period_s();
+  double last_time = std::numeric_limits<double>::quiet_NaN();
+  pipeline.reset();
+  while (log.next(row)) {
+    const double t = row[0];
+    if (!std::isnan(last_time) && std::abs((t - last_time) - period) > 0.1 * period) {
+      if (summary.irregular_steps++ == 0) {
+        summary.first_irregular_line = log.line();
+        summary.first_irregular_dt = t - last_time;
+      }
+    }
+    last_time = t;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < pipeline.inputs().size(); ++i) {
+      for (double& v : pipeline.input_values(i)) v = row[map.log_column[k++]];
+    }
+    pipeline.step(t);
+    const auto measured = pipeline.values(m.measured);
+    const auto estimate = pipeline.values(m.virtual_value);
+    const auto fault_estimate = pipeline.values(m.fault_estimate);
+    const auto recovered = pipeline.values(m.recovered);
+    const auto fault = pipeline.values(m.fault);
+    const auto fault_type = pipeline.values(m.fault_type);
+    out_row[0] = t;
+    for (std::size_t c = 0; c < channels; ++c) {
+      double* o = &out_row[1 + 6 * c];
+      o[0] = measured[c];
+      o[1] = estimate[c];
+      o[2] = fault_estimate[c];
+      o[3] = recovered[c];
+      o[4] = fault[c];
+      o[5] = fault_type[c];
+      if (fault[c] != 0.0 && std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
+    }
+    out.write_row(out_row);
+    ++summary.ticks;
+  }
+  out.flush();
+  return summary;
+}
+
+}  // namespace ftsense::cli

@@ -1,0 +1,53 @@
+// ftsense: fault-tolerant sensing from the command line. See `ftsense --help`.
+
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "ftsense/diagnostics.hpp"
+
+namespace {
+
+constexpr const char* kHelp =
+    "usage: ftsense <verb> [options]\n"
+    "\n"
+    "Checks sensors against virtual sensors, detects and classifies faults, estimates them and\n"
+    "recovers the signals. Verbs:\n"
+    "  run       run a pipeline (JSON config) over a CSV log and write the monitored channels\n"
+    "  check     check a pipeline config and list every problem\n"
+    "  plugins   list the plugins this program knows (--markdown: the config reference)\n"
+    "\n"
+    "'ftsense <verb> --help' describes a verb. Exit status: 0 success, 2 usage or\n"
+    "configuration error, 1 runtime failure.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace ftsense::cli;
+  const std::vector<std::string> all(argv + 1, argv + argc);
+  if (all.empty() || all.front() == "--help" || all.front() == "-h" || all.front() == "help") {
+    std::cout << kHelp;
+    return all.empty() ? kExitUsage : kExitOk;
+  }
+  const std::string verb = all.front();
+  const std::vector<std::string> args(all.begin() + 1, all.end());
+  try {
+    if (verb == "run") return run_command(args);
+    if (verb == "check") return check_command(args);
+    if (verb == "plugins") return plugins_command(args);
+    std::cerr << "ftsense: unknown verb '" << verb << "'; "
+              << ftsense::suggest(verb, {"run", "check", "plugins"}) << "\nsee 'ftsense --help'\n";
+    return kExitUsage;
+  } catch (const UsageError& e) {
+    std::cerr << e.message << '\n';
+    return kExitUsage;
+  } catch (const ftsense::ConfigError& e) {
+    for (const auto& p : e.problems()) std::cerr << "error: " << p.text() << '\n';
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "ftsense " << verb << ": " << e.what() << '\n';
+    return kExitRuntime;
+  }
+}

@@ -1,0 +1,26 @@
+#include <iostream>
+
+#include "cli.hpp"
+#include "ftsense/config_reference.hpp"
+#include "ftsense/reference_plugins.hpp"
+
+namespace ftsense::cli {
+
+int plugins_command(const std::vector<std::string>& args) {
+  const std::vector<OptionSpec> specs{
+      {"markdown", false, false, "print the full configuration reference (docs/config_reference.md)"}};
+  const auto options = parse_options("plugins", args, specs);
+  if (options.count("help")) {
+    std::cout << usage_text("plugins", "Lists the plugins compiled into this program.", specs);
+    return kExitOk;
+  }
+  const PluginRegistry registry = reference_plugins::registry();
+  if (options.count("markdown")) {
+    std::cout << config_reference_markdown(registry);
+    return kExitOk;
+  }
+  for (const auto& p : registry.plugins()) std::cout << p.name << "\n    " << p.summary << '\n';
+  return kExitOk;
+}
+
+}  // namespace ftsense::cli

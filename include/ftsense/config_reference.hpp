@@ -1,0 +1,13 @@
+#pragma once
+// docs/config_reference.md, generated from the parameter descriptions of a plugin registry, so the
+// reference cannot drift from the code (a test compares the committed file with this output).
+
+#include <string>
+
+#include "ftsense/plugin_registry.hpp"
+
+namespace ftsense {
+
+[[nodiscard]] std::string config_reference_markdown(const PluginRegistry& plugins);
+
+}  // namespace ftsense

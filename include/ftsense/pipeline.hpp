@@ -1,0 +1,139 @@
+#pragma once
+// A pipeline of stages built from a JSON config, checked once, then stepped every tick.
+//
+// Config (docs/config_reference.md has every key):
+//   {
+//     "sample_period_s": 0.001,
+//     "inputs": { "forces": { "columns": ["r_foot/p1/force_N", ...], "unit": "N" }, ... },
+//     "stages": [ { "name": "residual", "plugin": "difference_residual", "params": {...},
+//                   "inputs": { "measured": "input.forces", "virtual": "vfs.forces" } }, ... ],
+//     "monitor": { "channels": [...], "measured": "input.forces", "virtual": "...",
+//                  "fault_estimate": "...", "recovered": "...", "fault": "...",
+//                  "fault_type": "..." },
+//     "allow_dependent_virtual_sensor": false
+//   }
+// A wire names "input.<input>" or "<stage>.<output port>", or an array of them that is
+// concatenated in order.
+//
+// Build checks, all reported together with JSON Pointer paths: document structure and key sets,
+// unknown plugins, parameters, unknown or missing ports, doubly driven inputs, dimensions, units,
+// cycles, and the independence rule (a stage input with role `virtual_estimate` must not depend
+// on any pipeline input that its `measured` input depends on, unless
+// "allow_dependent_virtual_sensor" is true, which turns the error into a warning).
+//
+// Per tick: write each input's values into input_values(i), call step(t), read values(ref).
+// step() runs the stages in dependency order over one preallocated buffer: no allocation, no
+// exception, no string lookup.
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ftsense/diagnostics.hpp"
+#include "ftsense/params.hpp"
+#include "ftsense/plugin.hpp"
+#include "ftsense/plugin_registry.hpp"
+
+namespace ftsense {
+
+// A block of values in the pipeline's buffer.
+struct SignalRef {
+  std::size_t offset = 0;
+  std::size_t dim = 0;
+};
+
+struct PipelineInput {
+  std::string name;
+  std::vector<std::string> columns;       // source columns (log column names), one per value
+  std::string unit;
+  std::vector<std::string> derived_from;  // other inputs this one is computed from
+  SignalRef values;
+};
+
+// What the `run` program writes per monitored channel.
+struct Monitor {
+  std::vector<std::string> channels;
+  std::string unit;  // unit of the measured signal
+  SignalRef measured;
+  SignalRef virtual_value;
+  SignalRef fault_estimate;
+  SignalRef recovered;
+  SignalRef fault;
+  SignalRef fault_type;
+};
+
+// Parses JSON text strictly: syntax errors give "source:line:column", and duplicate object keys
+// (which JSON parsers silently collapse) are errors with their JSON Pointer.
+[[nodiscard]] Json parse_json_text(std::string_view text, std::string_view source_name);
+
+class Pipeline {
+ public:
+  // Builds and checks the pipeline; throws ConfigError listing every problem found.
+  [[nodiscard]] static Pipeline build(const Json& config, const PluginRegistry& plugins);
+
+  Pipeline(Pipeline&&) noexcept;
+  Pipeline& operator=(Pipeline&&) noexcept;
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+  ~Pipeline();
+
+  [[nodiscard]] double sample_period_s() const noexcept { return sample_period_s_; }
+  [[nodiscard]] const std::vector<PipelineInput>& inputs() const noexcept { return inputs_; }
+  [[nodiscard]] std::span<double> input_values(std::size_t input_index) noexcept;
+  [[nodiscard]] bool has_monitor() const noexcept { return has_monitor_; }
+  [[nodiscard]] const Monitor& monitor() const noexcept { return monitor_; }
+  [[nodiscard]] const std::vector<Diagnostic>& warnings() const noexcept { return warnings_; }
+
+  // Looks up "input.<name>" or "<stage>.<port>" (set-up time only; throws ConfigError).
+  [[nodiscard]] SignalRef signal(std::string_view reference) const;
+  [[nodiscard]] std::span<const double> values(SignalRef ref) const noexcept {
+    return {values_.data() + ref.offset, ref.dim};
+  }
+  // Every signal's reference name and unit, inputs first, then stage outputs in run order.
+  [[nodiscard]] std::vector<std::pair<std::string, std::string>> signal_names() const;
+
+  [[nodiscard]] std::size_t stage_count() const noexcept { return stages_.size(); }
+  [[nodiscard]] std::string_view stage_name(std::size_t run_index) const noexcept;
+  [[nodiscard]] Stage& stage(std::size_t run_index) noexcept;
+
+  // Back to the initial state: every stage reset, every buffer zeroed.
+  void reset() noexcept;
+  // One tick at time `time_s` over the values currently in the input buffers.
+  void step(double time_s) noexcept;
+
+ private:
+  Pipeline();
+  friend class PipelineBuilder;
+
+  struct Copy {
+    std::size_t from = 0;
+    std::size_t to = 0;
+    std::size_t count = 0;
+  };
+  struct StageRun {
+    std::string name;
+    std::unique_ptr<Stage> stage;
+    std::vector<Copy> gathers;  // concatenated inputs, copied before the step
+    std::vector<SignalRef> input_refs;
+    std::vector<SignalRef> output_refs;
+    std::vector<std::string> output_units;  // resolved (unit-generic outputs take their input's)
+    std::vector<std::span<const double>> input_spans;
+    std::vector<std::span<double>> output_spans;
+    StepIO io;
+  };
+  void bind_spans() noexcept;
+
+  double sample_period_s_ = 0.0;
+  std::vector<PipelineInput> inputs_;
+  std::vector<StageRun> stages_;
+  std::vector<Copy> monitor_gathers_;
+  bool has_monitor_ = false;
+  Monitor monitor_;
+  std::vector<Diagnostic> warnings_;
+  std::vector<double> values_;
+};
+
+}  // namespace ftsense

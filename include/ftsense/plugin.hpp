@@ -1,0 +1,122 @@
+#pragma once
+// The plugin contract.
+//
+// A plugin is a plain class:
+//
+//   class MyFilter {
+//    public:
+//     static constexpr std::string_view name = "my_filter";          // unique in a plugin set
+//     static constexpr std::string_view summary = "one line for the config reference";
+//     struct Params { ...; static void describe(ftsense::ParamSchema<Params>&); };
+//     MyFilter(const Params&, const ftsense::StageContext&);  // validates, declares ports,
+//                                                             // preallocates; may throw ConfigError
+//     const ftsense::Ports& ports() const noexcept;
+//     void reset() noexcept;                                  // back to the initial state
+//     void step(const ftsense::StepIO&) noexcept;             // one tick: no allocation, no throw
+//   };
+//
+// Lifecycle: constructed once when the pipeline is built, reset() before the first tick and
+// whenever the pipeline resets, then step() once per tick. Threading: a plugin object is used by
+// one thread at a time; distinct objects share nothing.
+//
+// Sensing outcomes (a fault, an infeasible problem, not ready yet) are outputs, not exceptions.
+
+#include <concepts>
+#include <memory>
+#include <string_view>
+
+#include "ftsense/params.hpp"
+#include "ftsense/ports.hpp"
+
+namespace ftsense {
+
+template <class P>
+concept PluginHasName = requires {
+  { P::name } -> std::convertible_to<std::string_view>;
+};
+template <class P>
+concept PluginHasSummary = requires {
+  { P::summary } -> std::convertible_to<std::string_view>;
+};
+template <class P>
+concept PluginHasParams = requires { typename P::Params; };
+template <class P>
+concept PluginDescribesParams = requires(ParamSchema<typename P::Params>& schema) {
+  { P::Params::describe(schema) } -> std::same_as<void>;
+};
+template <class P>
+concept PluginConstructs = std::constructible_from<P, const typename P::Params&, const StageContext&>;
+template <class P>
+concept PluginDeclaresPorts = requires(const P& p) {
+  { p.ports() } -> std::same_as<const Ports&>;
+};
+template <class P>
+concept PluginResets = requires(P& p) {
+  { p.reset() } noexcept;
+};
+template <class P>
+concept PluginSteps = requires(P& p, const StepIO& io) {
+  { p.step(io) } noexcept;
+};
+
+template <class P>
+concept Plugin = PluginHasName<P> && PluginHasSummary<P> && PluginHasParams<P> &&
+                 PluginDescribesParams<P> && PluginConstructs<P> && PluginDeclaresPorts<P> &&
+                 PluginResets<P> && PluginSteps<P>;
+
+// Instantiated for every member of a PluginSet: one readable message per broken rule.
+template <class P>
+constexpr bool check_plugin() {
+  static_assert(PluginHasName<P>,
+                "ftsense plugin: add `static constexpr std::string_view name = \"...\";`");
+  static_assert(PluginHasSummary<P>,
+                "ftsense plugin: add `static constexpr std::string_view summary = \"...\";`");
+  static_assert(PluginHasParams<P>,
+                "ftsense plugin: add a nested `struct Params` (may be empty)");
+  if constexpr (PluginHasParams<P>) {
+    static_assert(PluginDescribesParams<P>,
+                  "ftsense plugin: Params needs `static void describe(ftsense::ParamSchema<Params>&)`");
+    static_assert(PluginConstructs<P>,
+                  "ftsense plugin: add a constructor `P(const Params&, const ftsense::StageContext&)`");
+  }
+  static_assert(PluginDeclaresPorts<P>,
+                "ftsense plugin: add `const ftsense::Ports& ports() const noexcept`");
+  static_assert(PluginResets<P>, "ftsense plugin: add `void reset() noexcept`");
+  static_assert(PluginSteps<P>,
+                "ftsense plugin: add `void step(const ftsense::StepIO&) noexcept` (it must be "
+                "noexcept: a tick never throws)");
+  return true;
+}
+
+// A constructed plugin behind a virtual interface: the pipeline's view of a stage.
+class Stage {
+ public:
+  virtual ~Stage() = default;
+  [[nodiscard]] virtual std::string_view plugin_name() const noexcept = 0;
+  [[nodiscard]] virtual const Ports& ports() const noexcept = 0;
+  [[nodiscard]] virtual Json params_json() const = 0;
+  virtual void reset() noexcept = 0;
+  virtual void step(const StepIO& io) noexcept = 0;
+};
+
+template <Plugin P>
+class StageOf final : public Stage {
+ public:
+  StageOf(const typename P::Params& params, const StageContext& context)
+      : params_(params), plugin_(params_, context) {}
+
+  [[nodiscard]] std::string_view plugin_name() const noexcept override { return P::name; }
+  [[nodiscard]] const Ports& ports() const noexcept override { return plugin_.ports(); }
+  [[nodiscard]] Json params_json() const override { return save_params(params_); }
+  void reset() noexcept override { plugin_.reset(); }
+  void step(const StepIO& io) noexcept override { plugin_.step(io); }
+
+  [[nodiscard]] P& plugin() noexcept { return plugin_; }
+  [[nodiscard]] const typename P::Params& params() const noexcept { return params_; }
+
+ private:
+  typename P::Params params_;
+  P plugin_;
+};
+
+}  // namespace ftsense

@@ -1,0 +1,84 @@
+#pragma once
+// Named, fixed-size input and output ports of a pipeline stage, and the per-tick view of them.
+//
+// A port carries a vector of `dim` doubles in one unit (SI symbol, "1" for dimensionless). A
+// plugin declares its ports in its constructor, in the order of its index constants, and never
+// changes them afterwards. On every tick the pipeline hands the plugin a StepIO whose spans point
+// into preallocated buffers: in(i) has inputs()[i].dim values, out(i) has outputs()[i].dim.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace ftsense {
+
+// What an input means to the independence rule (method.md section 0): a stage that compares a
+// `measured` signal with a `virtual_estimate` must not get a virtual estimate computed from the
+// very sensor it judges. The pipeline checks this once when it is built.
+enum class PortRole { signal, measured, virtual_estimate };
+
+// The unit of an input that accepts any unit; an output with this unit takes the (common) unit
+// of the stage's any-unit inputs, so unit-generic plugins (filters, differences) pass units on.
+inline constexpr std::string_view kAnyUnit = "";
+inline constexpr std::string_view kDimensionless = "1";
+
+struct PortSpec {
+  std::string name;
+  std::size_t dim = 1;
+  std::string unit;
+  std::string description;
+  PortRole role = PortRole::signal;
+};
+
+class Ports {
+ public:
+  // Both return the new port's index; plugins compare it with their index constants.
+  std::size_t add_input(PortSpec spec);
+  std::size_t add_output(PortSpec spec);
+
+  [[nodiscard]] const std::vector<PortSpec>& inputs() const noexcept { return inputs_; }
+  [[nodiscard]] const std::vector<PortSpec>& outputs() const noexcept { return outputs_; }
+  [[nodiscard]] std::optional<std::size_t> find_input(std::string_view name) const noexcept;
+  [[nodiscard]] std::optional<std::size_t> find_output(std::string_view name) const noexcept;
+  [[nodiscard]] std::vector<std::string> input_names() const;
+  [[nodiscard]] std::vector<std::string> output_names() const;
+
+ private:
+  std::vector<PortSpec> inputs_;
+  std::vector<PortSpec> outputs_;
+};
+
+// The per-tick view a stage's step() receives. Spans point into the pipeline's buffers.
+struct StepIO {
+  double time_s = 0.0;
+  std::span<const std::span<const double>> inputs;
+  std::span<const std::span<double>> outputs;
+
+  [[nodiscard]] std::span<const double> in(std::size_t index) const noexcept { return inputs[index]; }
+  [[nodiscard]] std::span<double> out(std::size_t index) const noexcept { return outputs[index]; }
+};
+
+// What a stage's constructor may know about where it sits in a pipeline.
+class StageContext {
+ public:
+  StageContext(double sample_period_s, std::string stage_name,
+               std::vector<std::pair<std::string, std::size_t>> wired_dims = {});
+
+  // The pipeline's fixed tick period T [s].
+  [[nodiscard]] double sample_period_s() const noexcept { return sample_period_s_; }
+  [[nodiscard]] std::string_view stage_name() const noexcept { return stage_name_; }
+  // Number of values wired to input `input`, or `fallback` when nothing is wired to it (the
+  // pipeline reports the missing wire; the plugin only needs a size to construct with).
+  [[nodiscard]] std::size_t wired_dim(std::string_view input, std::size_t fallback) const noexcept;
+
+ private:
+  double sample_period_s_;
+  std::string stage_name_;
+  std::vector<std::pair<std::string, std::size_t>> wired_dims_;
+};
+
+}  // namespace ftsense

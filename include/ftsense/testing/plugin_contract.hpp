@@ -1,0 +1,233 @@
+#pragma once
+// The contract every ftsense plugin passes: one typed GoogleTest suite, instantiated per plugin
+// set. In a test file of yours (linked with GTest::gtest_main and ftsense::testing):
+//
+//   #include "ftsense/testing/plugin_contract.hpp"
+//   namespace ftsense::testing {  // the suite's namespace (a GoogleTest requirement)
+//   using MyPlugins = ::testing::Types<MyVirtualSensor, MyDetector>;
+//   INSTANTIATE_TYPED_TEST_SUITE_P(My, PluginContract, MyPlugins);
+//   }
+//
+// A plugin whose defaults are not a valid configuration, or whose inputs need realistic values,
+// specialises ftsense::testing::ContractSetup<P> (all members optional in spirit, but a
+// specialisation must define all four):
+//
+//   template <> struct ftsense::testing::ContractSetup<MyPlugin> {
+//     static Json params() { return {{"mass_kg", 114.0}}; }
+//     static std::size_t input_dim(std::string_view port) { return 3; }
+//     static void nominal_input(std::string_view port, std::span<double> v) { ... }
+//     static double sample_period_s() { return 1e-3; }
+//   };
+//
+// What it checks: the parameters described load from JSON without errors and round-trip
+// (load(save(p)) == p as JSON); every parameter is documented; ports are well formed; reset and
+// step give finite outputs on nominal, tiny and seeded random inputs; reset then replay gives
+// bit-identical outputs; step allocates nothing.
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "ftsense/plugin.hpp"
+#include "ftsense/testing/allocation_counter.hpp"
+
+namespace ftsense::testing {
+
+template <class P>
+struct ContractSetup {
+  static Json params() { return Json::object(); }
+  static std::size_t input_dim(std::string_view /*port*/) { return 3; }
+  static void nominal_input(std::string_view /*port*/, std::span<double> values) {
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = 1.0 + 0.25 * static_cast<double>(i);
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+
+// A plugin wired to buffers of its own, as the pipeline would do it.
+template <class P>
+class PluginHarness {
+ public:
+  PluginHarness() {
+    Diagnostics diag;
+    params_ = load_params<typename P::Params>(ContractSetup<P>::params(), "/params", P::name, diag);
+    if (diag.has_errors()) throw ConfigError(diag.errors());
+    // First construction tells the input names; the second gets the dims wired to them.
+    const StageContext probe(ContractSetup<P>::sample_period_s(), "contract");
+    const P first(params_, probe);
+    std::vector<std::pair<std::string, std::size_t>> dims;
+    for (const auto& in : first.ports().inputs()) {
+      dims.emplace_back(in.name, ContractSetup<P>::input_dim(in.name));
+    }
+    plugin_ = std::make_unique<P>(params_, StageContext(ContractSetup<P>::sample_period_s(), "contract", dims));
+    const Ports& ports = plugin_->ports();
+    for (const auto& in : ports.inputs()) inputs_.emplace_back(in.dim, 0.0);
+    for (const auto& out : ports.outputs()) outputs_.emplace_back(out.dim, 0.0);
+    for (auto& v : inputs_) input_spans_.emplace_back(v);
+    for (auto& v : outputs_) output_spans_.emplace_back(v);
+    io_.inputs = input_spans_;
+    io_.outputs = output_spans_;
+  }
+
+  P& plugin() { return *plugin_; }
+  const typename P::Params& params() const { return params_; }
+  std::vector<std::vector<double>>& inputs() { return inputs_; }
+  const std::vector<std::vector<double>>& outputs() const { return outputs_; }
+
+  void fill_nominal() {
+    const auto& ports = plugin_->ports();
+    for (std::size_t i = 0; i < inputs_.size(); ++i) {
+      ContractSetup<P>::nominal_input(ports.inputs()[i].name, inputs_[i]);
+    }
+  }
+  void step(double t) noexcept {
+    io_.time_s = t;
+    plugin_->step(io_);
+  }
+  // The first non-finite output as "port[index]", or empty.
+  std::string first_non_finite_output() const {
+    const auto& ports = plugin_->ports();
+    for (std::size_t o = 0; o < outputs_.size(); ++o) {
+      for (std::size_t j = 0; j < outputs_[o].size(); ++j) {
+        if (!std::isfinite(outputs_[o][j])) {
+          return ports.outputs()[o].name + "[" + std::to_string(j) + "] = " + std::to_string(outputs_[o][j]);
+        }
+      }
+    }
+    return {};
+  }
+
+ private:
+  typename P::Params params_{};
+  std::unique_ptr<P> plugin_;
+  std::vector<std::vector<double>> inputs_;
+  std::vector<std::vector<double>> outputs_;
+  std::vector<std::span<const double>> input_spans_;
+  std::vector<std::span<double>> output_spans_;
+  StepIO io_;
+};
+
+template <class P>
+class PluginContract : public ::testing::Test {};
+
+TYPED_TEST_SUITE_P(PluginContract);
+
+TYPED_TEST_P(PluginContract, ParametersLoadAndConstruct) {
+  Diagnostics diag;
+  (void)load_params<typename TypeParam::Params>(ContractSetup<TypeParam>::params(), "/params",
+                                                TypeParam::name, diag);
+  for (const auto& e : diag.errors()) ADD_FAILURE() << e.text();
+  EXPECT_NO_THROW(PluginHarness<TypeParam>{});
+}
+
+TYPED_TEST_P(PluginContract, ParametersRoundTripThroughJson) {
+  PluginHarness<TypeParam> h;
+  const Json saved = save_params(h.params());
+  Diagnostics diag;
+  const auto reloaded = load_params<typename TypeParam::Params>(saved, "/params", TypeParam::name, diag);
+  for (const auto& e : diag.errors()) ADD_FAILURE() << e.text();
+  EXPECT_EQ(save_params(reloaded), saved);
+  // Every described key is saved, so a saved config documents every setting.
+  for (const auto& info : param_infos<typename TypeParam::Params>()) {
+    EXPECT_TRUE(saved.contains(info.key)) << info.key;
+  }
+}
+
+TYPED_TEST_P(PluginContract, EveryParameterIsDocumented) {
+  EXPECT_FALSE(std::string_view(TypeParam::name).empty());
+  EXPECT_FALSE(std::string_view(TypeParam::summary).empty());
+  for (const auto& info : param_infos<typename TypeParam::Params>()) {
+    EXPECT_FALSE(info.description.empty()) << info.key;
+    for (char c : info.key) {
+      EXPECT_TRUE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_')
+          << "parameter keys are snake_case: " << info.key;
+    }
+  }
+}
+
+TYPED_TEST_P(PluginContract, PortsAreWellFormed) {
+  PluginHarness<TypeParam> h;
+  const Ports& ports = h.plugin().ports();
+  EXPECT_FALSE(ports.outputs().empty()) << "a stage must produce something";
+  for (const auto* list : {&ports.inputs(), &ports.outputs()}) {
+    for (const auto& p : *list) {
+      EXPECT_GT(p.dim, 0u) << p.name;
+      EXPECT_FALSE(p.name.empty());
+      EXPECT_EQ(p.name.find('.'), std::string::npos) << "port names cannot contain '.': " << p.name;
+      EXPECT_FALSE(p.description.empty()) << p.name;
+    }
+  }
+}
+
+TYPED_TEST_P(PluginContract, NominalInputsGiveFiniteOutputs) {
+  PluginHarness<TypeParam> h;
+  h.plugin().reset();
+  h.fill_nominal();
+  for (int k = 0; k < 200; ++k) {
+    h.step(k * ContractSetup<TypeParam>::sample_period_s());
+    ASSERT_EQ(h.first_non_finite_output(), "") << "tick " << k;
+  }
+}
+
+TYPED_TEST_P(PluginContract, TinyInputsGiveFiniteOutputs) {
+  PluginHarness<TypeParam> h;
+  h.plugin().reset();
+  for (auto& v : h.inputs()) std::fill(v.begin(), v.end(), 1e-300);
+  for (int k = 0; k < 50; ++k) {
+    h.step(k * ContractSetup<TypeParam>::sample_period_s());
+    ASSERT_EQ(h.first_non_finite_output(), "") << "tick " << k;
+  }
+}
+
+TYPED_TEST_P(PluginContract, RandomInputsAreFiniteAndResetReplaysExactly) {
+  constexpr std::uint64_t kSeed = 20261122;
+  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  PluginHarness<TypeParam> h;
+  auto run = [&h] {
+    std::mt19937_64 rng(kSeed);
+    std::uniform_real_distribution<double> value(-1000.0, 1000.0);
+    std::vector<double> trace;
+    h.plugin().reset();
+    h.fill_nominal();
+    for (int k = 0; k < 500; ++k) {
+      // Perturb around the nominal operating point so plugins with guarded regions are exercised.
+      for (auto& v : h.inputs()) {
+        for (auto& x : v) x += value(rng) * 1e-3;
+      }
+      h.step(k * ContractSetup<TypeParam>::sample_period_s());
+      EXPECT_EQ(h.first_non_finite_output(), "") << "tick " << k;
+      for (const auto& o : h.outputs()) trace.insert(trace.end(), o.begin(), o.end());
+    }
+    return trace;
+  };
+  const auto first = run();
+  const auto second = run();
+  ASSERT_EQ(first.size(), second.size());
+  EXPECT_EQ(0, std::memcmp(first.data(), second.data(), first.size() * sizeof(double)))
+      << "reset() must return the plugin to its initial state";
+}
+
+TYPED_TEST_P(PluginContract, StepDoesNotAllocate) {
+  PluginHarness<TypeParam> h;
+  h.plugin().reset();
+  h.fill_nominal();
+  h.step(0.0);  // a first step may touch lazily initialised statics of the C++ runtime
+  AllocationScope scope;
+  for (int k = 1; k < 2000; ++k) h.step(k * ContractSetup<TypeParam>::sample_period_s());
+  h.plugin().reset();
+  EXPECT_EQ(scope.allocations(), 0u) << "step() and reset() must not allocate";
+}
+
+REGISTER_TYPED_TEST_SUITE_P(PluginContract, ParametersLoadAndConstruct,
+                            ParametersRoundTripThroughJson, EveryParameterIsDocumented,
+                            PortsAreWellFormed, NominalInputsGiveFiniteOutputs,
+                            TinyInputsGiveFiniteOutputs, RandomInputsAreFiniteAndResetReplaysExactly,
+                            StepDoesNotAllocate);
+
+}  // namespace ftsense::testing

@@ -1,0 +1,73 @@
+#pragma once
+// CSV logs (design.md): first column `time_s`, strictly increasing; then named columns. Cells
+// are decimal numbers; `nan`, `inf` and an empty cell (a dropped sample) read as NaN/Inf.
+//
+// The reader streams: one row at a time into a caller-owned vector, no allocation per row once
+// the line buffer has grown. Problems throw LogError with "file:line: what; what to do".
+
+#include <charconv>
+#include <cstddef>
+#include <fstream>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ftsense::io {
+
+class LogError : public std::runtime_error {
+ public:
+  enum class Kind { cannot_open, bad_header, bad_row };
+  LogError(Kind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+  [[nodiscard]] Kind kind() const noexcept { return kind_; }
+
+ private:
+  Kind kind_;
+};
+
+class CsvLogReader {
+ public:
+  // Opens `path` and reads the header; throws LogError when the file is missing, empty, or the
+  // header is not `time_s,...` with unique non-empty names.
+  explicit CsvLogReader(const std::string& path);
+
+  [[nodiscard]] const std::vector<std::string>& columns() const noexcept { return columns_; }
+  [[nodiscard]] std::optional<std::size_t> find_column(std::string_view name) const noexcept;
+  [[nodiscard]] const std::string& path() const noexcept { return path_; }
+  // 1-based line number of the row read last (the header is line 1).
+  [[nodiscard]] std::size_t line() const noexcept { return line_; }
+
+  // Reads the next data row into `values` (resized to columns().size() on first use). Returns
+  // false at the end of the file. Throws LogError on a malformed row (field count, non-numeric
+  // cell, time not strictly increasing), naming line and column.
+  bool next(std::vector<double>& values);
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const;
+
+  std::string path_;
+  std::ifstream file_;
+  std::vector<std::string> columns_;
+  std::string line_buffer_;
+  std::size_t line_ = 1;
+  std::optional<double> last_time_;
+};
+
+// Writes a CSV log with shortest round-trip number formatting (std::to_chars).
+class CsvLogWriter {
+ public:
+  // Throws LogError when the file cannot be created.
+  CsvLogWriter(const std::string& path, const std::vector<std::string>& columns);
+  void write_row(std::span<const double> values);
+  void flush();
+
+ private:
+  std::string path_;
+  std::ofstream file_;
+  std::size_t column_count_;
+  std::string row_;
+};
+
+}  // namespace ftsense::io

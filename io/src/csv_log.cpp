@@ -1,0 +1,153 @@
+#include "ftsense/io/csv_log.hpp"
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace ftsense::io {
+
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+// Parses one cell; false when it is not a number. Empty cells are dropped samples: NaN.
+bool parse_cell(std::string_view cell, double& out) {
+  cell = trim(cell);
+  if (cell.empty()) {
+    out = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  if (cell.front() == '+') cell.remove_prefix(1);
+  const char* end = cell.data() + cell.size();
+  const auto [ptr, ec] = std::from_chars(cell.data(), end, out);
+  if (ec == std::errc::result_out_of_range) {
+    // Beyond double's range: keep the sign, as an infinity the sanity checks then catch.
+    out = (cell.front() == '-') ? -std::numeric_limits<double>::infinity()
+                                : std::numeric_limits<double>::infinity();
+    return ptr == end;
+  }
+  return ec == std::errc() && ptr == end;
+}
+
+}  // namespace
+
+CsvLogReader::CsvLogReader(const std::string& path) : path_(path), file_(path) {
+  if (!file_) {
+    throw LogError(LogError::Kind::cannot_open,
+                   path + ": cannot open the log file; check the path and read permission");
+  }
+  if (!std::getline(file_, line_buffer_)) {
+    throw LogError(LogError::Kind::bad_header,
+                   path + ":1: the file is empty; a log starts with a header line 'time_s,...'");
+  }
+  std::string_view header = line_buffer_;
+  if (header.size() >= 3 && static_cast<unsigned char>(header[0]) == 0xEF &&
+      static_cast<unsigned char>(header[1]) == 0xBB && static_cast<unsigned char>(header[2]) == 0xBF) {
+    header.remove_prefix(3);  // UTF-8 byte order mark
+  }
+  std::set<std::string> seen;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = header.find(',', start);
+    const std::string name(trim(header.substr(start, comma == std::string_view::npos ? comma : comma - start)));
+    if (name.empty()) {
+      fail("column " + std::to_string(columns_.size() + 1) + " of the header has no name");
+    }
+    if (!seen.insert(name).second) fail("column '" + name + "' appears twice in the header");
+    columns_.push_back(name);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (columns_.front() != "time_s") {
+    fail("the first column is '" + columns_.front() + "'; a log's first column must be time_s");
+  }
+}
+
+std::optional<std::size_t> CsvLogReader::find_column(std::string_view name) const noexcept {
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    if (columns_[i] == name) return i;
+  }
+  return std::nullopt;
+}
+
+void CsvLogReader::fail(const std::string& what) const {
+  throw LogError(line_ == 1 ? LogError::Kind::bad_header : LogError::Kind::bad_row,
+                 path_ + ":" + std::to_string(line_) + ": " + what);
+}
+
+bool CsvLogReader::next(std::vector<double>& values) {
+  while (true) {
+    if (!std::getline(file_, line_buffer_)) return false;
+    ++line_;
+    if (!trim(line_buffer_).empty()) break;  // blank lines (e.g. a trailing newline) are skipped
+  }
+  values.resize(columns_.size());
+  std::string_view row = line_buffer_;
+  std::size_t start = 0;
+  std::size_t column = 0;
+  while (true) {
+    const std::size_t comma = row.find(',', start);
+    const std::string_view cell = row.substr(start, comma == std::string_view::npos ? comma : comma - start);
+    if (column >= columns_.size()) {
+      fail("row has more fields than the header's " + std::to_string(columns_.size()));
+    }
+    if (!parse_cell(cell, values[column])) {
+      fail("column '" + columns_[column] + "' (field " + std::to_string(column + 1) + ") = '" +
+           std::string(trim(cell)) + "' is not a number");
+    }
+    ++column;
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (column != columns_.size()) {
+    fail("row has " + std::to_string(column) + " fields but the header has " +
+         std::to_string(columns_.size()));
+  }
+  const double t = values[0];
+  if (!std::isfinite(t)) fail("time_s is not a finite number");
+  if (last_time_ && !(t > *last_time_)) {
+    fail("time_s = " + std::to_string(t) + " is not after the previous row's " +
+         std::to_string(*last_time_) + "; time must be strictly increasing (sort or de-duplicate the log)");
+  }
+  last_time_ = t;
+  return true;
+}
+
+CsvLogWriter::CsvLogWriter(const std::string& path, const std::vector<std::string>& columns)
+    : path_(path), file_(path), column_count_(columns.size()) {
+  if (!file_) {
+    throw LogError(LogError::Kind::cannot_open,
+                   path + ": cannot create the output file; check that its folder exists and is writable");
+  }
+  for (std::size_t i = 0; i < columns.size(); ++i) file_ << (i ? "," : "") << columns[i];
+  file_ << '\n';
+  row_.reserve(columns.size() * 24);
+}
+
+void CsvLogWriter::write_row(std::span<const double> values) {
+  row_.clear();
+  char buffer[32];
+  for (std::size_t i = 0; i < values.size() && i < column_count_; ++i) {
+    if (i) row_ += ',';
+    const double v = values[i];
+    if (std::isnan(v)) {
+      row_ += "nan";
+    } else {
+      const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
+      row_.append(buffer, ec == std::errc() ? end : buffer);
+    }
+  }
+  row_ += '\n';
+  file_.write(row_.data(), static_cast<std::streamsize>(row_.size()));
+}
+
+void CsvLogWriter::flush() {
+  file_.flush();
+  if (!file_) throw LogError(LogError::Kind::cannot_open, path_ + ": writing failed (disk full?)");
+}
+
+}  // namespace ftsense::io

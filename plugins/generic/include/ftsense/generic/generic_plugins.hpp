@@ -1,0 +1,13 @@
+#pragma once
+// The generic plugins any fault detection problem needs, as one plugin set.
+
+#include "ftsense/generic/difference_residual.hpp"
+#include "ftsense/generic/low_pass.hpp"
+#include "ftsense/generic/threshold_detector.hpp"
+#include "ftsense/plugin_set.hpp"
+
+namespace ftsense::generic {
+
+using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector>;
+
+}  // namespace ftsense::generic

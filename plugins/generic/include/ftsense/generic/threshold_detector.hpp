@@ -1,0 +1,50 @@
+#pragma once
+// Per-channel threshold detector (paper eq. 33):
+//
+//   fault_j = 1  when |s_j| > tr_j has held for on_delay_s,
+//   fault_j = 0  again when |s_j| <= tr_j has held for off_delay_s.
+//
+// s is the evaluated signal (typically the low-passed fault estimate), tr_j > 0 in the unit of s.
+// The threshold cannot tell fault types apart, so a raised flag has type code 1 (unclassified);
+// a non-finite s_j raises the flag at once with type code 8 (invalid).
+
+#include <string_view>
+#include <vector>
+
+#include "ftsense/plugin.hpp"
+
+namespace ftsense::generic {
+
+class ThresholdDetector {
+ public:
+  static constexpr std::string_view name = "threshold_detector";
+  static constexpr std::string_view summary =
+      "fault when |signal| > threshold (paper eq. 33), with optional on/off delays";
+
+  struct Params {
+    std::vector<double> thresholds{1.0};
+    double on_delay_s = 0.0;
+    double off_delay_s = 0.0;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kSignal };
+  enum Output : std::size_t { kFault, kFaultType };
+
+  ThresholdDetector(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept;
+  void step(const StepIO& io) noexcept;
+
+ private:
+  Ports ports_;
+  std::vector<double> thresholds_;
+  double sample_period_s_;
+  double on_delay_s_;
+  double off_delay_s_;
+  std::vector<double> above_for_s_;
+  std::vector<double> below_for_s_;
+  std::vector<unsigned char> raised_;
+};
+
+}  // namespace ftsense::generic

@@ -1,0 +1,75 @@
+#include "ftsense/generic/threshold_detector.hpp"
+
+#include <cmath>
+
+#include "ftsense/fault_type.hpp"
+
+namespace ftsense::generic {
+
+void ThresholdDetector::Params::describe(ParamSchema<Params>& schema) {
+  schema
+      .add("thresholds", &Params::thresholds,
+           "threshold tr_j per channel, in the unit of the signal; one value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+  schema.add("on_delay_s", &Params::on_delay_s, "time |signal| must stay above tr_j to raise")
+      .unit("s")
+      .at_least(0.0);
+  schema.add("off_delay_s", &Params::off_delay_s, "time |signal| must stay below tr_j to clear")
+      .unit("s")
+      .at_least(0.0);
+}
+
+ThresholdDetector::ThresholdDetector(const Params& params, const StageContext& context)
+    : sample_period_s_(context.sample_period_s()),
+      on_delay_s_(params.on_delay_s),
+      off_delay_s_(params.off_delay_s) {
+  const std::size_t dim = context.wired_dim("signal", params.thresholds.size());
+  if (params.thresholds.size() != 1 && params.thresholds.size() != dim) {
+    throw ConfigError("/params/thresholds",
+                      "has " + std::to_string(params.thresholds.size()) + " entries but the signal has " +
+                          std::to_string(dim) + " channels; give one threshold per channel or one for all");
+  }
+  thresholds_.assign(dim, params.thresholds.front());
+  if (params.thresholds.size() == dim) thresholds_ = params.thresholds;
+  ports_.add_input({"signal", dim, std::string(kAnyUnit), "the evaluated signal s (e.g. filtered fault estimate)"});
+  ports_.add_output({"fault", dim, std::string(kDimensionless), "1 when a fault is detected, else 0"});
+  ports_.add_output({"fault_type", dim, std::string(kDimensionless),
+                     "fault type code: 0 none, 1 unclassified, 8 invalid"});
+  above_for_s_.assign(dim, 0.0);
+  below_for_s_.assign(dim, 0.0);
+  raised_.assign(dim, 0);
+}
+
+void ThresholdDetector::reset() noexcept {
+  std::fill(above_for_s_.begin(), above_for_s_.end(), 0.0);
+  std::fill(below_for_s_.begin(), below_for_s_.end(), 0.0);
+  std::fill(raised_.begin(), raised_.end(), 0);
+}
+
+void ThresholdDetector::step(const StepIO& io) noexcept {
+  const auto s = io.in(kSignal);
+  const auto fault = io.out(kFault);
+  const auto type = io.out(kFaultType);
+  for (std::size_t j = 0; j < thresholds_.size(); ++j) {
+    if (!std::isfinite(s[j])) {
+      fault[j] = 1.0;
+      type[j] = static_cast<double>(FaultType::invalid);
+      continue;
+    }
+    if (std::abs(s[j]) > thresholds_[j]) {
+      above_for_s_[j] += sample_period_s_;
+      below_for_s_[j] = 0.0;
+      // Half a tick of slack so that a delay of k ticks raises on the k-th tick, not the k+1-th.
+      if (above_for_s_[j] >= on_delay_s_ - 0.5 * sample_period_s_) raised_[j] = 1;
+    } else {
+      below_for_s_[j] += sample_period_s_;
+      above_for_s_[j] = 0.0;
+      if (below_for_s_[j] >= off_delay_s_ - 0.5 * sample_period_s_) raised_[j] = 0;
+    }
+    fault[j] = raised_[j] ? 1.0 : 0.0;
+    type[j] = static_cast<double>(raised_[j] ? FaultType::unclassified : FaultType::none);
+  }
+}
+
+}  // namespace ftsense::generic

@@ -1,0 +1,13 @@
+#pragma once
+// The plugin set the `ftsense` program and the shipped configs use: every family in plugins/.
+// Extend it with your own plugins without editing ftsense:
+//
+//   using my_plugins = ftsense::reference_plugins::with<MyVirtualSensor>;
+
+#include "ftsense/generic/generic_plugins.hpp"
+
+namespace ftsense {
+
+using reference_plugins = generic::generic_plugins;
+
+}  // namespace ftsense

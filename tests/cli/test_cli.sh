@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# The command-line contract of build/bin/ftsense (design.md): exit codes 0/2/1, one line per
+# problem on stderr, the config checked before any input file is opened.
+set -u
+here=$1
+ftsense=${FTSENSE:?set FTSENSE to the ftsense binary}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+passes=0
+
+check() {  # check NAME EXPECTED_STATUS ACTUAL_STATUS [grep-pattern file]...
+  local name=$1 expected=$2 actual=$3
+  shift 3
+  local ok=1
+  [ "$actual" -eq "$expected" ] || { echo "FAIL $name: exit $actual, expected $expected"; ok=0; }
+  while [ $# -ge 2 ]; do
+    grep -qE -- "$1" "$2" || { echo "FAIL $name: '$1' not in $(basename "$2"):"; sed 's/^/    /' "$2"; ok=0; }
+    shift 2
+  done
+  if [ $ok -eq 1 ]; then passes=$((passes + 1)); echo "ok   $name"; else failures=$((failures + 1)); fi
+}
+
+# A 3 s log for the minimal pipeline: c2 gets +20 N from t = 1 s.
+awk 'BEGIN { print "time_s,cell/c1/force_N,cell/c2/force_N,cell/c3/force_N,model/c1/force_N,model/c2/force_N,model/c3/force_N,unused";
+  for (k = 0; k < 3000; k++) { t = k / 1000; l = 100 + 20 * sin(3.14159265 * t);
+    printf "%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,0\n", t, l, l + (t >= 1 ? 20 : 0), l, l, l, l } }' > "$work/log.csv"
+good="$here/good.json"
+
+"$ftsense" --help > "$work/out" 2> "$work/err"; check help 0 $? "run" "$work/out"
+"$ftsense" > "$work/out" 2> "$work/err"; check no_verb 2 $?
+"$ftsense" rnu > "$work/out" 2> "$work/err"; check unknown_verb 2 $? "did you mean 'run'" "$work/err"
+"$ftsense" run --help > "$work/out" 2> "$work/err"; check run_help 0 $? "--config" "$work/out"
+"$ftsense" run > "$work/out" 2> "$work/err"
+check run_missing_options 2 $? "missing required option --config" "$work/err" "missing required option --input" "$work/err" "missing required option --output" "$work/err"
+"$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/o.csv" --ouput x > "$work/out" 2> "$work/err"
+check unknown_option 2 $? "unknown option --ouput; did you mean 'output'" "$work/err"
+
+# A config with three problems and an input file that does not exist: all three problems are
+# listed, one per line, and the input is never opened.
+sed -e 's/"cutoff_hz": 2.0/"cutoff_hz": -1/' -e 's/"threshold_detector"/"treshold_detector"/' \
+    -e 's/"sample_period_s": 0.001/"sample_period_s": 0/' "$good" > "$work/bad.json"
+"$ftsense" run --config "$work/bad.json" --input "$work/missing.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check bad_config 2 $? "bad.json:/stages/1/params/cutoff_hz = -1 violates > 0" "$work/err" \
+    "bad.json:/stages/2/plugin: unknown plugin 'treshold_detector'; did you mean 'threshold_detector'" "$work/err" \
+    "bad.json:/sample_period_s = 0 violates > 0" "$work/err"
+lines=$(wc -l < "$work/err"); errors=$(grep -c '^error: ' "$work/err")
+[ "$lines" -eq 3 ] && [ "$errors" -eq 3 ] && { passes=$((passes + 1)); echo "ok   bad_config_one_line_each"; } \
+  || { failures=$((failures + 1)); echo "FAIL bad_config_one_line_each: $lines lines, $errors errors"; cat "$work/err"; }
+grep -q "missing.csv" "$work/err" && { failures=$((failures + 1)); echo "FAIL config_checked_first: the input was looked at"; } \
+  || { passes=$((passes + 1)); echo "ok   config_checked_first"; }
+
+printf '{"sample_period_s": 0.001,\n "inputs": {,}\n' > "$work/syntax.json"
+"$ftsense" run --config "$work/syntax.json" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check config_not_json 2 $? "syntax.json:2:13: not valid JSON" "$work/err"
+"$ftsense" run --config "$work/nope.json" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check config_missing 2 $? "nope.json: cannot open the config file" "$work/err"
+
+"$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check run_ok 0 $? "3000 ticks, 3 channels" "$work/out" "c2: fault first flagged at t = 1\.0[0-9]* s" "$work/out"
+head -1 "$work/o.csv" > "$work/header"
+check run_output_header 0 0 "^time_s,c1/measured_N,c1/virtual_N,c1/fault_estimate_N,c1/recovered_N,c1/fault,c1/fault_type,c2/measured_N" "$work/header"
+rows=$(($(wc -l < "$work/o.csv") - 1))
+[ "$rows" -eq 3000 ] && { passes=$((passes + 1)); echo "ok   run_output_rows"; } || { failures=$((failures + 1)); echo "FAIL run_output_rows: $rows"; }
+grep -q "c1: fault" "$work/out" && { failures=$((failures + 1)); echo "FAIL run_no_false_alarm"; } || { passes=$((passes + 1)); echo "ok   run_no_false_alarm"; }
+
+# Missing columns: every one named, exit 2.
+sed '1s/cell\/c1\/force_N/cell\/c1\/forc_N/; 1s/model\/c3\/force_N/m3/' "$work/log.csv" > "$work/renamed.csv"
+"$ftsense" run --config "$good" --input "$work/renamed.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check missing_columns 2 $? "/inputs/measured/columns/0: column 'cell/c1/force_N' is not in .*renamed.csv; did you mean 'cell/c1/forc_N'" "$work/err" \
+    "/inputs/reference/columns/2: column 'model/c3/force_N' is not in" "$work/err"
+
+# A malformed row: runtime failure with file and line.
+sed '101s/^\([^,]*\),[^,]*/\1,abc/' "$work/log.csv" > "$work/badrow.csv"
+"$ftsense" run --config "$good" --input "$work/badrow.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check malformed_row 1 $? "badrow.csv:101: column 'cell/c1/force_N' \(field 2\) = 'abc' is not a number" "$work/err"
+
+"$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/no/such/dir/o.csv" > "$work/out" 2> "$work/err"
+check output_unwritable 2 $? "cannot create the output file" "$work/err"
+
+"$ftsense" check --config "$good" > "$work/out" 2> "$work/err"; check check_ok 0 $? "^ok: " "$work/out"
+"$ftsense" check --config "$work/bad.json" > "$work/out" 2> "$work/err"; check check_bad 2 $? "unknown plugin" "$work/err"
+"$ftsense" plugins > "$work/out" 2> "$work/err"; check plugins 0 $? "^low_pass" "$work/out"
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,185 @@
+// Table-driven bad-config tests: each row breaks the valid base config with a JSON Patch and
+// names the JSON Pointer and the rule the error message must carry.
+
+#include <gtest/gtest.h>
+
+#include "ftsense/pipeline.hpp"
+#include "ftsense/reference_plugins.hpp"
+#include "test_configs.hpp"
+
+namespace ftsense {
+namespace {
+
+struct BadConfigCase {
+  const char* name;
+  const char* patch;          // RFC 6902 JSON Patch applied to test::base_config()
+  const char* path;           // expected JSON Pointer of the problem
+  const char* message_part;   // expected part of the message (the rule, the suggestion)
+};
+
+std::ostream& operator<<(std::ostream& os, const BadConfigCase& c) { return os << c.name; }
+
+const BadConfigCase kCases[] = {
+    {"negative_cutoff", R"([{"op": "replace", "path": "/stages/1/params/cutoff_hz", "value": -1}])",
+     "/stages/1/params/cutoff_hz", " = -1 violates > 0 (cut-off frequency f_c, below 1 / (2 T), Hz)"},
+    {"cutoff_above_nyquist", R"([{"op": "replace", "path": "/stages/1/params/cutoff_hz", "value": 600}])",
+     "/stages/1/params/cutoff_hz", " = 600 violates < 500 (Nyquist frequency"},
+    {"wrong_type", R"([{"op": "replace", "path": "/stages/1/params/cutoff_hz", "value": "5"}])",
+     "/stages/1/params/cutoff_hz", " = \"5\" has type string, expected number"},
+    {"unknown_parameter", R"([{"op": "add", "path": "/stages/1/params/cutof_hz", "value": 3}])",
+     "/stages/1/params/cutof_hz", "unknown parameter of low_pass; did you mean 'cutoff_hz'?"},
+    {"unknown_choice", R"([{"op": "add", "path": "/stages/1/params/start", "value": "first"}])",
+     "/stages/1/params/start", "violates one of: first_sample, zero"},
+    {"threshold_not_positive", R"([{"op": "replace", "path": "/stages/2/params/thresholds", "value": [0]}])",
+     "/stages/2/params/thresholds/0", " = 0 violates > 0"},
+    {"threshold_count", R"([{"op": "replace", "path": "/stages/2/params/thresholds", "value": [1, 2]}])",
+     "/stages/2/params/thresholds", "has 2 entries but the signal has 3 channels"},
+    {"missing_sample_period", R"([{"op": "remove", "path": "/sample_period_s"}])",
+     "/sample_period_s", "missing required key"},
+    {"negative_sample_period", R"([{"op": "replace", "path": "/sample_period_s", "value": -0.001}])",
+     "/sample_period_s", " = -0.001 violates > 0"},
+    {"unknown_top_level_key", R"([{"op": "add", "path": "/stage", "value": []}])",
+     "/stage", "unknown key in the pipeline config; did you mean 'stages'?"},
+    {"unknown_plugin", R"([{"op": "replace", "path": "/stages/1/plugin", "value": "low_pas"}])",
+     "/stages/1/plugin", "unknown plugin 'low_pas'; did you mean 'low_pass'?"},
+    {"wire_to_missing_port", R"([{"op": "replace", "path": "/stages/1/inputs/signal", "value": "residual.resid"}])",
+     "/stages/1/inputs/signal", "stage 'residual' (difference_residual) has no output 'resid'; did you mean 'residual'?"},
+    {"wire_to_missing_stage", R"([{"op": "replace", "path": "/stages/1/inputs/signal", "value": "residul.residual"}])",
+     "/stages/1/inputs/signal", "no stage named 'residul'"},
+    {"wire_without_dot", R"([{"op": "replace", "path": "/stages/1/inputs/signal", "value": "residual"}])",
+     "/stages/1/inputs/signal", "violates the wire form"},
+    {"unknown_input_port", R"([{"op": "add", "path": "/stages/1/inputs/sigal", "value": "input.measured"}])",
+     "/stages/1/inputs/sigal", "plugin low_pass has no input 'sigal'; did you mean 'signal'?"},
+    {"missing_input", R"([{"op": "remove", "path": "/stages/0/inputs/virtual"}])",
+     "/stages/0/inputs/virtual", "missing input of plugin difference_residual"},
+    {"dimension_mismatch",
+     R"([{"op": "replace", "path": "/stages/0/inputs/measured", "value": ["input.measured", "input.reference"]}])",
+     "/stages/0/inputs/virtual", "carries 3 values [input.reference (3)] but input 'virtual' of difference_residual takes 6"},
+    {"unit_mismatch", R"([{"op": "replace", "path": "/inputs/reference/unit", "value": "m"}])",
+     "/stages/0/inputs/virtual", "unit mismatch: input.reference is in 'm' but input.measured is in 'N'"},
+    {"cycle", R"([{"op": "replace", "path": "/stages/0/inputs/virtual", "value": "detect.fault"}])",
+     "/stages", "the stages form a cycle (residual -> smooth -> detect -> residual)"},
+    {"independence_rule",
+     R"([{"op": "add", "path": "/inputs/virtual_from_cells",
+          "value": {"columns": ["a", "b", "c"], "unit": "N", "derived_from": ["measured"]}},
+         {"op": "replace", "path": "/stages/0/inputs/virtual", "value": "input.virtual_from_cells"}])",
+     "/stages/0/inputs/virtual", "independence rule: the virtual sensor 'virtual' of stage 'residual' is computed from input 'measured'"},
+    {"duplicate_stage_name", R"([{"op": "replace", "path": "/stages/2/name", "value": "smooth"}])",
+     "/stages/2/name", "duplicate stage name 'smooth' (also /stages/1)"},
+    {"reserved_stage_name", R"([{"op": "replace", "path": "/stages/2/name", "value": "input"}])",
+     "/stages/2/name", "violates identifier"},
+    {"unknown_derived_from",
+     R"([{"op": "add", "path": "/inputs/measured/derived_from", "value": ["refrence"]}])",
+     "/inputs/measured/derived_from/0", "unknown input 'refrence'; did you mean 'reference'?"},
+    {"empty_columns", R"([{"op": "replace", "path": "/inputs/measured/columns", "value": []}])",
+     "/inputs/measured/columns", "is empty"},
+    {"monitor_channel_count", R"([{"op": "remove", "path": "/monitor/channels/2"}])",
+     "/monitor/measured", "carries 3 values but the monitor has 2 channels"},
+    {"monitor_missing_field", R"([{"op": "remove", "path": "/monitor/fault_type"}])",
+     "/monitor/fault_type", "missing required key"},
+    {"params_not_object", R"([{"op": "replace", "path": "/stages/1/params", "value": [2.0]}])",
+     "/stages/1/params", " = [2.0] has type array, expected object"},
+    {"stage_not_object", R"([{"op": "replace", "path": "/stages/2", "value": "detect"}])",
+     "/stages/2", "has type string, expected object"},
+};
+
+class BadConfig : public ::testing::TestWithParam<BadConfigCase> {};
+
+TEST_P(BadConfig, IsRejectedWithPathAndRule) {
+  const BadConfigCase& c = GetParam();
+  const Json config = test::base_config().patch(Json::parse(c.patch));
+  try {
+    (void)Pipeline::build(config, reference_plugins::registry());
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    bool found = false;
+    for (const auto& p : e.problems()) {
+      found = found || (p.path == c.path && p.message.find(c.message_part) != std::string::npos);
+    }
+    EXPECT_TRUE(found) << "expected at " << c.path << ": " << c.message_part << "\ngot:\n" << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, BadConfig, ::testing::ValuesIn(kCases),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(BadConfig, EveryProblemIsReportedTogether) {
+  const Json config = test::base_config().patch(Json::parse(R"([
+      {"op": "replace", "path": "/stages/1/params/cutoff_hz", "value": -1},
+      {"op": "replace", "path": "/stages/2/plugin", "value": "treshold_detector"},
+      {"op": "add", "path": "/bogus", "value": 1}])"));
+  try {
+    (void)Pipeline::build(config, reference_plugins::registry());
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.problems().size(), 3u) << e.what();
+    // One line per problem in what().
+    const std::string text = e.what();
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2) << text;
+  }
+}
+
+TEST(BadConfig, IndependenceViolationIsAWarningWhenExplicitlyAllowed) {
+  const Json config = test::base_config().patch(Json::parse(R"([
+      {"op": "add", "path": "/inputs/virtual_from_cells",
+       "value": {"columns": ["a", "b", "c"], "unit": "N", "derived_from": ["measured"]}},
+      {"op": "replace", "path": "/stages/0/inputs/virtual", "value": "input.virtual_from_cells"},
+      {"op": "add", "path": "/allow_dependent_virtual_sensor", "value": true}])"));
+  const Pipeline pipeline = Pipeline::build(config, reference_plugins::registry());
+  ASSERT_EQ(pipeline.warnings().size(), 1u);
+  EXPECT_EQ(pipeline.warnings()[0].path, "/stages/0/inputs/virtual");
+  EXPECT_NE(pipeline.warnings()[0].message.find("accepted because"), std::string::npos);
+}
+
+TEST(BadConfig, TransitiveDependenceThroughStagesIsFound) {
+  // The virtual sensor is a low-passed copy of the measured signal: still not independent.
+  const Json config = test::base_config().patch(Json::parse(R"([
+      {"op": "add", "path": "/stages/-",
+       "value": {"name": "copy", "plugin": "low_pass", "inputs": {"signal": "input.measured"}}},
+      {"op": "replace", "path": "/stages/0/inputs/virtual", "value": "copy.filtered"}])"));
+  try {
+    (void)Pipeline::build(config, reference_plugins::registry());
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1u) << e.what();
+    EXPECT_EQ(e.problems()[0].path, "/stages/0/inputs/virtual");
+    EXPECT_NE(e.problems()[0].message.find("independence rule"), std::string::npos);
+  }
+}
+
+struct BadTextCase {
+  const char* name;
+  const char* text;
+  const char* path;
+  const char* message_part;
+};
+std::ostream& operator<<(std::ostream& os, const BadTextCase& c) { return os << c.name; }
+
+const BadTextCase kTextCases[] = {
+    {"syntax_error", "{\n  \"sample_period_s\": 0.001,\n  \"inputs\": {,\n}", "c.json:3:14", "not valid JSON"},
+    {"doubly_driven_input",
+     R"({"stages": [{"name": "a", "inputs": {"signal": "x.y", "signal": "z.w"}}]})",
+     "/stages/0/inputs/signal", "duplicate key 'signal'"},
+    {"duplicate_top_level_key", R"({"stages": [], "stages": []})", "/stages", "duplicate key 'stages'"},
+    {"empty_text", "", "c.json:1:1", "not valid JSON"},
+};
+
+class BadConfigText : public ::testing::TestWithParam<BadTextCase> {};
+
+TEST_P(BadConfigText, IsRejectedWithPosition) {
+  const BadTextCase& c = GetParam();
+  try {
+    (void)parse_json_text(c.text, "c.json");
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    ASSERT_FALSE(e.problems().empty());
+    EXPECT_EQ(e.problems()[0].path, c.path) << e.what();
+    EXPECT_NE(e.problems()[0].message.find(c.message_part), std::string::npos) << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, BadConfigText, ::testing::ValuesIn(kTextCases),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace ftsense

@@ -1,0 +1,147 @@
+// Pipeline building and stepping on valid configs.
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "ftsense/pipeline.hpp"
+#include "ftsense/reference_plugins.hpp"
+#include "test_configs.hpp"
+
+namespace ftsense {
+namespace {
+
+Pipeline build(const Json& config) { return Pipeline::build(config, reference_plugins::registry()); }
+
+void set_inputs(Pipeline& p, std::initializer_list<double> measured, std::initializer_list<double> reference) {
+  std::copy(measured.begin(), measured.end(), p.input_values(0).begin());
+  std::copy(reference.begin(), reference.end(), p.input_values(1).begin());
+}
+
+TEST(Pipeline, BuildsAndStepsTheBaseConfig) {
+  Pipeline p = build(test::base_config());
+  EXPECT_TRUE(p.warnings().empty());
+  ASSERT_EQ(p.stage_count(), 3u);
+  ASSERT_EQ(p.inputs().size(), 2u);
+  EXPECT_EQ(p.inputs()[0].name, "measured");  // inputs are in name order
+  set_inputs(p, {10, 20, 30}, {10, 25, 30});
+  p.step(0.0);
+  const auto residual = p.values(p.signal("residual.residual"));
+  EXPECT_EQ(residual[0], 0.0);
+  EXPECT_EQ(residual[1], -5.0);
+  // The low-pass starts at the first sample; |-5| > 5 is false, so no flag yet.
+  EXPECT_EQ(p.values(p.signal("smooth.filtered"))[1], -5.0);
+  EXPECT_EQ(p.values(p.monitor().fault)[1], 0.0);
+  set_inputs(p, {10, 10, 30}, {10, 25, 30});
+  for (int k = 1; k < 2000; ++k) p.step(k * 1e-3);
+  EXPECT_EQ(p.values(p.monitor().fault)[1], 1.0);
+  EXPECT_EQ(p.values(p.monitor().fault_type)[1], 1.0);  // unclassified
+  EXPECT_EQ(p.values(p.monitor().fault)[0], 0.0);
+}
+
+TEST(Pipeline, RunOrderFollowsDependenciesNotListing) {
+  Json config = test::base_config();
+  std::reverse(config["stages"].begin(), config["stages"].end());
+  const Pipeline p = build(config);
+  ASSERT_EQ(p.stage_count(), 3u);
+  EXPECT_EQ(p.stage_name(0), "residual");
+  EXPECT_EQ(p.stage_name(1), "smooth");
+  EXPECT_EQ(p.stage_name(2), "detect");
+}
+
+TEST(Pipeline, ConcatenatedWiresAreGatheredEveryTick) {
+  const Json config = Json::parse(R"({
+    "sample_period_s": 0.01,
+    "inputs": {
+      "left": {"columns": ["l1", "l2"], "unit": "N"},
+      "right": {"columns": ["r1"], "unit": "N"},
+      "model": {"columns": ["m1", "m2", "m3"], "unit": "N"}
+    },
+    "stages": [
+      {"name": "residual", "plugin": "difference_residual",
+       "inputs": {"measured": ["input.left", "input.right"], "virtual": "input.model"}}
+    ]
+  })");
+  Pipeline p = build(config);
+  EXPECT_FALSE(p.has_monitor());
+  const SignalRef residual = p.signal("residual.residual");
+  ASSERT_EQ(residual.dim, 3u);
+  for (int k = 0; k < 3; ++k) {
+    p.input_values(0)[0] = 1.0 * k;
+    p.input_values(0)[1] = 2.0 * k;
+    p.input_values(2)[0] = 3.0 * k;  // "right" (inputs are in name order: left, model, right)
+    std::fill(p.input_values(1).begin(), p.input_values(1).end(), 1.0);
+    p.step(0.01 * k);
+    EXPECT_EQ(p.values(residual)[0], 1.0 * k - 1.0);
+    EXPECT_EQ(p.values(residual)[1], 2.0 * k - 1.0);
+    EXPECT_EQ(p.values(residual)[2], 3.0 * k - 1.0);
+  }
+}
+
+TEST(Pipeline, UnitsPropagateThroughGenericStages) {
+  const Pipeline p = build(test::base_config());
+  std::map<std::string, std::string> units;
+  for (const auto& [name, unit] : p.signal_names()) units[name] = unit;
+  EXPECT_EQ(units.at("residual.residual"), "N");
+  EXPECT_EQ(units.at("smooth.filtered"), "N");
+  EXPECT_EQ(units.at("detect.fault"), "1");
+  EXPECT_EQ(p.monitor().unit, "N");
+}
+
+TEST(Pipeline, UnknownSignalNamesTheClosest) {
+  const Pipeline p = build(test::base_config());
+  try {
+    (void)p.signal("smooth.filterd");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'smooth.filtered'?"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Pipeline, ResetRestoresTheInitialState) {
+  Pipeline p = build(test::base_config());
+  auto run = [&p] {
+    p.reset();
+    std::vector<double> trace;
+    for (int k = 0; k < 300; ++k) {
+      set_inputs(p, {1.0 * k, 2.0, 3.0}, {0.5, 0.5, 0.5});
+      p.step(k * 1e-3);
+      const auto f = p.values(p.signal("smooth.filtered"));
+      trace.insert(trace.end(), f.begin(), f.end());
+    }
+    return trace;
+  };
+  EXPECT_EQ(run(), run());
+}
+
+TEST(Pipeline, SurvivesBeingMoved) {
+  Pipeline original = build(test::base_config());
+  Pipeline moved = std::move(original);
+  set_inputs(moved, {1, 2, 3}, {0, 0, 0});
+  moved.step(0.0);
+  EXPECT_EQ(moved.values(moved.signal("residual.residual"))[2], 3.0);
+}
+
+TEST(Pipeline, MonitorGathersConcatenatedSignals) {
+  Json config = test::base_config();
+  config["inputs"]["extra"] = Json::parse(R"({"columns": ["e"], "unit": "N"})");
+  config["inputs"]["extra_model"] = Json::parse(R"({"columns": ["em"], "unit": "N"})");
+  config["monitor"]["channels"] = Json::array({"c1", "c2", "c3", "e"});
+  config["monitor"]["measured"] = Json::array({"input.measured", "input.extra"});
+  for (const char* key : {"virtual", "fault_estimate", "recovered"}) {
+    config["monitor"][key] = Json::array({config["monitor"][key], "input.extra_model"});
+  }
+  config["monitor"]["fault"] = Json::array({"detect.fault", "input.extra"});
+  config["monitor"]["fault_type"] = Json::array({"detect.fault_type", "input.extra"});
+  // fault/fault_type are dimensionless but "extra" is in N: allowed, the monitor checks only
+  // that measured and virtual share a unit.
+  Pipeline p = build(config);
+  ASSERT_EQ(p.inputs()[0].name, "extra");  // inputs are in name order
+  p.input_values(0)[0] = 7.0;
+  p.step(0.0);
+  EXPECT_EQ(p.values(p.monitor().measured).size(), 4u);
+  EXPECT_EQ(p.values(p.monitor().measured)[3], 7.0);
+}
+
+}  // namespace
+}  // namespace ftsense
