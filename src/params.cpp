@@ -13,6 +13,7 @@ std::string_view to_string(ParamKind kind) {
     case ParamKind::choice: return "choice";
     case ParamKind::number_list: return "array of numbers";
     case ParamKind::point_list: return "array of [x, y] points";
+    case ParamKind::text_list: return "array of strings";
   }
   return "?";
 }
@@ -29,7 +30,8 @@ std::string ParamInfo::rule() const {
     if (!out.empty()) out += " and ";
     out += std::string(upper->inclusive ? "<= " : "< ") + format_number(upper->value);
   }
-  const bool list = kind == ParamKind::number_list || kind == ParamKind::point_list;
+  const bool list = kind == ParamKind::number_list || kind == ParamKind::point_list ||
+                    kind == ParamKind::text_list;
   if (list && !out.empty()) out = "each " + out;
   if (list && (min_count > 0 || max_count != std::numeric_limits<std::size_t>::max())) {
     if (!out.empty()) out += "; ";

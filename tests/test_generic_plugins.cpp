@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
+
+#include <Eigen/Dense>
 
 #include <gtest/gtest.h>
 
@@ -10,7 +13,8 @@
 
 namespace ftsense::testing {
 using GenericPluginTypes =
-    ::testing::Types<generic::DifferenceResidual, generic::LowPass, generic::ThresholdDetector>;
+    ::testing::Types<generic::DifferenceResidual, generic::LowPass, generic::ThresholdDetector,
+                     generic::RandomWalkFaultFilter, generic::FaultRecovery>;
 INSTANTIATE_TYPED_TEST_SUITE_P(Generic, PluginContract, GenericPluginTypes);
 }  // namespace ftsense::testing
 
@@ -112,6 +116,129 @@ TEST(ThresholdDetector, PerChannelThresholds) {
   detector.step(StepIO{0.0, ins, outs});
   EXPECT_EQ(fault[0], 1.0);
   EXPECT_EQ(fault[1], 0.0);
+}
+
+
+// A single-channel harness for the fault filter.
+struct FaultFilterRig {
+  explicit FaultFilterRig(const generic::RandomWalkFaultFilter::Params& p)
+      : filter(p, StageContext(1e-3, "kf", {{"measured", 1}, {"virtual", 1}})) {
+    filter.reset();
+  }
+  void step(double measured_value, double virtual_value) {
+    measured[0] = measured_value;
+    estimate[0] = virtual_value;
+    const std::span<const double> ins[] = {measured, estimate};
+    const std::span<double> outs[] = {fault, truth, ready};
+    filter.step(StepIO{0.0, ins, outs});
+  }
+  generic::RandomWalkFaultFilter filter;
+  std::vector<double> measured{0.0}, estimate{0.0}, fault{0.0}, truth{0.0}, ready{0.0};
+};
+
+TEST(RandomWalkFaultFilter, SteadyStateGainSolvesTheDiscreteRiccatiEquation) {
+  generic::RandomWalkFaultFilter::Params p;  // the paper's Q = 1e-10 I, R = 1e-4
+  FaultFilterRig rig(p);
+  for (int k = 0; k < 20000; ++k) rig.step(100.0, 100.0);
+
+  // Oracle: iterate the full-matrix Riccati recursion of the model to its fixed point.
+  const Eigen::Matrix2d A{{1.0, 0.0}, {-1.0, 0.0}};
+  const Eigen::RowVector2d H{0.0, 1.0};
+  const Eigen::Matrix2d Q = Eigen::Vector2d(p.fault_process_noise, p.force_process_noise).asDiagonal();
+  Eigen::Matrix2d P = Eigen::Matrix2d::Identity() * p.initial_fault_variance;
+  Eigen::Vector2d K = Eigen::Vector2d::Zero();
+  for (int k = 0; k < 200000; ++k) {
+    const Eigen::Matrix2d prior = A * P * A.transpose() + Q;
+    const double S = (H * prior * H.transpose())(0, 0) + p.measurement_noise;
+    K = prior * H.transpose() / S;
+    P = (Eigen::Matrix2d::Identity() - K * H) * prior;
+    P = 0.5 * (P + P.transpose());
+  }
+  EXPECT_NEAR(rig.filter.fault_gain(0), K(0), 1e-9 * std::abs(K(0)));
+  EXPECT_NEAR(rig.filter.steady_state_fault_gain(), K(0), 1e-9 * std::abs(K(0)));
+  EXPECT_NEAR(rig.filter.fault_variance(0), P(0, 0), 1e-9 * P(0, 0));
+  // About -1e-3 per tick with the paper's values: a time constant near 1 s at 1 kHz.
+  EXPECT_NEAR(K(0), -1e-3, 1e-4);
+  EXPECT_EQ(rig.ready[0], 1.0);
+}
+
+TEST(RandomWalkFaultFilter, ConstantOffsetWithinTwoPercentAfterFiveTimeConstants) {
+  constexpr std::uint64_t kSeed = 424242;
+  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> vfs_noise(0.0, 5.0);  // a virtual sensor 5 N RMS off
+  std::normal_distribution<double> cell_noise(0.0, 1.0);
+  generic::RandomWalkFaultFilter::Params p;
+  FaultFilterRig rig(p);
+  const double gain = rig.filter.steady_state_fault_gain();
+  const int tau_ticks = static_cast<int>(std::ceil(-1.0 / std::log1p(gain)));
+  constexpr double kOffset = 50.0;
+  for (int k = 0; k < 5 * tau_ticks; ++k) {
+    const double load = 300.0 + 100.0 * std::sin(2.0 * std::numbers::pi * 0.8 * k * 1e-3);
+    rig.step(load + kOffset + cell_noise(rng), load + vfs_noise(rng));
+  }
+  std::cout << "time constant " << tau_ticks << " ticks, eta_hat = " << rig.fault[0] << " N\n";
+  EXPECT_NEAR(rig.fault[0], kOffset, 0.02 * kOffset);
+}
+
+TEST(RandomWalkFaultFilter, NotReadyDuringTheInitialTransient) {
+  generic::RandomWalkFaultFilter::Params p;
+  FaultFilterRig rig(p);
+  rig.step(1.0, 1.0);
+  EXPECT_EQ(rig.ready[0], 0.0);
+}
+
+TEST(RandomWalkFaultFilter, NonFiniteInputHoldsTheEstimate) {
+  generic::RandomWalkFaultFilter::Params p;
+  FaultFilterRig rig(p);
+  for (int k = 0; k < 3000; ++k) rig.step(120.0, 100.0);
+  const double before = rig.fault[0];
+  rig.step(std::nan(""), 100.0);
+  EXPECT_EQ(rig.fault[0], before);
+  EXPECT_EQ(rig.truth[0], 100.0);  // falls back on the virtual sensor
+  EXPECT_EQ(rig.filter.covariance_resets(), 0u);
+}
+
+struct RecoveryRig {
+  explicit RecoveryRig(const generic::FaultRecovery::Params& p)
+      : recovery(p, StageContext(1e-3, "rec", {{"measured", 1}})) {
+    recovery.reset();
+  }
+  double step(double m, double eta, double v, double f, double type) {
+    measured[0] = m, fault_estimate[0] = eta, estimate[0] = v, fault[0] = f, fault_type[0] = type;
+    const std::span<const double> ins[] = {measured, fault_estimate, estimate, fault, fault_type};
+    const std::span<double> outs[] = {out};
+    recovery.step(StepIO{0.0, ins, outs});
+    return out[0];
+  }
+  generic::FaultRecovery recovery;
+  std::vector<double> measured{0}, fault_estimate{0}, estimate{0}, fault{0}, fault_type{0}, out{0};
+};
+
+TEST(FaultRecovery, SubtractsTheEstimateOrSubstitutesTheVirtualValue) {
+  RecoveryRig rig(generic::FaultRecovery::Params{});
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 2.0), 100.0);   // offset: measured - eta
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 0.0, 0.0), 100.0);   // paper: always subtract
+  EXPECT_EQ(rig.step(0.0, -80.0, 90.0, 1.0, 4.0), 90.0);     // frozen: the virtual value
+  EXPECT_EQ(rig.step(std::nan(""), 0.0, 90.0, 1.0, 8.0), 90.0);  // invalid
+  EXPECT_EQ(rig.step(std::nan(""), 0.0, std::nan(""), 1.0, 8.0), 90.0);  // nothing valid: hold
+}
+
+TEST(FaultRecovery, WhenFlaggedPassesHealthyChannelsThrough) {
+  generic::FaultRecovery::Params p;
+  p.correction = generic::FaultRecovery::Correction::when_flagged;
+  RecoveryRig rig(p);
+  EXPECT_EQ(rig.step(150.0, 3.0, 90.0, 0.0, 0.0), 150.0);
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 2.0), 100.0);
+}
+
+TEST(FaultRecovery, UnknownSubstituteTypeIsAConfigError) {
+  Diagnostics d;
+  (void)load_params<generic::FaultRecovery::Params>(Json::parse(R"({"substitute_types": ["frozn"]})"),
+                                                    "/stages/4/params", "fault_recovery", d);
+  ASSERT_EQ(d.errors().size(), 1u);
+  EXPECT_EQ(d.errors()[0].path, "/stages/4/params/substitute_types/0");
+  EXPECT_NE(d.errors()[0].message.find("did you mean 'frozen'?"), std::string::npos);
 }
 
 }  // namespace

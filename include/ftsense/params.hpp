@@ -36,7 +36,7 @@ namespace ftsense {
 
 using Json = nlohmann::json;
 
-enum class ParamKind { number, integer, boolean, text, choice, number_list, point_list };
+enum class ParamKind { number, integer, boolean, text, choice, number_list, point_list, text_list };
 [[nodiscard]] std::string_view to_string(ParamKind kind);
 
 struct ParamBound {
@@ -108,8 +108,8 @@ class ParamSchema {
     Field* field_;
   };
 
-  // Adds a field of type double, int, bool, std::string, std::vector<double> or
-  // std::vector<std::array<double, 2>> (points). Enums use add_choice.
+  // Adds a field of type double, int, bool, std::string, std::vector<double>,
+  // std::vector<std::string> or std::vector<std::array<double, 2>> (points). Enums use add_choice.
   template <class T>
   FieldBuilder add(std::string key, T P::*member, std::string description) {
     Field& f = push(std::move(key), std::move(description));
@@ -183,9 +183,11 @@ class ParamSchema {
     else if constexpr (std::is_same_v<T, std::vector<double>>) return ParamKind::number_list;
     else if constexpr (std::is_same_v<T, std::vector<std::array<double, 2>>>)
       return ParamKind::point_list;
+    else if constexpr (std::is_same_v<T, std::vector<std::string>>) return ParamKind::text_list;
     else static_assert(sizeof(T) == 0,
                        "ftsense parameter type must be double, int, bool, std::string, "
-                       "std::vector<double> or std::vector<std::array<double, 2>>; "
+                       "std::vector<double>, std::vector<std::string> or "
+                       "std::vector<std::array<double, 2>>; "
                        "use add_choice for enums");
   }
 
@@ -221,6 +223,21 @@ class ParamSchema {
     std::vector<double> values(raw.size());
     for (std::size_t i = 0; i < raw.size(); ++i) {
       ok = detail::read_number(info, raw[i], json_pointer_append(path, i), diag, values[i]) && ok;
+    }
+    if (ok) out = std::move(values);
+  }
+  static void load_value(const ParamInfo& info, const Json& raw, std::vector<std::string>& out,
+                         const std::string& path, Diagnostics& diag) {
+    if (!raw.is_array()) return detail::report_type(info, raw, "array of strings", path, diag);
+    bool ok = detail::check_count(info, raw, path, diag);
+    std::vector<std::string> values;
+    for (std::size_t i = 0; i < raw.size(); ++i) {
+      if (!raw[i].is_string()) {
+        detail::report_type(info, raw[i], "string", json_pointer_append(path, i), diag);
+        ok = false;
+        continue;
+      }
+      values.push_back(raw[i].template get<std::string>());
     }
     if (ok) out = std::move(values);
   }

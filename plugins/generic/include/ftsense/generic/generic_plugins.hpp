@@ -2,12 +2,14 @@
 // The generic plugins any fault detection problem needs, as one plugin set.
 
 #include "ftsense/generic/difference_residual.hpp"
+#include "ftsense/generic/fault_recovery.hpp"
 #include "ftsense/generic/low_pass.hpp"
+#include "ftsense/generic/random_walk_fault_filter.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
 #include "ftsense/plugin_set.hpp"
 
 namespace ftsense::generic {
 
-using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector>;
+using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery>;
 
 }  // namespace ftsense::generic

@@ -1,0 +1,106 @@
+#include "ftsense/generic/random_walk_fault_filter.hpp"
+
+#include <cmath>
+
+namespace ftsense::generic {
+
+void RandomWalkFaultFilter::Params::describe(ParamSchema<Params>& schema) {
+  schema.add("fault_process_noise", &Params::fault_process_noise,
+             "q_eta: variance of the fault's random-walk step per tick (unit of the signal, squared)")
+      .greater_than(0.0);
+  schema.add("force_process_noise", &Params::force_process_noise,
+             "q_N: process noise variance of the true-signal state per tick")
+      .greater_than(0.0);
+  schema.add("measurement_noise", &Params::measurement_noise,
+             "r: variance of the virtual sensor's error (the filter's measurement)")
+      .greater_than(0.0);
+  schema.add("initial_fault_variance", &Params::initial_fault_variance,
+             "P0 of the fault state (the true-signal state starts with q_N)")
+      .greater_than(0.0);
+  schema.add("ready_tolerance", &Params::ready_tolerance,
+             "ready once |var(eta) - steady-state var(eta)| <= this fraction of the steady state")
+      .greater_than(0.0)
+      .at_most(1.0);
+}
+
+RandomWalkFaultFilter::RandomWalkFaultFilter(const Params& params, const StageContext& context)
+    : params_(params) {
+  const double q = params.fault_process_noise;
+  const double s = params.force_process_noise + params.measurement_noise;
+  steady_variance_ = 0.5 * (q + std::sqrt(q * q + 4.0 * q * s));
+  const std::size_t dim = context.wired_dim("measured", 1);
+  ports_.add_input({"measured", dim, std::string(kAnyUnit), "the monitored sensor N_meas", PortRole::measured});
+  ports_.add_input({"virtual", dim, std::string(kAnyUnit), "the virtual sensor N_vfs", PortRole::virtual_estimate});
+  ports_.add_output({"fault_estimate", dim, std::string(kAnyUnit), "eta_hat, the estimated sensor fault"});
+  ports_.add_output({"true_estimate", dim, std::string(kAnyUnit), "the filter's estimate of the true signal N"});
+  ports_.add_output({"ready", dim, std::string(kDimensionless),
+                     "1 once the fault variance has converged to its steady state"});
+  channels_.resize(dim);
+  reset();
+}
+
+double RandomWalkFaultFilter::steady_state_fault_gain() const noexcept {
+  return -steady_variance_ /
+         (steady_variance_ + params_.force_process_noise + params_.measurement_noise);
+}
+
+void RandomWalkFaultFilter::reset_channel(Channel& c) const noexcept {
+  c.p_fault = params_.initial_fault_variance;
+  c.p_cross = 0.0;
+  c.p_force = params_.force_process_noise;
+  c.fault_gain = 0.0;
+}
+
+void RandomWalkFaultFilter::reset() noexcept {
+  for (auto& c : channels_) {
+    c.fault = 0.0;
+    reset_channel(c);
+  }
+  covariance_resets_ = 0;
+}
+
+void RandomWalkFaultFilter::step(const StepIO& io) noexcept {
+  const auto measured = io.in(kMeasured);
+  const auto estimate = io.in(kVirtual);
+  const auto fault_out = io.out(kFaultEstimate);
+  const auto true_out = io.out(kTrueEstimate);
+  const auto ready_out = io.out(kReady);
+  const double q_fault = params_.fault_process_noise;
+  const double q_force = params_.force_process_noise;
+  const double r = params_.measurement_noise;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const double u = measured[j];
+    const double y = estimate[j];
+    if (std::isfinite(u) && std::isfinite(y)) {
+      // Predict: x- = A x + B u; with A = [1 0; -1 0] only var(eta) survives the propagation.
+      const double a = c.p_fault;
+      const double prior_fault_var = a + q_fault;
+      const double prior_cross = -a;
+      const double prior_force_var = a + q_force;
+      const double predicted_force = u - c.fault;
+      // Update with y = N_vfs, H = [0 1].
+      const double innovation_var = prior_force_var + r;
+      const double gain_fault = prior_cross / innovation_var;
+      const double gain_force = prior_force_var / innovation_var;
+      const double innovation = y - predicted_force;
+      c.fault += gain_fault * innovation;
+      c.fault_gain = gain_fault;
+      c.p_fault = prior_fault_var - prior_cross * prior_cross / innovation_var;
+      c.p_cross = prior_cross - prior_cross * prior_force_var / innovation_var;
+      c.p_force = prior_force_var - prior_force_var * prior_force_var / innovation_var;
+      true_out[j] = predicted_force + gain_force * innovation;
+      if (!(c.p_fault > 0.0 && c.p_force > 0.0 && std::isfinite(c.p_fault) && std::isfinite(c.fault))) {
+        c.fault = std::isfinite(c.fault) ? c.fault : 0.0;
+        reset_channel(c);
+        ++covariance_resets_;
+      }
+    } else {
+      true_out[j] = std::isfinite(u) ? u - c.fault : y;
+    }
+    fault_out[j] = c.fault;
+    ready_out[j] = std::abs(c.p_fault - steady_variance_) <= params_.ready_tolerance * steady_variance_ ? 1.0 : 0.0;
+  }
+}
+
+}  // namespace ftsense::generic
