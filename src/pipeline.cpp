@@ -783,8 +783,8 @@ class PipelineBuilder {
                           measured_deps.end(), std::inserter(shared, shared.begin()));
     if (shared.empty()) return;
     const std::string message =
-        "independence rule: the virtual sensor " + virtual_what + " is computed from input " +
-        join(shared) + ", which is what " + measured_what +
+        "independence rule: the virtual sensor " + virtual_what + " is computed from " +
+        (shared.size() > 1 ? "inputs " : "input ") + join(shared) + ", which is what " + measured_what +
         " measures; a fault of that sensor would leak into its own reference (method.md "
         "section 0). Feed the virtual sensor from other signals (planned ZMP, kinematics)";
     if (allow_dependent_) {

@@ -144,9 +144,13 @@ TYPED_TEST_P(PluginContract, EveryParameterIsDocumented) {
   EXPECT_FALSE(std::string_view(TypeParam::summary).empty());
   for (const auto& info : param_infos<typename TypeParam::Params>()) {
     EXPECT_FALSE(info.description.empty()) << info.key;
-    for (char c : info.key) {
-      EXPECT_TRUE((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_')
-          << "parameter keys are snake_case: " << info.key;
+    // snake_case; the last word may be an SI unit symbol with capitals ("min_force_N").
+    const std::size_t unit_start = info.key.rfind('_') == std::string::npos ? info.key.size() : info.key.rfind('_');
+    for (std::size_t i = 0; i < info.key.size(); ++i) {
+      const char c = info.key[i];
+      const bool lower = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+      const bool unit_capital = i > unit_start && c >= 'A' && c <= 'Z';
+      EXPECT_TRUE(lower || unit_capital) << "parameter keys are snake_case: " << info.key;
     }
   }
 }

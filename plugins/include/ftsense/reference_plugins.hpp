@@ -4,10 +4,11 @@
 //
 //   using my_plugins = ftsense::reference_plugins::with<MyVirtualSensor>;
 
+#include "ftsense/biped/biped_plugins.hpp"
 #include "ftsense/generic/generic_plugins.hpp"
 
 namespace ftsense {
 
-using reference_plugins = generic::generic_plugins;
+using reference_plugins = merge_plugin_sets<generic::generic_plugins, biped::biped_plugins>;
 
 }  // namespace ftsense

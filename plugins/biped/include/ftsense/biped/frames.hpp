@@ -1,0 +1,57 @@
+#pragma once
+// Frames and small geometry used by the biped plugins (method.md section 0).
+//
+// World frame: z up, x forward, y left. Orientations are logged as roll, pitch, yaw [rad] with
+// R = Rz(yaw) Ry(pitch) Rx(roll), mapping body coordinates to world coordinates.
+
+#include <array>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace ftsense::biped {
+
+[[nodiscard]] inline Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) noexcept {
+  const double cr = std::cos(roll), sr = std::sin(roll);
+  const double cp = std::cos(pitch), sp = std::sin(pitch);
+  const double cy = std::cos(yaw), sy = std::sin(yaw);
+  Eigen::Matrix3d r;
+  r << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+       sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+       -sp, cp * sr, cp * cr;
+  return r;
+}
+
+[[nodiscard]] inline Eigen::Matrix3d rotation_from_rpy(std::span<const double> rpy) noexcept {
+  return rotation_from_rpy(rpy[0], rpy[1], rpy[2]);
+}
+
+[[nodiscard]] inline Eigen::Vector3d vector3(std::span<const double> v) noexcept {
+  return {v[0], v[1], v[2]};
+}
+
+[[nodiscard]] inline bool all_finite(std::span<const double> v) noexcept {
+  for (double x : v) {
+    if (!std::isfinite(x)) return false;
+  }
+  return true;
+}
+
+// A convex support polygon (the convex hull of a foot's contact points), counter-clockwise.
+class SupportPolygon {
+ public:
+  explicit SupportPolygon(const std::vector<std::array<double, 2>>& points);
+  // The closest point of the polygon (itself when inside). Allocation-free.
+  [[nodiscard]] Eigen::Vector2d clamp(const Eigen::Vector2d& p) const noexcept;
+  [[nodiscard]] bool contains(const Eigen::Vector2d& p) const noexcept;
+  [[nodiscard]] Eigen::Vector2d centroid() const noexcept { return centroid_; }
+  [[nodiscard]] const std::vector<Eigen::Vector2d>& vertices() const noexcept { return hull_; }
+
+ private:
+  std::vector<Eigen::Vector2d> hull_;
+  Eigen::Vector2d centroid_ = Eigen::Vector2d::Zero();
+};
+
+}  // namespace ftsense::biped

@@ -1,0 +1,50 @@
+#pragma once
+// Total ground reaction force and its split between the legs (method.md section 2; paper eq. 6-9).
+//
+// Neglecting limb inertia, the total ground reaction force is F = m R_wb f_imu [N] (the IMU's
+// specific force includes gravity). It is split by the CoM's position along the axis joining the
+// feet (so turning gaits work):
+//
+//   u     = (o_L - o_R)_xy / |o_L - o_R|_xy                (unit vector, right foot -> left foot)
+//   c_lat = (c - (o_L + o_R) / 2)_xy . u                   (lateral CoM relative to the midpoint)
+//   alpha = clamp(c_lat / c_lat_max, -1, 1),   F_L = (1 + alpha) F / 2,   F_R = (1 - alpha) F / 2
+//
+// c_lat_max is `lateral_reach_m` when > 0; otherwise it is recorded as |c_lat| at each onset of
+// single support (starting from half the feet's distance). A foot the contact schedule says is in
+// swing carries nothing (alpha = +-1); with neither foot in contact both forces are zero.
+// o_L, o_R are the foot frame origins (sole plane under the ankle) in the world frame [m].
+
+#include <string_view>
+
+#include "ftsense/plugin.hpp"
+
+namespace ftsense::biped {
+
+class LegForceSplit {
+ public:
+  static constexpr std::string_view name = "leg_force_split";
+  static constexpr std::string_view summary =
+      "F = m R_wb f_imu split between the feet by the lateral CoM (paper eq. 6-9)";
+
+  struct Params {
+    double mass_kg = 0.0;
+    double lateral_reach_m = 0.0;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kImuAcc, kBaseRpy, kCom, kLeftFootPos, kRightFootPos, kContact };
+  enum Output : std::size_t { kLeftForce, kRightForce, kTotalForce, kAlpha };
+
+  LegForceSplit(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept;
+  void step(const StepIO& io) noexcept;
+
+ private:
+  Ports ports_;
+  Params params_;
+  double recorded_reach_m_ = 0.0;
+  bool was_double_support_ = true;
+};
+
+}  // namespace ftsense::biped

@@ -1,0 +1,77 @@
+#include "ftsense/biped/leg_force_split.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ftsense/biped/frames.hpp"
+
+namespace ftsense::biped {
+
+void LegForceSplit::Params::describe(ParamSchema<Params>& schema) {
+  schema.add("mass_kg", &Params::mass_kg, "total robot mass m").unit("kg").greater_than(0.0).required();
+  schema.add("lateral_reach_m", &Params::lateral_reach_m,
+             "c_lat_max of eq. 7; 0 records |c_lat| at each single-support onset")
+      .unit("m").at_least(0.0);
+}
+
+LegForceSplit::LegForceSplit(const Params& params, const StageContext& /*context*/) : params_(params) {
+  ports_.add_input({"imu_acc", 3, "m/s^2", "IMU specific force f_imu in the IMU (trunk) frame"});
+  ports_.add_input({"base_rpy", 3, "rad", "trunk orientation roll, pitch, yaw (R_wb)"});
+  ports_.add_input({"com", 3, "m", "CoM position, world frame"});
+  ports_.add_input({"l_foot_pos", 3, "m", "left foot frame origin o_L, world frame"});
+  ports_.add_input({"r_foot_pos", 3, "m", "right foot frame origin o_R, world frame"});
+  ports_.add_input({"contact", 2, "1", "contact state (left, right) from the gait schedule, 0 or 1"});
+  ports_.add_output({"l_force", 3, "N", "left foot ground reaction force F_L, world frame"});
+  ports_.add_output({"r_force", 3, "N", "right foot ground reaction force F_R, world frame"});
+  ports_.add_output({"total_force", 3, "N", "total ground reaction force F = m R_wb f_imu"});
+  ports_.add_output({"alpha", 1, "1", "split factor alpha in [-1, 1]"});
+}
+
+void LegForceSplit::reset() noexcept {
+  recorded_reach_m_ = 0.0;
+  was_double_support_ = true;
+}
+
+void LegForceSplit::step(const StepIO& io) noexcept {
+  const auto contact = io.in(kContact);
+  const bool left = contact[0] > 0.5;
+  const bool right = contact[1] > 0.5;
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  if (all_finite(io.in(kImuAcc)) && all_finite(io.in(kBaseRpy))) {
+    total = params_.mass_kg * (rotation_from_rpy(io.in(kBaseRpy)) * vector3(io.in(kImuAcc)));
+  }
+  const Eigen::Vector3d o_l = vector3(io.in(kLeftFootPos));
+  const Eigen::Vector3d o_r = vector3(io.in(kRightFootPos));
+  const Eigen::Vector3d c = vector3(io.in(kCom));
+  const Eigen::Vector2d across = (o_l - o_r).head<2>();
+  const double distance = across.norm();
+  const Eigen::Vector2d u = distance > 1e-6 ? Eigen::Vector2d(across / distance) : Eigen::Vector2d(0.0, 1.0);
+  const double c_lat = (c - 0.5 * (o_l + o_r)).head<2>().dot(u);
+  if (was_double_support_ && left != right && std::isfinite(c_lat) && std::abs(c_lat) > 1e-3) {
+    recorded_reach_m_ = std::abs(c_lat);
+  }
+  was_double_support_ = left && right;
+  double reach = params_.lateral_reach_m > 0.0 ? params_.lateral_reach_m : recorded_reach_m_;
+  if (!(reach > 1e-3)) reach = std::max(0.5 * distance, 1e-3);
+  double alpha = 0.0;
+  if (left && right) {
+    alpha = std::isfinite(c_lat) ? std::clamp(c_lat / reach, -1.0, 1.0) : 0.0;
+  } else if (left) {
+    alpha = 1.0;
+  } else if (right) {
+    alpha = -1.0;
+  } else {
+    total.setZero();  // flight, or the robot lifted: no ground force to split
+  }
+  const auto fl = io.out(kLeftForce);
+  const auto fr = io.out(kRightForce);
+  const auto ft = io.out(kTotalForce);
+  for (int i = 0; i < 3; ++i) {
+    fl[i] = 0.5 * (1.0 + alpha) * total[i];
+    fr[i] = 0.5 * (1.0 - alpha) * total[i];
+    ft[i] = total[i];
+  }
+  io.out(kAlpha)[0] = alpha;
+}
+
+}  // namespace ftsense::biped

@@ -1,0 +1,123 @@
+#include "ftsense/biped/lipm_com_estimator.hpp"
+
+#include <cmath>
+
+#include "ftsense/biped/frames.hpp"
+
+namespace ftsense::biped {
+
+void LipmComEstimator::Params::describe(ParamSchema<Params>& schema) {
+  schema.add("com_height_m", &Params::com_height_m, "constant CoM height z_c of the LIPM")
+      .unit("m").greater_than(0.0).required();
+  schema.add("gravity_m_s2", &Params::gravity_m_s2, "gravity g").unit("m/s^2").greater_than(0.0);
+  schema.add_choice("zmp_source", &Params::zmp_source,
+                    "which ZMP feeds the LIPM: the gait plan's (independent of the force sensors) or "
+                    "one measured by the force sensors (the paper's choice)",
+                    {{"planned", ZmpSource::planned}, {"measured", ZmpSource::measured}});
+  schema.add("use_kinematic_com", &Params::use_kinematic_com,
+             "also correct with a kinematic CoM measurement (adds input kinematic_com)");
+  schema.add("jerk_noise_m_s3", &Params::jerk_noise_m_s3,
+             "process noise: standard deviation of the CoM jerk (drives c'' per tick)")
+      .unit("m/s^3").greater_than(0.0);
+  schema.add("acc_noise_m_s2", &Params::acc_noise_m_s2,
+             "standard deviation of the IMU's horizontal acceleration as a CoM acceleration")
+      .unit("m/s^2").greater_than(0.0);
+  schema.add("zmp_noise_m", &Params::zmp_noise_m, "standard deviation of the ZMP in p = c - c''/omega0^2")
+      .unit("m").greater_than(0.0);
+  schema.add("kinematic_com_noise_m", &Params::kinematic_com_noise_m,
+             "standard deviation of the kinematic CoM (if used)")
+      .unit("m").greater_than(0.0);
+}
+
+LipmComEstimator::LipmComEstimator(const Params& params, const StageContext& context)
+    : params_(params), period_s_(context.sample_period_s()), omega2_(params.gravity_m_s2 / params.com_height_m) {
+  const double t = period_s_;
+  transition_ << 1.0, t, 0.5 * t * t,
+                 0.0, 1.0, t,
+                 0.0, t * omega2_, 1.0;
+  // Jerk noise j enters as [T^3/6, T^2/2, T] j; its covariance is that outer product times var(j).
+  const Eigen::Vector3d g(t * t * t / 6.0, 0.5 * t * t, t);
+  process_noise_ = g * g.transpose() * params.jerk_noise_m_s3 * params.jerk_noise_m_s3;
+  // Keep Q positive definite: a small floor on each state's diagonal.
+  process_noise_.diagonal() += Eigen::Vector3d(1e-12, 1e-10, 1e-8);
+  ports_.add_input({"imu_acc", 3, "m/s^2", "IMU specific force f_imu in the IMU (trunk) frame"});
+  ports_.add_input({"base_rpy", 3, "rad", "trunk orientation roll, pitch, yaw (R_wb)"});
+  if (params.zmp_source == ZmpSource::planned) {
+    ports_.add_input({"planned_zmp", 2, "m", "the gait plan's ZMP p_ref (x, y), world frame"});
+  } else {
+    ports_.add_input({"measured_zmp", 2, "m", "the ZMP measured by the force sensors (x, y), world frame"});
+  }
+  if (params.use_kinematic_com) {
+    ports_.add_input({"kinematic_com", 2, "m", "CoM (x, y) from forward kinematics, world frame"});
+  }
+  ports_.add_output({"com", 3, "m", "CoM position (x, y, z_c), world frame"});
+  ports_.add_output({"com_velocity", 2, "m/s", "CoM velocity (x, y)"});
+  ports_.add_output({"com_acceleration", 2, "m/s^2", "CoM acceleration (x, y)"});
+  reset();
+}
+
+void LipmComEstimator::reset() noexcept {
+  for (Axis& a : axes_) {
+    a.s.setZero();
+    a.P = Eigen::Vector3d(1e-2, 1e-2, 1.0).asDiagonal();
+    a.previous_zmp = 0.0;
+  }
+  initialised_ = false;
+}
+
+void LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept {
+  const Eigen::Vector3d ph = axis.P * h.transpose();
+  const double s = h.dot(ph) + variance;
+  if (!(s > 0.0) || !std::isfinite(z)) return;
+  const Eigen::Vector3d k = ph / s;
+  axis.s += k * (z - h.dot(axis.s));
+  axis.P -= k * ph.transpose();
+  axis.P = 0.5 * (axis.P + axis.P.transpose());
+}
+
+void LipmComEstimator::step(const StepIO& io) noexcept {
+  const auto imu = io.in(kImuAcc);
+  const auto rpy = io.in(kBaseRpy);
+  const auto zmp = io.in(kZmp);
+  Eigen::Vector2d acc(std::nan(""), std::nan(""));
+  if (all_finite(imu) && all_finite(rpy)) {
+    const Eigen::Vector3d f = rotation_from_rpy(rpy) * vector3(imu);
+    acc = f.head<2>();
+  }
+  if (!initialised_ && all_finite(zmp)) {
+    for (int i = 0; i < 2; ++i) {
+      axes_[i].s = Eigen::Vector3d(zmp[i], 0.0, 0.0);
+      axes_[i].previous_zmp = zmp[i];
+    }
+    initialised_ = true;
+  }
+  const Eigen::RowVector3d h_acc(0.0, 0.0, 1.0);
+  const Eigen::RowVector3d h_zmp(1.0, 0.0, -1.0 / omega2_);
+  const Eigen::RowVector3d h_com(1.0, 0.0, 0.0);
+  for (int i = 0; i < 2; ++i) {
+    Axis& a = axes_[i];
+    // Predict with the ZMP rate of the last tick (zero when the ZMP is unavailable).
+    const double p = std::isfinite(zmp[i]) ? zmp[i] : a.previous_zmp;
+    const double zmp_rate = (p - a.previous_zmp) / period_s_;
+    a.s = transition_ * a.s;
+    a.s(2) -= period_s_ * omega2_ * zmp_rate;
+    a.P = transition_ * a.P * transition_.transpose() + process_noise_;
+    a.previous_zmp = p;
+    update(a, h_acc, acc[i], params_.acc_noise_m_s2 * params_.acc_noise_m_s2);
+    update(a, h_zmp, zmp[i], params_.zmp_noise_m * params_.zmp_noise_m);
+    if (params_.use_kinematic_com) {
+      update(a, h_com, io.in(kKinematicCom)[i], params_.kinematic_com_noise_m * params_.kinematic_com_noise_m);
+    }
+  }
+  const auto com = io.out(kCom);
+  const auto vel = io.out(kComVelocity);
+  const auto accel = io.out(kComAcceleration);
+  for (int i = 0; i < 2; ++i) {
+    com[i] = axes_[i].s(0);
+    vel[i] = axes_[i].s(1);
+    accel[i] = axes_[i].s(2);
+  }
+  com[2] = params_.com_height_m;
+}
+
+}  // namespace ftsense::biped

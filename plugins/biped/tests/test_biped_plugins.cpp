@@ -1,0 +1,322 @@
+// Biped plugins: the contract suite and analytic oracles (LIPM convergence, force conservation,
+// CoP = moment formula, KKT of the distribution).
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "ftsense/biped/biped_plugins.hpp"
+#include "ftsense/testing/plugin_contract.hpp"
+
+namespace {
+const ftsense::Json kSuralpFoot = ftsense::Json::parse(
+    R"([[0.12, 0.075], [0.12, -0.075], [-0.12, 0.075], [-0.12, -0.075]])");
+}
+
+namespace ftsense::testing {
+
+template <>
+struct ContractSetup<biped::LipmComEstimator> {
+  static Json params() { return {{"com_height_m", 0.8}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "imu_acc") v[2] = 9.806;
+    if (port == "planned_zmp") v[0] = 0.05;
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+
+template <>
+struct ContractSetup<biped::LegForceSplit> {
+  static Json params() { return {{"mass_kg", 114.0}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "imu_acc") v[2] = 9.806;
+    if (port == "com") v[2] = 0.8;
+    if (port == "l_foot_pos") v[1] = 0.1;
+    if (port == "r_foot_pos") v[1] = -0.1;
+    if (port == "contact") v[0] = v[1] = 1.0;
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+
+template <>
+struct ContractSetup<biped::FootCop> {
+  static Json params() { return {{"points", kSuralpFoot}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "com") v[0] = 0.02, v[2] = 0.8;
+    if (port == "force") v[2] = 500.0;
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+
+template <>
+struct ContractSetup<biped::ContactForceDistribution> {
+  static Json params() { return {{"points", kSuralpFoot}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    if (port == "cop") v[0] = 0.03, v[1] = -0.01;
+    if (port == "normal_force") v[0] = 600.0;
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+
+template <>
+struct ContractSetup<biped::ZmpFromContactForces> {
+  static Json params() { return {{"points", kSuralpFoot}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "l_forces" || port == "r_forces") std::fill(v.begin(), v.end(), 140.0);
+    if (port == "l_foot_pos") v[1] = 0.1;
+    if (port == "r_foot_pos") v[1] = -0.1;
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+
+using BipedPluginTypes = ::testing::Types<biped::LipmComEstimator, biped::LegForceSplit, biped::FootCop,
+                                          biped::ContactForceDistribution, biped::ZmpFromContactForces>;
+INSTANTIATE_TYPED_TEST_SUITE_P(Biped, PluginContract, BipedPluginTypes);
+
+}  // namespace ftsense::testing
+
+namespace ftsense::biped {
+namespace {
+
+using testing::PluginHarness;
+
+// A sinusoidal ZMP p = A sin(w t) has the LIPM solution c = A omega0^2 / (omega0^2 + w^2) sin(w t)
+// (from c'' = omega0^2 (c - p)). The estimator starts at the ZMP, not at c, and gets the exact
+// CoM acceleration (plus noise of the given RMS) as its IMU. Returns the RMS CoM error after 2 s.
+double lipm_tracking_rms(double acc_noise_rms, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> acc_noise(0.0, 1.0);
+  PluginHarness<LipmComEstimator> h;
+  h.plugin().reset();
+  const double zc = 0.8, g = 9.806, omega2 = g / zc;
+  const double amplitude_x = 0.04, amplitude_y = 0.08, w = 2.0 * std::numbers::pi * 0.6;
+  const double ratio = omega2 / (omega2 + w * w);
+  double sum_squares = 0.0;
+  int count = 0;
+  for (int k = 0; k < 6000; ++k) {
+    const double t = k * 1e-3;
+    const double px = amplitude_x * std::sin(w * t), py = amplitude_y * std::cos(w * t);
+    const double cx = ratio * px, cy = ratio * py;
+    auto& in = h.inputs();
+    in[0] = {-w * w * cx + acc_noise_rms * acc_noise(rng), -w * w * cy + acc_noise_rms * acc_noise(rng), g};
+    in[1] = {0.0, 0.0, 0.0};  // level IMU: R = I
+    in[2] = {px, py};
+    h.step(t);
+    const auto& com = h.outputs()[0];
+    EXPECT_EQ(com[2], zc);
+    if (t > 2.0) {
+      sum_squares += std::pow(com[0] - cx, 2) + std::pow(com[1] - cy, 2);
+      ++count;
+    }
+  }
+  return std::sqrt(sum_squares / count);
+}
+
+TEST(LipmComEstimator, ConvergesOnASyntheticLipmTrajectoryWithKnownZmp) {
+  // Noise-free: the model is exact, so the error after convergence is at the 0.1 mm level.
+  const double exact = lipm_tracking_rms(0.0, 11);
+  std::cout << "noise-free CoM RMS error after 2 s: " << exact * 1000 << " mm\n";
+  EXPECT_LT(exact, 1e-4);
+  // With 0.2 m/s^2 RMS IMU noise the error is noise-limited (about 2 mm).
+  constexpr std::uint64_t kSeed = 11;
+  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  const double noisy = lipm_tracking_rms(0.2, kSeed);
+  std::cout << "CoM RMS error after 2 s with 0.2 m/s^2 IMU noise: " << noisy * 1000 << " mm\n";
+  EXPECT_LT(noisy, 0.004);
+}
+
+TEST(LipmComEstimator, MeasuredZmpSourceRenamesTheInput) {
+  LipmComEstimator::Params p;
+  p.com_height_m = 0.8;
+  p.zmp_source = LipmComEstimator::ZmpSource::measured;
+  p.use_kinematic_com = true;
+  const LipmComEstimator estimator(p, StageContext(1e-3, "com"));
+  EXPECT_TRUE(estimator.ports().find_input("measured_zmp"));
+  EXPECT_FALSE(estimator.ports().find_input("planned_zmp"));
+  EXPECT_TRUE(estimator.ports().find_input("kinematic_com"));
+}
+
+struct SplitCase {
+  double c_lat;
+  double contact_l, contact_r;
+  double expected_alpha;
+};
+
+TEST(LegForceSplit, ForcesSumToTheTotalAndFollowAlpha) {
+  PluginHarness<LegForceSplit> h;
+  h.plugin().reset();
+  h.fill_nominal();
+  auto& in = h.inputs();
+  in[0] = {0.3, -0.2, 10.1};  // a little horizontal acceleration
+  in[1] = {0.02, -0.03, 0.4};
+  in[3] = {0.0, 0.09, 0.0};
+  in[4] = {0.0, -0.09, 0.0};
+  const SplitCase cases[] = {{0.0, 1, 1, 0.0}, {0.045, 1, 1, 0.5}, {-0.3, 1, 1, -1.0},
+                             {0.0, 1, 0, 1.0}, {0.0, 0, 1, -1.0}};
+  // c_lat_max defaults to half the feet's distance (0.09 m) until a single support is seen.
+  for (const auto& c : cases) {
+    in[2] = {0.01, c.c_lat, 0.8};
+    in[5] = {c.contact_l, c.contact_r};
+    h.step(0.0);
+    const auto& out = h.outputs();
+    EXPECT_NEAR(out[3][0], c.expected_alpha, 1e-12) << "c_lat " << c.c_lat;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(out[0][i] + out[1][i], out[2][i], 1e-9);
+    // F = m R f: its norm is m |f| (a rotation keeps lengths).
+    EXPECT_NEAR(std::hypot(out[2][0], out[2][1], out[2][2]), 114.0 * std::hypot(0.3, -0.2, 10.1), 1e-9);
+  }
+  in[5] = {0.0, 0.0};
+  h.step(0.0);
+  EXPECT_EQ(h.outputs()[0][2] + h.outputs()[1][2], 0.0);  // flight: nothing to split
+}
+
+TEST(LegForceSplit, RecordsTheLateralReachAtSingleSupportOnset) {
+  PluginHarness<LegForceSplit> h;
+  h.plugin().reset();
+  h.fill_nominal();
+  auto& in = h.inputs();
+  in[2] = {0.0, 0.04, 0.8};
+  in[5] = {1.0, 0.0};  // right foot lifts: c_lat = 0.04 is recorded
+  h.step(0.0);
+  in[5] = {1.0, 1.0};
+  in[2] = {0.0, 0.02, 0.8};
+  h.step(0.001);
+  EXPECT_NEAR(h.outputs()[3][0], 0.5, 1e-12);
+}
+
+TEST(FootCop, EqualsTheMomentFormulaInsideThePolygon) {
+  constexpr std::uint64_t kSeed = 5;
+  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  PluginHarness<FootCop> h;
+  int inside = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Eigen::Vector3d c(0.05 * u(rng), 0.05 * u(rng), 0.75 + 0.05 * u(rng));
+    const Eigen::Vector3d o(0.02 * u(rng), 0.02 * u(rng), 0.01 * u(rng));
+    const Eigen::Vector3d rpy(0.05 * u(rng), 0.05 * u(rng), 0.5 * u(rng));
+    const Eigen::Vector3d force(40.0 * u(rng), 40.0 * u(rng), 600.0 + 300.0 * u(rng));
+    auto& in = h.inputs();
+    in[0] = {c.x(), c.y(), c.z()};
+    in[1] = {force.x(), force.y(), force.z()};
+    in[2] = {o.x(), o.y(), o.z()};
+    in[3] = {rpy.x(), rpy.y(), rpy.z()};
+    h.step(0.0);
+    const Eigen::Matrix3d rotation = rotation_from_rpy(rpy.x(), rpy.y(), rpy.z());
+    const Eigen::Vector3d d = rotation.transpose() * (c - o);
+    const Eigen::Vector3d f = rotation.transpose() * force;
+    const Eigen::Vector3d moment = d.cross(f);
+    const Eigen::Vector2d expected(-moment.y() / f.z(), moment.x() / f.z());
+    if (std::abs(expected.x()) < 0.12 && std::abs(expected.y()) < 0.075) {
+      ++inside;
+      EXPECT_NEAR(h.outputs()[0][0], expected.x(), 1e-12);
+      EXPECT_NEAR(h.outputs()[0][1], expected.y(), 1e-12);
+      EXPECT_NEAR(h.outputs()[1][0], f.z(), 1e-9);
+    } else {
+      // Clamped onto the sole's boundary.
+      const double x = h.outputs()[0][0], y = h.outputs()[0][1];
+      EXPECT_TRUE(std::abs(std::abs(x) - 0.12) < 1e-12 || std::abs(std::abs(y) - 0.075) < 1e-12) << x << ", " << y;
+    }
+  }
+  EXPECT_GT(inside, 500);
+}
+
+TEST(FootCop, UnloadedFootHasNoDivision) {
+  PluginHarness<FootCop> h;
+  h.fill_nominal();
+  h.inputs()[1] = {10.0, 0.0, 1e-9};
+  h.step(0.0);
+  EXPECT_EQ(h.outputs()[0][0], 0.0);  // the centroid
+  EXPECT_EQ(h.outputs()[0][1], 0.0);
+  EXPECT_EQ(h.outputs()[2][0], 0.0);  // not loaded
+}
+
+TEST(ContactForceDistribution, ConservesTheNormalForceAndSatisfiesKkt) {
+  constexpr std::uint64_t kSeed = 99;
+  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  PluginHarness<ContactForceDistribution> h;
+  h.plugin().reset();
+  const ContactQpProblem base{ContactGeometry::rectangle(0.24, 0.15, 1e-6), 0.0, Eigen::Vector2d::Zero()};
+  for (int trial = 0; trial < 1000; ++trial) {
+    const double fz = 1000.0 * (u(rng) + 1.0);
+    const Eigen::Vector2d cop(0.15 * u(rng), 0.1 * u(rng));  // inside and outside the sole
+    h.inputs()[0] = {cop.x(), cop.y()};
+    h.inputs()[1] = {fz};
+    h.step(0.0);
+    const auto& forces = h.outputs()[0];
+    double sum = 0.0;
+    for (double f : forces) {
+      EXPECT_GE(f, 0.0);
+      sum += f;
+    }
+    EXPECT_NEAR(sum, fz, 1e-9 * std::max(1.0, fz));
+    // The plugin's point order (SURALP p1..p4) differs from rectangle(): compare via the KKT check
+    // on the plugin's own geometry.
+    ContactQpProblem problem = base;
+    problem.geometry.points << 0.12, 0.12, -0.12, -0.12, 0.075, -0.075, 0.075, -0.075;
+    problem.fz = fz;
+    problem.cop = cop;
+    const Eigen::VectorXd n = Eigen::Map<const Eigen::VectorXd>(forces.data(), 4);
+    const ContactQpKkt kkt = check_kkt(problem, n, 1e-6);
+    EXPECT_TRUE(kkt.satisfied()) << kkt.describe();
+  }
+}
+
+TEST(ContactForceDistribution, DefaultWeightsMeetTheMomentsInsideTheSole) {
+  // With W = 1e-6 m^2 the realised CoP sum_l N_l (x_l, y_l) / F_z is within sqrt(w) = 1 mm of
+  // the requested one anywhere inside the sole (the paper's 0.01 m^2 would miss by 15-30 %).
+  PluginHarness<ContactForceDistribution> h;
+  h.plugin().reset();
+  const double xs[] = {0.12, 0.12, -0.12, -0.12}, ys[] = {0.075, -0.075, 0.075, -0.075};
+  for (double rx : {-0.11, -0.05, 0.0, 0.07, 0.11}) {
+    for (double ry : {-0.07, 0.0, 0.03, 0.07}) {
+      h.inputs()[0] = {rx, ry};
+      h.inputs()[1] = {800.0};
+      h.step(0.0);
+      double mx = 0.0, my = 0.0;
+      for (int l = 0; l < 4; ++l) {
+        mx += h.outputs()[0][l] * xs[l];
+        my += h.outputs()[0][l] * ys[l];
+      }
+      EXPECT_NEAR(mx / 800.0, rx, 1e-3) << rx << ", " << ry;
+      EXPECT_NEAR(my / 800.0, ry, 1e-3) << rx << ", " << ry;
+    }
+  }
+}
+
+TEST(ContactForceDistribution, WeightsMustMatchThePoints) {
+  Diagnostics d;
+  (void)load_params<ContactForceDistribution::Params>(
+      Json{{"points", kSuralpFoot}, {"weights", {0.01, 0.02}}}, "/stages/5/params", "contact_force_distribution", d);
+  ASSERT_EQ(d.errors().size(), 1u);
+  EXPECT_EQ(d.errors()[0].path, "/stages/5/params/weights");
+}
+
+TEST(ZmpFromContactForces, IsTheCentreOfPressureOfAllPads) {
+  PluginHarness<ZmpFromContactForces> h;
+  h.plugin().reset();
+  h.fill_nominal();
+  h.step(0.0);
+  EXPECT_NEAR(h.outputs()[0][0], 0.0, 1e-12);
+  EXPECT_NEAR(h.outputs()[0][1], 0.0, 1e-12);  // symmetric feet at y = +-0.1
+  EXPECT_NEAR(h.outputs()[1][0], 8 * 140.0, 1e-9);
+  h.inputs()[1] = {0.0, 0.0, 0.0, 0.0};  // right foot unloaded: ZMP at the left foot's centre
+  h.step(0.001);
+  EXPECT_NEAR(h.outputs()[0][1], 0.1, 1e-12);
+}
+
+}  // namespace
+}  // namespace ftsense::biped
