@@ -7,7 +7,7 @@ BUILD_DIR := build
 JOBS ?= 2
 # Debian packages the build needs (checked with dpkg; installed with apt-get when missing).
 PACKAGES := cmake ninja-build g++ make pkg-config libeigen3-dev libceres-dev libboost-dev \
-            nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libmujoco-dev
+            nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libmujoco-dev python3
 
 .PHONY: all deps configure build test demo docs sanitize clean
 
@@ -38,6 +38,7 @@ demo: build
 
 docs: build
 	./$(BUILD_DIR)/bin/ftsense plugins --markdown > docs/config_reference.md
+	bash tests/cli/check_generated_docs.sh ./$(BUILD_DIR)/bin/ftsense . --update
 
 sanitize: deps
 	cmake --preset sanitize

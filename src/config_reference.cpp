@@ -64,18 +64,22 @@ std::string config_reference_markdown(const PluginRegistry& plugins) {
         "`<channel>/virtual_<unit>`, `<channel>/fault_estimate_<unit>`, "
         "`<channel>/recovered_<unit>`, `<channel>/fault`, `<channel>/fault_type` |\n\n"
      << "## Plugins\n";
-  for (const auto& plugin : plugins.plugins()) {
-    os << "\n### `" << plugin.name << "`\n\n" << plugin.summary << "\n\n";
-    if (plugin.params.empty()) {
-      os << "No parameters.\n";
-      continue;
-    }
-    os << "| key | type | unit | default | rule | meaning |\n|---|---|---|---|---|---|\n";
-    for (const auto& p : plugin.params) {
-      os << "| `" << p.key << "` | " << to_string(p.kind) << " | " << (p.unit.empty() ? "-" : p.unit)
-         << " | " << escape_cell(default_text(p)) << " | " << escape_cell(p.rule().empty() ? "-" : p.rule())
-         << " | " << escape_cell(p.description) << " |\n";
-    }
+  for (const auto& plugin : plugins.plugins()) os << '\n' << plugin_reference_markdown(plugin);
+  return os.str();
+}
+
+std::string plugin_reference_markdown(const PluginInfo& plugin) {
+  std::ostringstream os;
+  os << "### `" << plugin.name << "`\n\n" << plugin.summary << "\n\n";
+  if (plugin.params.empty()) {
+    os << "No parameters.\n";
+    return os.str();
+  }
+  os << "| key | type | unit | default | rule | meaning |\n|---|---|---|---|---|---|\n";
+  for (const auto& p : plugin.params) {
+    os << "| `" << p.key << "` | " << to_string(p.kind) << " | " << (p.unit.empty() ? "-" : p.unit)
+       << " | " << escape_cell(default_text(p)) << " | " << escape_cell(p.rule().empty() ? "-" : p.rule())
+       << " | " << escape_cell(p.description) << " |\n";
   }
   return os.str();
 }

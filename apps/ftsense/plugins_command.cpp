@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <iostream>
 
 #include "cli.hpp"
@@ -8,13 +9,28 @@ namespace ftsense::cli {
 
 int plugins_command(const std::vector<std::string>& args) {
   const std::vector<OptionSpec> specs{
-      {"markdown", false, false, "print the full configuration reference (docs/config_reference.md)"}};
+      {"markdown", false, false, "print the full configuration reference (docs/config_reference.md)"},
+      {"only", true, false, "with --markdown: only these plugins' sections (comma-separated names)"}};
   const auto options = parse_options("plugins", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("plugins", "Lists the plugins compiled into this program.", specs);
     return kExitOk;
   }
   const PluginRegistry registry = reference_plugins::registry();
+  if (options.count("markdown") && options.count("only")) {
+    std::string names = options.at("only");
+    bool first = true;
+    for (std::size_t start = 0; start <= names.size();) {
+      const std::size_t comma = std::min(names.find(',', start), names.size());
+      const std::string name = names.substr(start, comma - start);
+      const PluginInfo* info = registry.find(name);
+      if (info == nullptr) throw UsageError{"ftsense plugins: unknown plugin '" + name + "'; " + suggest(name, registry.names())};
+      std::cout << (first ? "" : "\n") << plugin_reference_markdown(*info);
+      first = false;
+      start = comma + 1;
+    }
+    return kExitOk;
+  }
   if (options.count("markdown")) {
     std::cout << config_reference_markdown(registry);
     return kExitOk;

@@ -10,4 +10,7 @@ namespace ftsense {
 
 [[nodiscard]] std::string config_reference_markdown(const PluginRegistry& plugins);
 
+// The "### `name`" section of one plugin: summary and parameter table.
+[[nodiscard]] std::string plugin_reference_markdown(const PluginInfo& plugin);
+
 }  // namespace ftsense
