@@ -62,7 +62,9 @@ std::string config_reference_markdown(const PluginRegistry& plugins) {
      << "| `measured`, `virtual`, `fault_estimate`, `recovered`, `fault`, `fault_type` | wire | "
         "required, one value per channel | the signals written as `<channel>/measured_<unit>`, "
         "`<channel>/virtual_<unit>`, `<channel>/fault_estimate_<unit>`, "
-        "`<channel>/recovered_<unit>`, `<channel>/fault`, `<channel>/fault_type` |\n\n"
+        "`<channel>/recovered_<unit>`, `<channel>/fault`, `<channel>/fault_type` |\n"
+     << "| `extra` | object | optional | name to wire of further per-channel signals, written as "
+        "`<channel>/<name>_<unit>` (no suffix when dimensionless) |\n\n"
      << "## Plugins\n";
   for (const auto& plugin : plugins.plugins()) os << '\n' << plugin_reference_markdown(plugin);
   return os.str();

@@ -804,7 +804,7 @@ class PipelineBuilder {
     }
     static const std::vector<std::string> fields{"measured",  "virtual", "fault_estimate",
                                                  "recovered", "fault",   "fault_type"};
-    std::vector<std::string> known{"channels"};
+    std::vector<std::string> known{"channels", "extra"};
     known.insert(known.end(), fields.begin(), fields.end());
     check_keys(*it, path, known, "the monitor", diag_);
     Monitor& m = pipeline_.monitor_;
@@ -875,6 +875,50 @@ class PipelineBuilder {
         continue;
       }
       *targets[f] = place(ends, pipeline_.monitor_gathers_);
+    }
+    if (const auto extra = it->find("extra"); extra != it->end()) {
+      if (!extra->is_object()) {
+        type_error(*extra, path + "/extra", "object", "name -> wire of further per-channel signals", diag_);
+        ok = false;
+      } else {
+        for (const auto& [name, value] : extra->items()) {
+          Wire w;
+          w.port = name;
+          w.path = json_pointer_append(path + "/extra", name);
+          if (!is_identifier(name)) {
+            diag_.error(w.path, "extra signal name '" + name + "' must be an identifier (letters, digits, _)");
+            ok = false;
+            continue;
+          }
+          if (!read_wire(value, w)) {
+            ok = false;
+            continue;
+          }
+          std::vector<const SignalInfo*> ends;
+          std::size_t dim = 0;
+          bool complete = true;
+          for (std::size_t e = 0; e < w.ends.size(); ++e) {
+            const SignalInfo* s = resolve(w.ends[e], w.ends.size() > 1 ? json_pointer_append(w.path, e) : w.path);
+            if (s == nullptr) {
+              complete = false;
+              continue;
+            }
+            ends.push_back(s);
+            dim += s->ref.dim;
+          }
+          if (!complete) {
+            ok = false;
+            continue;
+          }
+          if (dim != m.channels.size()) {
+            diag_.error(w.path, "carries " + std::to_string(dim) + " values but the monitor has " +
+                                    std::to_string(m.channels.size()) + " channels");
+            ok = false;
+            continue;
+          }
+          m.extra.push_back({name, ends.front()->unit, place(ends, pipeline_.monitor_gathers_)});
+        }
+      }
     }
     if (!ok) return;
     if (units[0] != units[1]) {

@@ -86,6 +86,23 @@ TEST(ThresholdDetector, OnAndOffDelaysCountTicks) {
   }
 }
 
+TEST(ThresholdDetector, NoThresholdFlagsDuringWarmUp) {
+  generic::ThresholdDetector::Params params;
+  params.thresholds = {1.0};
+  params.warmup_s = 0.003;  // 3 ticks from the first step's time
+  generic::ThresholdDetector detector(params, StageContext(1e-3, "d", {{"signal", 1}}));
+  detector.reset();
+  std::vector<double> s{5.0};
+  std::vector<double> fault{0.0};
+  std::vector<double> type{0.0};
+  const std::span<const double> ins[] = {s};
+  const std::span<double> outs[] = {fault, type};
+  for (int k = 0; k < 5; ++k) {
+    detector.step(StepIO{10.0 + k * 1e-3, ins, outs});
+    EXPECT_EQ(fault[0], k >= 3 ? 1.0 : 0.0) << "tick " << k;
+  }
+}
+
 TEST(ThresholdDetector, NonFiniteSignalIsFlaggedInvalidAtOnce) {
   generic::ThresholdDetector::Params params;
   params.thresholds = {1.0, 1.0};

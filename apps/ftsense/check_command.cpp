@@ -2,6 +2,7 @@
 
 #include "cli.hpp"
 #include "ftsense/reference_plugins.hpp"
+#include "log_runner.hpp"
 
 namespace ftsense::cli {
 
@@ -24,16 +25,20 @@ int check_command(const std::vector<std::string>& args) {
   return kExitOk;
 }
 
-Pipeline load_pipeline(const std::string& config_path) {
+Pipeline load_pipeline(const std::string& config_path, const std::string& thresholds_path) {
   try {
-    const Json config = parse_json_text(read_text_file(config_path, "config file"), config_path);
+    Json config = parse_json_text(read_text_file(config_path, "config file"), config_path);
+    if (!thresholds_path.empty()) {
+      apply_thresholds(config, parse_json_text(read_text_file(thresholds_path, "thresholds file"), thresholds_path),
+                       thresholds_path);
+    }
     Pipeline pipeline = Pipeline::build(config, reference_plugins::registry());
     for (const auto& w : pipeline.warnings()) std::cerr << "warning: " << config_path << ":" << w.text() << '\n';
     return pipeline;
   } catch (const ConfigError& e) {
     std::vector<Diagnostic> problems = e.problems();
     for (auto& p : problems) {
-      if (p.path.rfind(config_path, 0) != 0) p.path = config_path + ":" + p.path;
+      if (p.path.find(':') == std::string::npos) p.path = config_path + ":" + p.path;
     }
     throw ConfigError(std::move(problems));
   }

@@ -42,10 +42,14 @@ std::string read_text_file(const std::string& path, std::string_view what);
 
 // Reads, parses and builds a pipeline config with the reference plugins; problems come back as
 // one ConfigError whose paths start with the file name. Warnings go to stderr.
-Pipeline load_pipeline(const std::string& config_path);
+// With a thresholds file, its thresholds are applied to the config first.
+Pipeline load_pipeline(const std::string& config_path, const std::string& thresholds_path = {});
 
 int run_command(const std::vector<std::string>& args);
 int check_command(const std::vector<std::string>& args);
+int calibrate_command(const std::vector<std::string>& args);
+int simulate_command(const std::vector<std::string>& args);
+int demo_command(const std::vector<std::string>& args);
 int plugins_command(const std::vector<std::string>& args);
 
 }  // namespace ftsense::cli

@@ -37,18 +37,20 @@ std::vector<std::string> monitor_columns(const Monitor& monitor) {
     columns.push_back(ch + "/recovered" + unit);
     columns.push_back(ch + "/fault");
     columns.push_back(ch + "/fault_type");
+    for (const auto& e : monitor.extra) columns.push_back(ch + "/" + e.name + (e.unit == "1" ? "" : "_" + e.unit));
   }
   return columns;
 }
 
 RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnMap& map,
-                        io::CsvLogWriter& out) {
+                        io::CsvLogWriter* out, const std::function<void(double)>& after_step) {
   const Monitor& m = pipeline.monitor();
   const std::size_t channels = m.channels.size();
   RunSummary summary;
   summary.first_fault_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> row;
-  std::vector<double> out_row(1 + 6 * channels);
+  const std::size_t per_channel = 6 + m.extra.size();
+  std::vector<double> out_row(1 + per_channel * channels);
   const double period = pipeline.sample_period_s();
   double last_time = std::numeric_limits<double>::quiet_NaN();
   pipeline.reset();
@@ -74,20 +76,49 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
     const auto fault_type = pipeline.values(m.fault_type);
     out_row[0] = t;
     for (std::size_t c = 0; c < channels; ++c) {
-      double* o = &out_row[1 + 6 * c];
+      double* o = &out_row[1 + per_channel * c];
       o[0] = measured[c];
       o[1] = estimate[c];
       o[2] = fault_estimate[c];
       o[3] = recovered[c];
       o[4] = fault[c];
       o[5] = fault_type[c];
+      for (std::size_t e = 0; e < m.extra.size(); ++e) o[6 + e] = pipeline.values(m.extra[e].signal)[c];
       if (fault[c] != 0.0 && std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
     }
-    out.write_row(out_row);
+    if (out != nullptr) out->write_row(out_row);
+    if (after_step) after_step(t);
     ++summary.ticks;
   }
-  out.flush();
+  if (out != nullptr) out->flush();
   return summary;
+}
+
+void apply_thresholds(Json& config, const Json& thresholds, const std::string& thresholds_path) {
+  Diagnostics diag;
+  const auto stages = thresholds.find("stages");
+  if (!thresholds.is_object() || stages == thresholds.end() || !stages->is_object()) {
+    throw ConfigError(thresholds_path + ":/stages", "missing; a thresholds file (from ftsense calibrate) has "
+                                                     "\"stages\": {\"<stage>\": {\"thresholds\": [...]}}");
+  }
+  for (const auto& [name, entry] : stages->items()) {
+    const std::string path = thresholds_path + ":" + json_pointer_append("/stages", name) + "/thresholds";
+    if (!entry.is_object() || !entry.contains("thresholds") || !entry["thresholds"].is_array()) {
+      diag.error(path, "missing or not an array of numbers");
+      continue;
+    }
+    bool found = false;
+    if (config.contains("stages") && config["stages"].is_array()) {
+      for (auto& stage : config["stages"]) {
+        if (stage.is_object() && stage.value("name", "") == name) {
+          stage["params"]["thresholds"] = entry["thresholds"];
+          found = true;
+        }
+      }
+    }
+    if (!found) diag.error(path, "the config has no stage named '" + name + "'; calibrate with the same config");
+  }
+  diag.throw_if_errors();
 }
 
 }  // namespace ftsense::cli

@@ -2,6 +2,7 @@
 // Runs a built pipeline over a CSV log, row by row, and writes the monitored channels.
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,8 +30,13 @@ struct RunSummary {
   std::vector<double> first_fault_time_s;  // per channel; NaN when never flagged
 };
 
-// Steps the pipeline once per log row. Throws io::LogError on a malformed row.
+// Steps the pipeline once per log row, writes the monitored channels to `out` (if given) and
+// calls `after_step(t)` after each tick (if given). Throws io::LogError on a malformed row.
 RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnMap& map,
-                        io::CsvLogWriter& out);
+                        io::CsvLogWriter* out, const std::function<void(double)>& after_step = {});
+
+// Thresholds written by `ftsense calibrate`: sets params.thresholds of each named stage in
+// `config`. Throws ConfigError naming the file and the stage when one does not fit.
+void apply_thresholds(Json& config, const Json& thresholds, const std::string& thresholds_path);
 
 }  // namespace ftsense::cli

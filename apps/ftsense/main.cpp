@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "report.hpp"
 #include "ftsense/diagnostics.hpp"
 
 namespace {
@@ -15,8 +16,14 @@ constexpr const char* kHelp =
     "\n"
     "Checks sensors against virtual sensors, detects and classifies faults, estimates them and\n"
     "recovers the signals. Verbs:\n"
+#ifdef FTSENSE_HAVE_SIM
+    "  simulate  simulate the SURALP biped walking a scenario (MuJoCo), with faults\n"
+    "  demo      the paper's experiment end to end (what make demo runs)\n"
+#endif
     "  run       run a pipeline (JSON config) over a CSV log and write the monitored channels\n"
     "  check     check a pipeline config and list every problem\n"
+    "  calibrate thresholds from a fault-free log\n"
+    "  report    metrics against the truth, figures and a Markdown report\n"
     "  plugins   list the plugins this program knows (--markdown: the config reference)\n"
     "\n"
     "'ftsense <verb> --help' describes a verb. Exit status: 0 success, 2 usage or\n"
@@ -36,9 +43,15 @@ int main(int argc, char** argv) {
   try {
     if (verb == "run") return run_command(args);
     if (verb == "check") return check_command(args);
+    if (verb == "calibrate") return calibrate_command(args);
+    if (verb == "report") return report_command(args);
+#ifdef FTSENSE_HAVE_SIM
+    if (verb == "simulate") return simulate_command(args);
+    if (verb == "demo") return demo_command(args);
+#endif
     if (verb == "plugins") return plugins_command(args);
     std::cerr << "ftsense: unknown verb '" << verb << "'; "
-              << ftsense::suggest(verb, {"run", "check", "plugins"}) << "\nsee 'ftsense --help'\n";
+              << ftsense::suggest(verb, {"run", "check", "calibrate", "report", "simulate", "demo", "plugins"}) << "\nsee 'ftsense --help'\n";
     return kExitUsage;
   } catch (const UsageError& e) {
     std::cerr << e.message << '\n';

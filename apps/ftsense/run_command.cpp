@@ -11,7 +11,8 @@ int run_command(const std::vector<std::string>& args) {
   const std::vector<OptionSpec> specs{
       {"config", true, true, "pipeline config (JSON); see docs/config_reference.md"},
       {"input", true, true, "input log (CSV, first column time_s)"},
-      {"output", true, true, "where to write the monitored channels (CSV)"}};
+      {"output", true, true, "where to write the monitored channels (CSV)"},
+      {"thresholds", true, false, "thresholds from 'ftsense calibrate' (JSON), applied to the config"}};
   const auto options = parse_options("run", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("run",
@@ -27,7 +28,8 @@ int run_command(const std::vector<std::string>& args) {
   const std::string& output_path = options.at("output");
 
   // 1. The config, completely, before any data file is touched.
-  Pipeline pipeline = load_pipeline(config_path);
+  Pipeline pipeline = options.count("thresholds") ? load_pipeline(config_path, options.at("thresholds"))
+                                                  : load_pipeline(config_path);
   if (!pipeline.has_monitor()) {
     throw ConfigError(config_path + ":/monitor",
                       "missing; 'ftsense run' writes the monitored channels, so the config needs a "
@@ -60,7 +62,7 @@ int run_command(const std::vector<std::string>& args) {
   // 3. Every row.
   RunSummary summary;
   try {
-    summary = run_over_log(pipeline, *log, map, *out);
+    summary = run_over_log(pipeline, *log, map, &*out);
   } catch (const io::LogError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitRuntime;

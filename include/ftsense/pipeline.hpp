@@ -63,6 +63,13 @@ struct Monitor {
   SignalRef recovered;
   SignalRef fault;
   SignalRef fault_type;
+  // Optional further per-channel signals, written as <channel>/<name>[_<unit>].
+  struct Extra {
+    std::string name;
+    std::string unit;
+    SignalRef signal;
+  };
+  std::vector<Extra> extra;
 };
 
 // Parses JSON text strictly: syntax errors give "source:line:column", and duplicate object keys
@@ -98,6 +105,10 @@ class Pipeline {
   [[nodiscard]] std::size_t stage_count() const noexcept { return stages_.size(); }
   [[nodiscard]] std::string_view stage_name(std::size_t run_index) const noexcept;
   [[nodiscard]] Stage& stage(std::size_t run_index) noexcept;
+  // The signal wired to input `input_index` of stage `run_index` (in the stage's buffer layout).
+  [[nodiscard]] SignalRef stage_input(std::size_t run_index, std::size_t input_index) const noexcept {
+    return stages_[run_index].input_refs[input_index];
+  }
 
   // Back to the initial state: every stage reset, every buffer zeroed.
   void reset() noexcept;

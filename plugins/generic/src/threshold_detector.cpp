@@ -18,12 +18,17 @@ void ThresholdDetector::Params::describe(ParamSchema<Params>& schema) {
   schema.add("off_delay_s", &Params::off_delay_s, "time |signal| must stay below tr_j to clear")
       .unit("s")
       .at_least(0.0);
+  schema.add("warmup_s", &Params::warmup_s,
+             "no threshold flags during this time after reset (initialisation transient)")
+      .unit("s")
+      .at_least(0.0);
 }
 
 ThresholdDetector::ThresholdDetector(const Params& params, const StageContext& context)
     : sample_period_s_(context.sample_period_s()),
       on_delay_s_(params.on_delay_s),
-      off_delay_s_(params.off_delay_s) {
+      off_delay_s_(params.off_delay_s),
+      warmup_s_(params.warmup_s) {
   const std::size_t dim = context.wired_dim("signal", params.thresholds.size());
   if (params.thresholds.size() != 1 && params.thresholds.size() != dim) {
     throw ConfigError("/params/thresholds",
@@ -45,16 +50,27 @@ void ThresholdDetector::reset() noexcept {
   std::fill(above_for_s_.begin(), above_for_s_.end(), 0.0);
   std::fill(below_for_s_.begin(), below_for_s_.end(), 0.0);
   std::fill(raised_.begin(), raised_.end(), 0);
+  started_ = false;
 }
 
 void ThresholdDetector::step(const StepIO& io) noexcept {
   const auto s = io.in(kSignal);
   const auto fault = io.out(kFault);
   const auto type = io.out(kFaultType);
+  if (!started_) {
+    start_time_s_ = io.time_s;
+    started_ = true;
+  }
+  const bool warming_up = io.time_s - start_time_s_ < warmup_s_ - 0.5 * sample_period_s_;
   for (std::size_t j = 0; j < thresholds_.size(); ++j) {
     if (!std::isfinite(s[j])) {
       fault[j] = 1.0;
       type[j] = static_cast<double>(FaultType::invalid);
+      continue;
+    }
+    if (warming_up) {
+      fault[j] = 0.0;
+      type[j] = static_cast<double>(FaultType::none);
       continue;
     }
     if (std::abs(s[j]) > thresholds_[j]) {

@@ -6,7 +6,9 @@
 //
 // s is the evaluated signal (typically the low-passed fault estimate), tr_j > 0 in the unit of s.
 // The threshold cannot tell fault types apart, so a raised flag has type code 1 (unclassified);
-// a non-finite s_j raises the flag at once with type code 8 (invalid).
+// a non-finite s_j raises the flag at once with type code 8 (invalid). During the first
+// `warmup_s` seconds after reset (the estimators' initialisation transient) no threshold flag is
+// raised; invalid values are still flagged.
 
 #include <string_view>
 #include <vector>
@@ -25,6 +27,7 @@ class ThresholdDetector {
     std::vector<double> thresholds{1.0};
     double on_delay_s = 0.0;
     double off_delay_s = 0.0;
+    double warmup_s = 0.0;
     static void describe(ParamSchema<Params>& schema);
   };
 
@@ -42,6 +45,9 @@ class ThresholdDetector {
   double sample_period_s_;
   double on_delay_s_;
   double off_delay_s_;
+  double warmup_s_;
+  double start_time_s_ = 0.0;
+  bool started_ = false;
   std::vector<double> above_for_s_;
   std::vector<double> below_for_s_;
   std::vector<unsigned char> raised_;

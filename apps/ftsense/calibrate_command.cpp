@@ -1,0 +1,99 @@
+#include <cmath>
+#include <fstream>
+#include <iostream>
+
+#include "cli.hpp"
+#include "log_runner.hpp"
+
+namespace ftsense::cli {
+
+int calibrate_command(const std::vector<std::string>& args) {
+  const std::vector<OptionSpec> specs{
+      {"config", true, true, "pipeline config (JSON) with threshold_detector stage(s)"},
+      {"input", true, true, "a fault-free log (CSV)"},
+      {"output", true, true, "where to write the thresholds (JSON), for 'ftsense run --thresholds'"},
+      {"margin", true, false, "threshold = margin x the largest |signal| seen (default 1.25)"}};
+  const auto options = parse_options("calibrate", args, specs);
+  if (options.count("help")) {
+    std::cout << usage_text("calibrate",
+                            "Runs the pipeline over a fault-free log and sets each threshold_detector's\n"
+                            "per-channel threshold to margin x max |signal| seen after the detector's\n"
+                            "warm-up (the paper's section III: thresholds from a fault-free run).",
+                            specs);
+    return kExitOk;
+  }
+  double margin = 1.25;
+  if (const auto m = options.find("margin"); m != options.end()) {
+    char* end = nullptr;
+    margin = std::strtod(m->second.c_str(), &end);
+    if (end == m->second.c_str() || *end != '\0' || !(margin >= 1.0) || !std::isfinite(margin)) {
+      throw UsageError{"ftsense calibrate: --margin = '" + m->second + "' violates >= 1 (a finite number)"};
+    }
+  }
+  const std::string& config_path = options.at("config");
+  Pipeline pipeline = load_pipeline(config_path);
+
+  struct Detector {
+    std::string name;
+    SignalRef signal;
+    double warmup_s = 0.0;
+    std::vector<double> max_abs;
+  };
+  std::vector<Detector> detectors;
+  for (std::size_t i = 0; i < pipeline.stage_count(); ++i) {
+    if (pipeline.stage(i).plugin_name() != "threshold_detector") continue;
+    const Json params = pipeline.stage(i).params_json();
+    Detector d{std::string(pipeline.stage_name(i)), pipeline.stage_input(i, 0), params.value("warmup_s", 0.0), {}};
+    d.max_abs.assign(d.signal.dim, 0.0);
+    detectors.push_back(std::move(d));
+  }
+  if (detectors.empty()) {
+    throw ConfigError(config_path + ":/stages", "has no threshold_detector stage; nothing to calibrate");
+  }
+
+  std::optional<io::CsvLogReader> log;
+  try {
+    log.emplace(options.at("input"));
+  } catch (const io::LogError& e) {
+    throw UsageError{std::string("error: ") + e.what()};
+  }
+  const ColumnMap map = ColumnMap::make(pipeline, *log);
+  double start = std::nan("");
+  RunSummary summary;
+  try {
+    summary = run_over_log(pipeline, *log, map, nullptr, [&](double t) {
+      if (std::isnan(start)) start = t;
+      for (auto& d : detectors) {
+        if (t - start < d.warmup_s) continue;
+        const auto s = pipeline.values(d.signal);
+        for (std::size_t j = 0; j < s.size(); ++j) {
+          if (std::isfinite(s[j])) d.max_abs[j] = std::max(d.max_abs[j], std::abs(s[j]));
+        }
+      }
+    });
+  } catch (const io::LogError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kExitRuntime;
+  }
+
+  Json out = {{"description", "thresholds = margin x max |detector input| over a fault-free run, after warm-up"},
+              {"config", config_path},
+              {"input", options.at("input")},
+              {"margin", margin},
+              {"ticks", summary.ticks},
+              {"stages", Json::object()}};
+  for (const auto& d : detectors) {
+    std::vector<double> thresholds;
+    for (double m : d.max_abs) thresholds.push_back(std::max(margin * m, 1e-9));  // a threshold must be > 0
+    out["stages"][d.name] = {{"warmup_s", d.warmup_s}, {"max_abs_signal", d.max_abs}, {"thresholds", thresholds}};
+    std::cout << "ftsense calibrate: " << d.name << ": thresholds";
+    for (double t : thresholds) std::cout << ' ' << std::round(t * 10.0) / 10.0;
+    std::cout << '\n';
+  }
+  std::ofstream file(options.at("output"));
+  if (!file) throw UsageError{"error: " + options.at("output") + ": cannot create the thresholds file"};
+  file << out.dump(2) << '\n';
+  return kExitOk;
+}
+
+}  // namespace ftsense::cli

@@ -1,0 +1,62 @@
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "cli.hpp"
+#include "ftsense/sim/simulator.hpp"
+
+namespace ftsense::cli {
+
+int simulate_command(const std::vector<std::string>& args) {
+  const std::vector<OptionSpec> specs{
+      {"scenario", true, true, "scenario (JSON): gait, sensor noise, injected faults; see sim/README.md"},
+      {"out", true, true, "where to write the log (CSV)"},
+      {"seed", true, false, "seed of the sensor noise and faults (default: the scenario's \"seed\")"},
+      {"quiet", false, false, "no progress line on stderr"}};
+  const auto options = parse_options("simulate", args, specs);
+  if (options.count("help")) {
+    std::cout << usage_text("simulate",
+                            "Simulates the SURALP-like biped (MuJoCo) walking the scenario, with sensor\n"
+                            "models and injected faults, and writes the measured signals and the\n"
+                            "ground truth (truth/... columns) as a CSV log. Exit 1 if the robot falls.",
+                            specs);
+    return kExitOk;
+  }
+  sim::Scenario scenario;
+  try {
+    scenario = sim::load_scenario(options.at("scenario"));
+  } catch (const sim::ScenarioError& e) {
+    std::string message;
+    for (const auto& p : e.problems()) message += (message.empty() ? "" : "\n") + ("error: " + options.at("scenario") + ":" + p);
+    throw UsageError{message};
+  }
+  std::uint64_t seed = scenario.seed;
+  if (const auto s = options.find("seed"); s != options.end()) {
+    const auto [end, ec] = std::from_chars(s->second.data(), s->second.data() + s->second.size(), seed);
+    if (ec != std::errc() || end != s->second.data() + s->second.size()) {
+      throw UsageError{"ftsense simulate: --seed = '" + s->second + "' is not a non-negative integer"};
+    }
+  }
+  std::ofstream out(options.at("out"), std::ios::binary);
+  if (!out) throw UsageError{"error: " + options.at("out") + ": cannot create the log file; check that its folder exists"};
+  sim::SimulationOptions sim_options;
+  if (!options.count("quiet")) {
+    sim_options.progress = [](double t, double duration) {
+      std::fprintf(stderr, "\rftsense simulate: %5.1f / %.1f s", t, duration);
+      std::fflush(stderr);
+    };
+  }
+  const sim::SimulationSummary summary = sim::simulate(scenario, seed, out, sim_options);
+  out.flush();
+  if (!options.count("quiet")) std::fprintf(stderr, "\n");
+  if (!out) {
+    std::cerr << "error: " << options.at("out") << ": writing failed (disk full?)\n";
+    return kExitRuntime;
+  }
+  std::cout << "ftsense simulate: " << summary.message << " (seed " << seed << ", " << summary.ticks
+            << " rows, " << summary.cpu_s << " s CPU) -> " << options.at("out") << '\n';
+  return summary.fell ? kExitRuntime : kExitOk;
+}
+
+}  // namespace ftsense::cli

@@ -1,0 +1,125 @@
+#pragma once
+// Sensor noise and fault injection for the simulated logs.
+//
+// Random numbers: std::mt19937_64 (its output sequence is fixed by the C++ standard), uniform
+// u = (x >> 11) 2^-53 and normals by Box-Muller, both written here, so a (scenario, seed) pair
+// gives the same numbers with any standard library. Every channel has its own stream seeded
+// from (seed, stream id) through splitmix64, so adding a fault on one channel leaves the noise
+// of every other channel unchanged.
+//
+// Force channel, per tick k (time t_k = k dt), true normal force N:
+//   y = N + sigma n_k                     (sensor noise, n_k ~ N(0,1))
+//   y = fault(y) if a fault is active on the channel (t_start <= t < t_end):
+//     offset      y + offset_N
+//     drift       y + slope_N_s (t - t_start)
+//     frozen      value_N, or (no value given) the channel's output at the tick before t_start
+//     gain        gain y
+//     noise       y + std_N m_k            (burst noise, m_k ~ N(0,1) from the fault's stream)
+//     spikes      y + s_k amplitude_N with probability rate_hz dt per tick, s_k = +-1 equally
+//     invalid     NaN (dropout)
+//     saturation  clamp(y, min_N, max_N)
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ftsense::sim {
+
+[[nodiscard]] std::uint64_t splitmix64(std::uint64_t x);
+
+/// Seeded generator with a portable uniform and normal sampler.
+class Rng {
+ public:
+  Rng(std::uint64_t seed, std::uint64_t stream);
+  [[nodiscard]] double uniform();  ///< in [0, 1)
+  [[nodiscard]] double normal();   ///< standard normal (Box-Muller, pairs cached)
+
+ private:
+  std::mt19937_64 eng_;
+  bool has_spare_ = false;
+  double spare_ = 0.0;
+};
+
+/// Fault type codes as used in the truth columns (1 is reserved for "detected, unclassified").
+enum class FaultType : int {
+  none = 0,
+  offset = 2,
+  drift = 3,
+  frozen = 4,
+  gain = 5,
+  noise = 6,
+  spikes = 7,
+  invalid = 8,
+  saturation = 9
+};
+
+[[nodiscard]] std::string_view to_string(FaultType t);
+/// Parses a scenario type name; nullopt if unknown.
+[[nodiscard]] std::optional<FaultType> fault_type_from_string(std::string_view s);
+/// The names accepted by fault_type_from_string, in code order.
+[[nodiscard]] const std::vector<std::string_view>& fault_type_names();
+
+/// Force channels: 0..3 = l_foot/p1..p4, 4..7 = r_foot/p1..p4.
+inline constexpr std::array<std::string_view, 8> kForceChannels = {
+    "l_foot/p1", "l_foot/p2", "l_foot/p3", "l_foot/p4",
+    "r_foot/p1", "r_foot/p2", "r_foot/p3", "r_foot/p4"};
+
+struct FaultSpec {
+  int channel = 0;  ///< index into kForceChannels
+  FaultType type = FaultType::offset;
+  double start_s = 0.0;
+  std::optional<double> end_s;     ///< absent: until the end
+  double offset_N = 0.0;           ///< offset
+  double slope_N_s = 0.0;          ///< drift
+  std::optional<double> value_N;   ///< frozen; absent: last value
+  double gain = 1.0;               ///< gain
+  double std_N = 0.0;              ///< noise
+  double rate_hz = 0.0;            ///< spikes
+  double amplitude_N = 0.0;        ///< spikes
+  double min_N = -1e300;           ///< saturation
+  double max_N = 1e300;            ///< saturation
+};
+
+struct SensorParams {
+  double force_noise_std_N = 2.0;
+  double acc_noise_std_m_s2 = 0.05;
+  std::array<double, 3> acc_bias_m_s2 = {0.02, -0.015, 0.03};
+  double gyro_noise_std_rad_s = 0.002;
+  std::array<double, 3> gyro_bias_rad_s = {0.001, -0.0008, 0.0005};
+  double encoder_noise_std_rad = 1e-4;
+  double base_rpy_noise_std_rad = 0.0;
+};
+
+/// One force channel: noise plus the faults scheduled on it (non-overlapping in time).
+class ForceChannelModel {
+ public:
+  ForceChannelModel(int channel, double noise_std, std::vector<FaultSpec> faults, double dt,
+                    std::uint64_t seed);
+  struct Output {
+    double value;
+    FaultType fault;
+  };
+  /// Measured value at tick k from the true force.
+  Output step(std::int64_t k, double true_force);
+
+ private:
+  struct Active {
+    FaultSpec spec;
+    std::int64_t start_tick;
+    std::int64_t end_tick;  // exclusive; INT64_MAX if open
+    Rng rng;
+    double frozen_value = 0.0;
+    bool frozen_set = false;
+  };
+  double noise_std_;
+  double dt_;
+  Rng rng_;
+  std::vector<Active> faults_;
+  double last_output_ = 0.0;
+  bool has_last_ = false;
+};
+
+}  // namespace ftsense::sim

@@ -1,0 +1,120 @@
+#include "ftsense/sim/sensor_models.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace ftsense::sim {
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+
+Rng::Rng(std::uint64_t seed, std::uint64_t stream)
+    : eng_(splitmix64(splitmix64(seed) ^ splitmix64(stream + 0x5851F42D4C957F2DULL))) {}
+
+double Rng::uniform() { return static_cast<double>(eng_() >> 11) * 0x1.0p-53; }
+
+double Rng::normal() {
+  if (has_spare_) {
+    has_spare_ = false;
+    return spare_;
+  }
+  const double u1 = 1.0 - uniform();  // (0, 1]: log is finite
+  const double u2 = uniform();
+  const double rad = std::sqrt(-2.0 * std::log(u1));
+  const double ang = 2.0 * std::numbers::pi * u2;
+  spare_ = rad * std::sin(ang);
+  has_spare_ = true;
+  return rad * std::cos(ang);
+}
+
+namespace {
+struct NameCode {
+  std::string_view name;
+  FaultType type;
+};
+constexpr std::array<NameCode, 8> kFaultNames = {{{"offset", FaultType::offset},
+                                                  {"drift", FaultType::drift},
+                                                  {"frozen", FaultType::frozen},
+                                                  {"gain", FaultType::gain},
+                                                  {"noise", FaultType::noise},
+                                                  {"spikes", FaultType::spikes},
+                                                  {"invalid", FaultType::invalid},
+                                                  {"saturation", FaultType::saturation}}};
+}  // namespace
+
+std::string_view to_string(FaultType t) {
+  if (t == FaultType::none) return "none";
+  for (const auto& nc : kFaultNames)
+    if (nc.type == t) return nc.name;
+  return "unknown";
+}
+
+std::optional<FaultType> fault_type_from_string(std::string_view s) {
+  for (const auto& nc : kFaultNames)
+    if (nc.name == s) return nc.type;
+  return std::nullopt;
+}
+
+const std::vector<std::string_view>& fault_type_names() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> v;
+    for (const auto& nc : kFaultNames) v.push_back(nc.name);
+    return v;
+  }();
+  return names;
+}
+
+ForceChannelModel::ForceChannelModel(int channel, double noise_std, std::vector<FaultSpec> faults,
+                                     double dt, std::uint64_t seed)
+    : noise_std_(noise_std), dt_(dt), rng_(seed, 100 + static_cast<std::uint64_t>(channel)) {
+  std::uint64_t stream = 1000 + 100 * static_cast<std::uint64_t>(channel);
+  std::sort(faults.begin(), faults.end(),
+            [](const FaultSpec& a, const FaultSpec& b) { return a.start_s < b.start_s; });
+  for (auto& f : faults) {
+    const auto start = static_cast<std::int64_t>(std::llround(f.start_s / dt));
+    const std::int64_t end = f.end_s ? static_cast<std::int64_t>(std::llround(*f.end_s / dt))
+                                     : std::numeric_limits<std::int64_t>::max();
+    faults_.push_back(Active{f, start, end, Rng(seed, stream++), 0.0, false});
+  }
+}
+
+ForceChannelModel::Output ForceChannelModel::step(std::int64_t k, double true_force) {
+  double y = true_force + (noise_std_ > 0.0 ? noise_std_ * rng_.normal() : 0.0);
+  FaultType code = FaultType::none;
+  for (auto& a : faults_) {
+    if (k < a.start_tick || k >= a.end_tick) continue;
+    const FaultSpec& f = a.spec;
+    code = f.type;
+    switch (f.type) {
+      case FaultType::offset: y += f.offset_N; break;
+      case FaultType::drift: y += f.slope_N_s * static_cast<double>(k - a.start_tick) * dt_; break;
+      case FaultType::frozen:
+        if (!a.frozen_set) {
+          a.frozen_value = f.value_N ? *f.value_N : (has_last_ ? last_output_ : y);
+          a.frozen_set = true;
+        }
+        y = a.frozen_value;
+        break;
+      case FaultType::gain: y *= f.gain; break;
+      case FaultType::noise: y += f.std_N * a.rng.normal(); break;
+      case FaultType::spikes:
+        if (a.rng.uniform() < f.rate_hz * dt_) y += (a.rng.uniform() < 0.5 ? -1.0 : 1.0) * f.amplitude_N;
+        break;
+      case FaultType::invalid: y = std::numeric_limits<double>::quiet_NaN(); break;
+      case FaultType::saturation: y = std::clamp(y, f.min_N, f.max_N); break;
+      case FaultType::none: break;
+    }
+    break;  // faults on one channel never overlap (checked when loading the scenario)
+  }
+  last_output_ = y;
+  has_last_ = true;
+  return {y, code};
+}
+
+}  // namespace ftsense::sim

@@ -1,0 +1,195 @@
+// Random numbers and fault injection on one force channel, against the definitions in
+// sensor_models.hpp (exact comparisons with the truth where the definition is deterministic).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "ftsense/sim/sensor_models.hpp"
+
+using namespace ftsense::sim;
+
+namespace {
+constexpr std::uint64_t kSeed = 42;
+constexpr double kDt = 0.001;
+
+double truth(std::int64_t k) { return 300.0 + 200.0 * std::sin(0.003 * static_cast<double>(k)); }
+
+FaultSpec fault(FaultType t, double start, std::optional<double> end = std::nullopt) {
+  FaultSpec f;
+  f.channel = 5;
+  f.type = t;
+  f.start_s = start;
+  f.end_s = end;
+  return f;
+}
+
+struct Trace {
+  std::vector<double> y;
+  std::vector<FaultType> code;
+};
+
+Trace run(const FaultSpec& f, std::int64_t n = 4000, double noise = 0.0) {
+  ForceChannelModel ch(f.channel, noise, {f}, kDt, kSeed);
+  Trace tr;
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto o = ch.step(k, truth(k));
+    tr.y.push_back(o.value);
+    tr.code.push_back(o.fault);
+  }
+  return tr;
+}
+}  // namespace
+
+TEST(Rng, IsDeterministicAndStreamsDiffer) {
+  std::printf("seed %llu\n", static_cast<unsigned long long>(kSeed));
+  Rng a(kSeed, 1), b(kSeed, 1), c(kSeed, 2);
+  for (int i = 0; i < 100; ++i) {
+    const double x = a.normal();
+    EXPECT_EQ(x, b.normal());
+    EXPECT_NE(x, c.normal());
+  }
+}
+
+TEST(Rng, StandardMt19937_64AndUniformRange) {
+  std::mt19937_64 e;  // the standard fixes its 10000th output
+  e.discard(9999);
+  EXPECT_EQ(e(), 9981545732273789042ULL);
+  Rng r(kSeed, 3);
+  for (int i = 0; i < 10000; ++i) {
+    const double u = r.uniform();
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+  }
+}
+
+TEST(Rng, NormalHasUnitMomentsOverManySamples) {
+  Rng r(kSeed, 4);
+  const int n = 200000;
+  double s1 = 0, s2 = 0, s4 = 0;
+  for (int i = 0; i < n; ++i) {
+    const double x = r.normal();
+    s1 += x;
+    s2 += x * x;
+    s4 += x * x * x * x;
+  }
+  EXPECT_NEAR(s1 / n, 0.0, 0.01);
+  EXPECT_NEAR(s2 / n, 1.0, 0.01);
+  EXPECT_NEAR(s4 / n, 3.0, 0.05);
+}
+
+TEST(FaultTypes, NamesRoundTripAndCodes) {
+  for (auto name : fault_type_names()) {
+    const auto t = fault_type_from_string(name);
+    ASSERT_TRUE(t.has_value()) << name;
+    EXPECT_EQ(to_string(*t), name);
+  }
+  EXPECT_FALSE(fault_type_from_string("stuck").has_value());
+  EXPECT_EQ(static_cast<int>(FaultType::offset), 2);
+  EXPECT_EQ(static_cast<int>(FaultType::saturation), 9);
+}
+
+TEST(ForceChannel, NoiseOnlyWithoutFaults) {
+  ForceChannelModel ch(0, 2.0, {}, kDt, kSeed);
+  double s2 = 0.0;
+  for (std::int64_t k = 0; k < 20000; ++k) {
+    const auto o = ch.step(k, truth(k));
+    EXPECT_EQ(o.fault, FaultType::none);
+    s2 += std::pow(o.value - truth(k), 2);
+  }
+  EXPECT_NEAR(std::sqrt(s2 / 20000), 2.0, 0.05);
+}
+
+TEST(ForceChannel, OffsetIsExactInsideItsWindowOnly) {
+  auto f = fault(FaultType::offset, 1.0, 2.5);
+  f.offset_N = 100.0;
+  const Trace tr = run(f);
+  for (std::int64_t k = 0; k < 4000; ++k) {
+    const bool on = k >= 1000 && k < 2500;
+    EXPECT_EQ(tr.y[k], truth(k) + (on ? 100.0 : 0.0)) << k;
+    EXPECT_EQ(tr.code[k], on ? FaultType::offset : FaultType::none) << k;
+  }
+}
+
+TEST(ForceChannel, DriftGrowsWithSlopeTimesElapsedTime) {
+  auto f = fault(FaultType::drift, 1.0);
+  f.slope_N_s = 15.0;
+  const Trace tr = run(f);
+  for (std::int64_t k = 0; k < 4000; ++k) {
+    const double expect = k < 1000 ? 0.0 : 15.0 * (static_cast<double>(k - 1000) * kDt);
+    EXPECT_NEAR(tr.y[k] - truth(k), expect, 1e-9) << k;
+  }
+  EXPECT_NEAR(tr.y[3999] - truth(3999), 15.0 * 2.999, 1e-9);
+}
+
+TEST(ForceChannel, FrozenAtValueAndAtLastValue) {
+  auto f = fault(FaultType::frozen, 1.0, 3.0);
+  f.value_N = 0.0;
+  Trace tr = run(f);
+  for (std::int64_t k = 1000; k < 3000; ++k) EXPECT_EQ(tr.y[k], 0.0);
+  EXPECT_EQ(tr.y[3000], truth(3000));
+  f.value_N.reset();
+  tr = run(f, 4000, 2.0);  // with noise: holds the last noisy output before the start
+  for (std::int64_t k = 1000; k < 3000; ++k) EXPECT_EQ(tr.y[k], tr.y[999]);
+  EXPECT_NE(tr.y[3000], tr.y[999]);
+  EXPECT_EQ(tr.code[1000], FaultType::frozen);
+}
+
+TEST(ForceChannel, GainMultipliesTheReading) {
+  auto f = fault(FaultType::gain, 0.5);
+  f.gain = 1.5;
+  const Trace tr = run(f);
+  for (std::int64_t k = 500; k < 4000; ++k) EXPECT_DOUBLE_EQ(tr.y[k], 1.5 * truth(k));
+}
+
+TEST(ForceChannel, NoiseBurstHasItsStandardDeviation) {
+  auto f = fault(FaultType::noise, 0.0, 20.0);
+  f.std_N = 40.0;
+  const Trace tr = run(f, 20000);
+  double s1 = 0, s2 = 0;
+  for (std::int64_t k = 0; k < 20000; ++k) {
+    s1 += tr.y[k] - truth(k);
+    s2 += std::pow(tr.y[k] - truth(k), 2);
+  }
+  EXPECT_NEAR(s1 / 20000, 0.0, 1.0);
+  EXPECT_NEAR(std::sqrt(s2 / 20000), 40.0, 1.0);
+}
+
+TEST(ForceChannel, SpikesAreSingleTicksOfTheAmplitudeAtTheRate) {
+  auto f = fault(FaultType::spikes, 0.0);
+  f.rate_hz = 20.0;
+  f.amplitude_N = 250.0;
+  const Trace tr = run(f, 50000);
+  int spikes = 0;
+  for (std::int64_t k = 0; k < 50000; ++k) {
+    const double d = tr.y[k] - truth(k);
+    if (d == 0.0) continue;
+    ASSERT_NEAR(std::abs(d), 250.0, 1e-9) << k;
+    ++spikes;
+  }
+  EXPECT_NEAR(spikes, 1000, 100);  // 20 Hz over 50 s
+}
+
+TEST(ForceChannel, InvalidIsNaN) {
+  const Trace tr = run(fault(FaultType::invalid, 1.0, 1.2));
+  for (std::int64_t k = 0; k < 4000; ++k) EXPECT_EQ(std::isnan(tr.y[k]), k >= 1000 && k < 1200) << k;
+  EXPECT_EQ(tr.code[1100], FaultType::invalid);
+}
+
+TEST(ForceChannel, SaturationClamps) {
+  auto f = fault(FaultType::saturation, 0.0);
+  f.min_N = 150.0;
+  f.max_N = 350.0;
+  const Trace tr = run(f);
+  for (std::int64_t k = 0; k < 4000; ++k) EXPECT_EQ(tr.y[k], std::clamp(truth(k), 150.0, 350.0));
+}
+
+TEST(ForceChannel, SameSeedSameOutputDifferentSeedDifferent) {
+  auto f = fault(FaultType::spikes, 0.0);
+  f.rate_hz = 50.0;
+  f.amplitude_N = 10.0;
+  const Trace a = run(f, 2000, 2.0), b = run(f, 2000, 2.0);
+  EXPECT_EQ(a.y, b.y);
+  ForceChannelModel other(f.channel, 2.0, {f}, kDt, kSeed + 1);
+  EXPECT_NE(other.step(0, truth(0)).value, a.y[0]);
+}
