@@ -165,6 +165,14 @@ void Pipeline::reset() noexcept {
   for (auto& s : stages_) s.stage->reset();
 }
 
+void Pipeline::step_stage(std::size_t run_index, double time_s) noexcept {
+  double* const v = values_.data();
+  StageRun& s = stages_[run_index];
+  for (const Copy& c : s.gathers) std::copy_n(v + c.from, c.count, v + c.to);
+  s.io.time_s = time_s;
+  s.stage->step(s.io);
+}
+
 void Pipeline::step(double time_s) noexcept {
   double* const v = values_.data();
   for (auto& s : stages_) {

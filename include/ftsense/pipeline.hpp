@@ -110,6 +110,13 @@ class Pipeline {
     return stages_[run_index].input_refs[input_index];
   }
 
+  // Writable view of a signal (tests, benchmarks and tools that set a stage's inputs directly).
+  [[nodiscard]] std::span<double> mutable_values(SignalRef ref) noexcept {
+    return {values_.data() + ref.offset, ref.dim};
+  }
+  // Runs one stage alone (its input gathers, then its step) over the current buffers.
+  void step_stage(std::size_t run_index, double time_s) noexcept;
+
   // Back to the initial state: every stage reset, every buffer zeroed.
   void reset() noexcept;
   // One tick at time `time_s` over the values currently in the input buffers.

@@ -1,0 +1,248 @@
+// ftsense-bench: what ftsense costs inside a 1 kHz control loop, on realistic inputs.
+//
+// The inputs are a simulated SURALP walk (MuJoCo, configs/scenarios/clean.json, 20 s, 20,000
+// ticks) run through configs/suralp.json. Modes:
+//
+//   ftsense-bench [Google Benchmark flags]   per-stage and whole-tick benchmarks
+//   ftsense-bench --latency-histogram N      N whole ticks timed one by one: median, p99, p99.9, max
+//   ftsense-bench --ticks N                  just N whole ticks (for valgrind --tool=callgrind)
+//
+// Per stage: the stage's inputs are recorded tick by tick during a full run, then replayed into a
+// one-stage pipeline of the same plugin and parameters, so each stage is timed alone on the data
+// it really sees (the few input copies are included). Whole tick: the full pipeline, inputs
+// written from the log row each tick.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "ftsense/io/csv_log.hpp"
+#include "ftsense/pipeline.hpp"
+#include "ftsense/reference_plugins.hpp"
+#include "ftsense/sim/simulator.hpp"
+
+#ifndef FTSENSE_SOURCE_DIR
+#define FTSENSE_SOURCE_DIR "."
+#endif
+
+namespace {
+
+using ftsense::Json;
+using ftsense::Pipeline;
+
+Json read_json(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return ftsense::parse_json_text(text.str(), path);
+}
+
+// The walk: per tick, the concatenated values of the pipeline's inputs.
+struct Walk {
+  std::vector<double> time;
+  std::vector<std::vector<double>> inputs;
+};
+
+const Walk& walk() {
+  static const Walk w = [] {
+    ftsense::sim::Scenario scenario =
+        ftsense::sim::load_scenario(std::string(FTSENSE_SOURCE_DIR) + "/configs/scenarios/clean.json");
+    scenario.duration_s = 20.0;
+    const auto path = (std::filesystem::temp_directory_path() / "ftsense_bench_walk.csv").string();
+    {
+      std::ofstream out(path);
+      (void)ftsense::sim::simulate(scenario, 1, out);
+    }
+    const Pipeline p = Pipeline::build(read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp.json"),
+                                       ftsense::reference_plugins::registry());
+    ftsense::io::CsvLogReader log(path);
+    std::vector<std::size_t> columns;
+    for (const auto& in : p.inputs()) {
+      for (const auto& c : in.columns) columns.push_back(*log.find_column(c));
+    }
+    Walk result;
+    std::vector<double> row;
+    while (log.next(row)) {
+      result.time.push_back(row[0]);
+      std::vector<double> values;
+      for (std::size_t c : columns) values.push_back(row[c]);
+      result.inputs.push_back(std::move(values));
+    }
+    std::filesystem::remove(path);
+    return result;
+  }();
+  return w;
+}
+
+Json suralp_config(const std::string& solver) {
+  Json config = read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp.json");
+  for (auto& stage : config["stages"]) {
+    if (stage["plugin"] == "contact_force_distribution") stage["params"]["solver"] = solver;
+  }
+  return config;
+}
+
+void write_inputs(Pipeline& p, const std::vector<double>& values) {
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.inputs().size(); ++i) {
+    for (double& v : p.input_values(i)) v = values[k++];
+  }
+}
+
+// One stage, alone, with the inputs it saw in a full run.
+struct StageReplay {
+  std::string name;
+  Pipeline pipeline;
+  std::vector<std::vector<double>> inputs;  // per tick, concatenated in port order
+};
+
+StageReplay make_stage_replay(const Json& config, const std::string& stage_name) {
+  Pipeline full = Pipeline::build(config, ftsense::reference_plugins::registry());
+  std::size_t index = 0;
+  while (full.stage_name(index) != stage_name) ++index;
+  const ftsense::Stage& stage = full.stage(index);
+  // The one-stage config: one pipeline input per stage input, same plugin and parameters.
+  Json single = {{"sample_period_s", full.sample_period_s()}, {"inputs", Json::object()}};
+  Json wires = Json::object();
+  const auto& ports = stage.ports().inputs();
+  for (std::size_t p = 0; p < ports.size(); ++p) {
+    Json columns = Json::array();
+    for (std::size_t c = 0; c < ports[p].dim; ++c) columns.push_back("c" + std::to_string(p) + "_" + std::to_string(c));
+    const std::string name = "in" + std::to_string(p);
+    single["inputs"][name] = {{"columns", columns}, {"unit", ports[p].unit.empty() ? "u" : ports[p].unit}};
+    wires[ports[p].name] = "input." + name;
+  }
+  single["stages"] = Json::array({{{"name", stage_name}, {"plugin", std::string(stage.plugin_name())},
+                                   {"params", stage.params_json()}, {"inputs", wires}}});
+  single["allow_dependent_virtual_sensor"] = true;
+  StageReplay replay{stage_name, Pipeline::build(single, ftsense::reference_plugins::registry()), {}};
+  const Walk& w = walk();
+  full.reset();
+  for (std::size_t k = 0; k < w.time.size(); ++k) {
+    write_inputs(full, w.inputs[k]);
+    full.step(w.time[k]);
+    std::vector<double> seen;
+    for (std::size_t p = 0; p < ports.size(); ++p) {
+      const auto v = full.values(full.stage_input(index, p));
+      seen.insert(seen.end(), v.begin(), v.end());
+    }
+    replay.inputs.push_back(std::move(seen));
+  }
+  return replay;
+}
+
+void bench_stage(benchmark::State& state, const std::string& solver, const std::string& stage_name) {
+  StageReplay replay = make_stage_replay(suralp_config(solver), stage_name);
+  const Walk& w = walk();
+  replay.pipeline.reset();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    write_inputs(replay.pipeline, replay.inputs[k]);
+    replay.pipeline.step(w.time[k]);
+    benchmark::ClobberMemory();
+    if (++k == w.time.size()) k = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void bench_tick(benchmark::State& state, const std::string& solver) {
+  Pipeline p = Pipeline::build(suralp_config(solver), ftsense::reference_plugins::registry());
+  const Walk& w = walk();
+  p.reset();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    write_inputs(p, w.inputs[k]);
+    p.step(w.time[k]);
+    benchmark::ClobberMemory();
+    if (++k == w.time.size()) k = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void register_benchmarks() {
+  const std::pair<const char*, const char*> stages[] = {
+      {"com", "lipm_com_estimator"},        {"split", "leg_force_split"},
+      {"cop_l", "foot_cop"},                {"vfs_l", "contact_force_distribution"},
+      {"fault_filter", "random_walk_fault_filter (8 channels)"}, {"fault_lowpass", "low_pass (8 channels)"},
+      {"detector", "threshold_detector (8 channels)"}, {"recovery", "fault_recovery (8 channels)"}};
+  for (const auto& [stage, what] : stages) {
+    const std::string name = std::string("stage/") + stage + " [" + what + "]";
+    benchmark::RegisterBenchmark(name.c_str(), [stage = std::string(stage)](benchmark::State& s) {
+      bench_stage(s, "active_set", stage);
+    });
+  }
+  benchmark::RegisterBenchmark("stage/vfs_l [contact_force_distribution, solver ceres]",
+                               [](benchmark::State& s) { bench_stage(s, "ceres", "vfs_l"); });
+  benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",
+                               [](benchmark::State& s) { bench_tick(s, "active_set"); });
+  benchmark::RegisterBenchmark("tick/suralp.json [ceres solver]", [](benchmark::State& s) { bench_tick(s, "ceres"); });
+}
+
+std::size_t parse_count(const char* text) {
+  char* end = nullptr;
+  const unsigned long long n = std::strtoull(text, &end, 10);
+  if (end == text || *end != '\0' || n == 0) {
+    std::fprintf(stderr, "ftsense-bench: '%s' is not a positive tick count\n", text);
+    std::exit(2);
+  }
+  return static_cast<std::size_t>(n);
+}
+
+int latency_histogram(std::size_t ticks) {
+  Pipeline p = Pipeline::build(suralp_config("active_set"), ftsense::reference_plugins::registry());
+  const Walk& w = walk();
+  std::vector<double> ns(ticks);
+  p.reset();
+  for (std::size_t i = 0, k = 0; i < ticks; ++i) {
+    write_inputs(p, w.inputs[k]);
+    const auto start = std::chrono::steady_clock::now();
+    p.step(w.time[k]);
+    const auto stop = std::chrono::steady_clock::now();
+    ns[i] = std::chrono::duration<double, std::nano>(stop - start).count();
+    if (++k == w.time.size()) k = 0;
+  }
+  std::sort(ns.begin(), ns.end());
+  auto at = [&](double q) { return ns[static_cast<std::size_t>(q * static_cast<double>(ticks - 1))]; };
+  std::printf("latency of one whole tick of configs/suralp.json (active_set), %zu ticks over a %zu-tick walk:\n",
+              ticks, w.time.size());
+  std::printf("  median %.0f ns  p90 %.0f ns  p99 %.0f ns  p99.9 %.0f ns  max %.0f ns\n", at(0.5), at(0.9), at(0.99),
+              at(0.999), ns.back());
+  return 0;
+}
+
+int run_ticks(std::size_t ticks) {
+  Pipeline p = Pipeline::build(suralp_config("active_set"), ftsense::reference_plugins::registry());
+  const Walk& w = walk();
+  p.reset();
+  double sink = 0.0;
+  for (std::size_t i = 0, k = 0; i < ticks; ++i) {
+    write_inputs(p, w.inputs[k]);
+    p.step(w.time[k]);
+    sink += p.values(p.monitor().recovered)[0];
+    if (++k == w.time.size()) k = 0;
+  }
+  std::printf("ran %zu ticks (checksum %.6g)\n", ticks, sink);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "--latency-histogram") return latency_histogram(parse_count(argv[2]));
+  if (argc == 3 && std::string(argv[1]) == "--ticks") return run_ticks(parse_count(argv[2]));
+  register_benchmarks();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
