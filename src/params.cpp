@@ -1,6 +1,8 @@
 #include "ftsense/params.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 namespace ftsense {
 
@@ -103,6 +105,12 @@ bool read_integer(const ParamInfo& info, const Json& raw, const std::string& pat
                   Diagnostics& diag, long long& out) {
   if (!raw.is_number_integer()) {
     report_type(info, raw, "integer", path, diag);
+    return false;
+  }
+  // get<long long>() wraps unsigned values above its range (2^64 - 1 would read as -1).
+  if (raw.is_number_unsigned() &&
+      raw.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<long long>::max())) {
+    diag.error(path, " = " + raw.dump() + " violates the range of a 64-bit integer " + info.what());
     return false;
   }
   const long long v = raw.get<long long>();

@@ -37,9 +37,55 @@ std::pair<std::size_t, std::size_t> line_column(std::string_view text, std::size
   return {line, column};
 }
 
+// Calls `visit(byte)` for every byte of `text` outside string literals, until it returns true;
+// returns that byte's index, or npos.
+template <class Visit>
+std::size_t find_outside_strings(std::string_view text, Visit visit) {
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (visit(i)) {
+      return i;
+    }
+  }
+  return std::string_view::npos;
+}
+
+bool is_number_char(char c) {
+  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E';
+}
+
+std::string position(std::string_view text, std::size_t byte, std::string_view source_name) {
+  const auto [line, column] = line_column(text, byte);
+  return std::string(source_name) + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
 }  // namespace
 
 Json parse_json_text(std::string_view text, std::string_view source_name) {
+  // nlohmann stops at a NUL byte as at the end of the text: whatever follows would be ignored.
+  if (const auto nul = text.find('\0'); nul != std::string_view::npos) {
+    throw ConfigError(position(text, nul, source_name),
+                      "not valid JSON: a NUL byte; is this a text file (or a truncated one)?");
+  }
+  // Nesting is limited before parsing: JSON values are copied, compared and printed
+  // recursively, so a deep enough text ("[[[[...") would overflow the stack.
+  std::size_t depth = 0;
+  const std::size_t too_deep = find_outside_strings(text, [&](std::size_t i) {
+    if (text[i] == '[' || text[i] == '{') return ++depth > kMaxJsonDepth;
+    if ((text[i] == ']' || text[i] == '}') && depth > 0) --depth;
+    return false;
+  });
+  if (too_deep != std::string_view::npos) {
+    throw ConfigError(position(text, too_deep, source_name),
+                      "not valid JSON: nested deeper than " + std::to_string(kMaxJsonDepth) +
+                          " arrays or objects; a config needs a handful of levels");
+  }
   std::vector<ParseFrame> stack;
   std::vector<Diagnostic> duplicates;
   auto on_element = [&stack] {
@@ -91,6 +137,20 @@ Json parse_json_text(std::string_view text, std::string_view source_name) {
     throw ConfigError(std::string(source_name) + ":" + std::to_string(line) + ":" +
                           std::to_string(column),
                       "not valid JSON: " + what);
+  } catch (const Json::out_of_range& e) {
+    // A number beyond the range of a double ("1e400"): nlohmann says "number overflow parsing
+    // '1e400'" without a position; the first number token spelled so is the one.
+    std::string what = e.what();
+    if (const auto colon = what.find("] "); colon != std::string::npos) what = what.substr(colon + 2);
+    const auto open = what.find('\'');
+    const auto close = what.rfind('\'');
+    const std::string token = open < close ? what.substr(open + 1, close - open - 1) : std::string();
+    const std::size_t at = find_outside_strings(text, [&](std::size_t i) {
+      return !token.empty() && text.substr(i, token.size()) == token && (i == 0 || !is_number_char(text[i - 1])) &&
+             (i + token.size() == text.size() || !is_number_char(text[i + token.size()]));
+    });
+    throw ConfigError(position(text, at == std::string_view::npos ? 0 : at, source_name),
+                      "not valid JSON: " + what + " (beyond the range of a double)");
   }
   if (!duplicates.empty()) {
     for (auto& d : duplicates) d.message += " (in " + std::string(source_name) + ")";
@@ -235,6 +295,8 @@ struct SignalInfo {
   SignalRef ref;
   std::string unit;
   std::set<std::string> depends_on;  // pipeline input names
+  // For leave-one-out outputs: the inputs of the measured signal it leaves channel by channel out.
+  std::set<std::string> leave_one_out_of;
 };
 
 struct StageDecl {
@@ -407,7 +469,7 @@ class PipelineBuilder {
       }
     }
     for (const auto& in : pipeline_.inputs_) {
-      SignalInfo info{in.values, in.unit, {}};
+      SignalInfo info{in.values, in.unit, {}, {}};
       collect_input_dependencies(in.name, info.depends_on);
       signals_["input." + in.name] = std::move(info);
     }
@@ -727,8 +789,15 @@ class PipelineBuilder {
       while (d.wires[w].port != ports.inputs()[p].name) ++w;
       run.input_refs.push_back(place(resolved[w].ends, run.gathers));
     }
+    std::set<std::string> measured_depends_on;
+    for (std::size_t p = 0; p < ports.inputs().size(); ++p) {
+      if (ports.inputs()[p].role == PortRole::measured) {
+        measured_depends_on.insert(port_depends_on[p].begin(), port_depends_on[p].end());
+      }
+    }
     for (const PortSpec& out : ports.outputs()) {
       SignalInfo info;
+      if (out.leave_one_out) info.leave_one_out_of = measured_depends_on;
       info.ref = allocate(out.dim);
       info.unit = out.unit.empty() ? generic_unit.value_or(std::string(kDimensionless)) : out.unit;
       info.depends_on = stage_depends_on;
@@ -842,6 +911,8 @@ class PipelineBuilder {
                             &m.recovered, &m.fault,        &m.fault_type};
     std::set<std::string> deps[2];
     std::string units[2];
+    std::set<std::string> virtual_leave_one_out;
+    bool virtual_all_leave_one_out = true;
     for (std::size_t f = 0; f < fields.size(); ++f) {
       Wire w;
       w.port = fields[f];
@@ -870,6 +941,10 @@ class PipelineBuilder {
         if (f < 2) {
           deps[f].insert(s->depends_on.begin(), s->depends_on.end());
           units[f] = s->unit;
+        }
+        if (f == 1) {
+          virtual_leave_one_out.insert(s->leave_one_out_of.begin(), s->leave_one_out_of.end());
+          virtual_all_leave_one_out = virtual_all_leave_one_out && !s->leave_one_out_of.empty();
         }
       }
       if (!complete) {
@@ -935,6 +1010,11 @@ class PipelineBuilder {
       return;
     }
     m.unit = units[0];
+    // A leave-one-out virtual sensor of exactly the measured signal is independent channel by
+    // channel: the inputs it leaves out do not count as shared.
+    if (virtual_all_leave_one_out && deps[0] == virtual_leave_one_out) {
+      for (const auto& name : virtual_leave_one_out) deps[1].erase(name);
+    }
     report_dependence(path + "/virtual", "'monitor/virtual'", "'monitor/measured'", deps[1], deps[0]);
     pipeline_.has_monitor_ = true;
   }

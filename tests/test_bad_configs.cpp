@@ -147,6 +147,27 @@ TEST(BadConfig, TransitiveDependenceThroughStagesIsFound) {
   }
 }
 
+// An integer parameter without bounds: only the integer type limits it.
+struct IntegerParams {
+  int count = 0;
+  static void describe(ParamSchema<IntegerParams>& s) { s.add("count", &IntegerParams::count, "a count"); }
+};
+
+TEST(BadConfig, IntegerBeyondSixtyFourBitsIsNotWrapped) {
+  // nlohmann keeps 2^64 - 1 as an unsigned integer; get<long long>() used to wrap it to -1.
+  for (const char* text : {R"({"count": 18446744073709551615})", R"({"count": 9223372036854775808})"}) {
+    Diagnostics diag;
+    const IntegerParams p = load_params<IntegerParams>(Json::parse(text), "/params", "test", diag);
+    ASSERT_EQ(diag.errors().size(), 1u) << text << " loaded as " << p.count;
+    EXPECT_EQ(diag.errors()[0].path, "/params/count");
+    EXPECT_NE(diag.errors()[0].message.find("violates the range of a 64-bit integer"), std::string::npos)
+        << diag.errors()[0].message;
+  }
+  Diagnostics diag;
+  EXPECT_EQ(load_params<IntegerParams>(Json::parse(R"({"count": -7})"), "/params", "test", diag).count, -7);
+  EXPECT_FALSE(diag.has_errors());
+}
+
 struct BadTextCase {
   const char* name;
   const char* text;
@@ -162,6 +183,10 @@ const BadTextCase kTextCases[] = {
      "/stages/0/inputs/signal", "duplicate key 'signal'"},
     {"duplicate_top_level_key", R"({"stages": [], "stages": []})", "/stages", "duplicate key 'stages'"},
     {"empty_text", "", "c.json:1:1", "not valid JSON"},
+    // Found by fuzz/fuzz_config: nlohmann throws out_of_range (not parse_error) for these.
+    {"number_overflow", "{\"sample_period_s\": \"1e710\",\n \"x\": [1, 1e710]}", "c.json:2:11",
+     "number overflow parsing '1e710'"},
+    {"negative_number_overflow", "[-1e400]", "c.json:1:2", "number overflow parsing '-1e400'"},
 };
 
 class BadConfigText : public ::testing::TestWithParam<BadTextCase> {};
@@ -180,6 +205,36 @@ TEST_P(BadConfigText, IsRejectedWithPosition) {
 
 INSTANTIATE_TEST_SUITE_P(Table, BadConfigText, ::testing::ValuesIn(kTextCases),
                          [](const auto& info) { return std::string(info.param.name); });
+
+TEST(BadConfigText, NulByteIsRejected) {
+  // nlohmann ends the text at a NUL byte: {"a": 1}\0garbage used to load as {"a": 1}.
+  const std::string text("{\"a\": 1}\n\0garbage", 17);
+  try {
+    (void)parse_json_text(text, "c.json");
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].path, "c.json:2:1") << e.what();
+    EXPECT_NE(e.problems()[0].message.find("not valid JSON: a NUL byte"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BadConfigText, DeepNestingIsRejectedNotAStackOverflow) {
+  // Found by fuzz/fuzz_config: 8000 nested arrays as a stage's params overflowed the stack when
+  // the builder copied them. Strings may hold any number of brackets.
+  const std::string deep = std::string(8000, '[') + std::string(8000, ']');
+  const std::string text = R"({"description": "[[[[[[", "stages": [{"params": )" + deep + "}]}";
+  try {
+    (void)parse_json_text(text, "c.json");
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].path, "c.json:1:" + std::to_string(48 + kMaxJsonDepth - 2)) << e.what();
+    EXPECT_NE(e.problems()[0].message.find("nested deeper than 100"), std::string::npos) << e.what();
+  }
+  const std::string ok = std::string(kMaxJsonDepth, '[') + std::string(kMaxJsonDepth, ']');
+  EXPECT_TRUE(parse_json_text(ok, "c.json").is_array());
+}
 
 }  // namespace
 }  // namespace ftsense

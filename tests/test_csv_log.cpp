@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -69,6 +70,8 @@ const BadLogCase kBadLogs[] = {
      ":3: time_s = 0.001000 is not after the previous row's 0.002000"},
     {"duplicated_timestamp", "time_s,a\n0.002,1\n0.002,1\n", LogError::Kind::bad_row, "is not after"},
     {"time_nan", "time_s,a\nnan,1\n", LogError::Kind::bad_row, ":2: time_s is not a finite number"},
+    // from_chars reads "-1" after the explicit '+' was skipped: "+-1" used to load as -1.
+    {"two_signs", "time_s,a\n0,+-1\n", LogError::Kind::bad_row, ":2: column 'a' (field 2) = '+-1' is not a number"},
 };
 
 class BadLog : public ::testing::TestWithParam<BadLogCase> {};
@@ -91,6 +94,31 @@ TEST_P(BadLog, IsReportedWithPosition) {
 
 INSTANTIATE_TEST_SUITE_P(Table, BadLog, ::testing::ValuesIn(kBadLogs),
                          [](const auto& info) { return std::string(info.param.name); });
+
+TEST(CsvLog, ReadsFromAStreamLikeFromAFile) {
+  const std::string content = "\xEF\xBB\xBFtime_s, a ,b\r\n0.1,,2\r\n\r\n0.2,+3,-inf\r\n";
+  CsvLogReader from_file(temp_file("stream.csv", content));
+  std::istringstream in(content);
+  CsvLogReader from_stream(in, "stream.csv");
+  EXPECT_EQ(from_stream.columns(), from_file.columns());
+  std::vector<double> a, b;
+  while (from_file.next(a)) {
+    ASSERT_TRUE(from_stream.next(b));
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_TRUE(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])));
+    EXPECT_EQ(from_stream.line(), from_file.line());
+  }
+  EXPECT_FALSE(from_stream.next(b));
+  std::istringstream bad("time_s,a\n0,1\n0,2\n");
+  CsvLogReader r(bad, "bad.csv");
+  ASSERT_TRUE(r.next(b));
+  try {
+    r.next(b);
+    FAIL() << "expected a LogError";
+  } catch (const LogError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("bad.csv:3: time_s = ", 0), 0u) << e.what();
+  }
+}
 
 TEST(CsvLog, MissingFileSaysSo) {
   try {

@@ -177,10 +177,22 @@ Report make_report(const std::string& run_path, const std::string& truth_path, c
         }
       }
     }
-    // False alarms: after warm-up, outside the fault window.
+    // Re-admission after a fault that ends before the log does.
+    m.readmission_s = kNaN;
+    std::size_t grace_end = end;
+    if (faulty && end + 1 < time.size()) {
+      for (std::size_t k = end + 1; k < time.size(); ++k) {
+        if (flag[k] == 0.0) {
+          m.readmission_s = time[k] - time[end];
+          break;
+        }
+      }
+      while (grace_end + 1 < time.size() && time[grace_end + 1] - time[end] <= options.readmit_s) ++grace_end;
+    }
+    // False alarms: after warm-up, outside the fault window and its re-admission grace.
     bool previous = false;
     for (std::size_t k = 0; k < time.size(); ++k) {
-      const bool in_window = faulty && k >= onset && k <= end;
+      const bool in_window = faulty && k >= onset && k <= grace_end;
       const bool raised = flag[k] != 0.0 && time[k] - t0 >= options.warmup_s && !in_window;
       if (raised && !previous) ++m.false_alarms;
       if (raised) m.false_alarm_time_s += dt;
@@ -218,6 +230,7 @@ Report make_report(const std::string& run_path, const std::string& truth_path, c
             {"truth", truth_path},
             {"warmup_s", options.warmup_s},
             {"settle_s", options.settle_s},
+            {"readmit_s", options.readmit_s},
             {"duration_s", t_end - t0},
             {"unit", unit},
             {"channels", Json::array()}};
@@ -241,6 +254,7 @@ Report make_report(const std::string& run_path, const std::string& truth_path, c
                              {"fault_estimate_rmse", number_or_null(m.fault_estimate_rmse)},
                              {"recovered_rmse", number_or_null(m.recovered_rmse)},
                              {"measured_rmse", number_or_null(m.measured_rmse)},
+                             {"readmission_s", number_or_null(m.readmission_s)},
                              {"false_alarms", m.false_alarms},
                              {"false_alarm_time_s", m.false_alarm_time_s},
                              {"vfs_rmse", number_or_null(m.vfs_rmse)},
@@ -345,16 +359,17 @@ Report make_report(const std::string& run_path, const std::string& truth_path, c
 
   std::ofstream md(out_dir + "/report.md");
   md << "# " << options.title << "\n\nRun: `" << run_path << "`" << (has_truth ? ", truth: `" + truth_path + "`" : "")
-     << ". Warm-up " << options.warmup_s << " s (no false alarm is counted before it); fault estimate error "
+     << ". Warm-up " << options.warmup_s << " s (no false alarm is counted before it, nor within "
+     << options.readmit_s << " s after a fault ends); fault estimate error "
      << "measured from " << options.settle_s << " s after onset. Units: " << unit << ".\n\n";
-  md << "| channel | injected | onset [s] | detection delay [s] | detected type | fault estimate RMSE | "
-        "recovered RMSE | measured RMSE | false alarms | false-alarm time [s] | VFS RMSE | VFS p95 |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| channel | injected | onset [s] | detection delay [s] | detected type | re-admitted after [s] | "
+        "fault estimate RMSE | recovered RMSE | measured RMSE | false alarms | false-alarm time [s] | VFS RMSE | "
+        "VFS p95 |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& m : report.channels) {
     const bool faulty = m.injected_type != 0;
     md << "| " << m.channel << " | " << type_name(m.injected_type) << " | " << fixed(m.onset_s, 2) << " | "
        << (faulty ? (std::isfinite(m.detection_delay_s) ? fixed(m.detection_delay_s, 3) : "missed") : "-") << " | "
-       << type_name(m.detected_type) << " | " << fixed(m.fault_estimate_rmse, 1) << " | " << fixed(m.recovered_rmse, 1)
+       << type_name(m.detected_type) << " | " << fixed(m.readmission_s, 2) << " | " << fixed(m.fault_estimate_rmse, 1) << " | " << fixed(m.recovered_rmse, 1)
        << " | " << fixed(m.measured_rmse, 1) << " | " << m.false_alarms << " | " << fixed(m.false_alarm_time_s, 2)
        << " | " << fixed(m.vfs_rmse, 1) << " | " << fixed(m.vfs_p95, 1) << " |\n";
   }

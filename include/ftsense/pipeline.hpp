@@ -72,8 +72,10 @@ struct Monitor {
   std::vector<Extra> extra;
 };
 
-// Parses JSON text strictly: syntax errors give "source:line:column", and duplicate object keys
-// (which JSON parsers silently collapse) are errors with their JSON Pointer.
+// Parses JSON text strictly: syntax errors, numbers beyond the range of a double and nesting
+// deeper than kMaxJsonDepth give "source:line:column", and duplicate object keys (which JSON
+// parsers silently collapse) are errors with their JSON Pointer.
+inline constexpr std::size_t kMaxJsonDepth = 100;
 [[nodiscard]] Json parse_json_text(std::string_view text, std::string_view source_name);
 
 class Pipeline {

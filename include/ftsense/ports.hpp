@@ -32,6 +32,10 @@ struct PortSpec {
   std::string unit;
   std::string description;
   PortRole role = PortRole::signal;
+  // Outputs only: channel j is computed without channel j of the stage's `measured` input
+  // (a leave-one-out estimate). The independence rule then accepts it as the virtual sensor of
+  // that measured signal, channel by channel.
+  bool leave_one_out = false;
 };
 
 class Ports {

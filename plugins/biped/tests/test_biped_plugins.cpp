@@ -81,8 +81,25 @@ struct ContractSetup<biped::ZmpFromContactForces> {
   static double sample_period_s() { return 1e-3; }
 };
 
+template <>
+struct ContractSetup<biped::ContactForceFdi> {
+  static Json params() { return {{"points", kSuralpFoot}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "measured") {
+      for (std::size_t i = 0; i < v.size(); ++i) v[i] = 120.0 + 3.0 * static_cast<double>(i);
+    }
+    if (port == "total_force") v[2] = 1044.0;  // the sum of the nominal pads
+    if (port == "l_foot_pos") v[1] = 0.1;
+    if (port == "r_foot_pos") v[1] = -0.1;
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+
 using BipedPluginTypes = ::testing::Types<biped::LipmComEstimator, biped::LegForceSplit, biped::FootCop,
-                                          biped::ContactForceDistribution, biped::ZmpFromContactForces>;
+                                          biped::ContactForceDistribution, biped::ZmpFromContactForces,
+                                          biped::ContactForceFdi>;
 INSTANTIATE_TYPED_TEST_SUITE_P(Biped, PluginContract, BipedPluginTypes);
 
 }  // namespace ftsense::testing

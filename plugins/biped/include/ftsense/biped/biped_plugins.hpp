@@ -2,6 +2,7 @@
 // The walking-biped virtual force sensor family (method.md sections 1-4) as one plugin set.
 
 #include "ftsense/biped/contact_force_distribution.hpp"
+#include "ftsense/biped/contact_force_fdi.hpp"
 #include "ftsense/biped/foot_cop.hpp"
 #include "ftsense/biped/leg_force_split.hpp"
 #include "ftsense/biped/lipm_com_estimator.hpp"
@@ -11,6 +12,7 @@
 namespace ftsense::biped {
 
 using biped_plugins =
-    PluginSet<LipmComEstimator, LegForceSplit, FootCop, ContactForceDistribution, ZmpFromContactForces>;
+    PluginSet<LipmComEstimator, LegForceSplit, FootCop, ContactForceDistribution, ZmpFromContactForces,
+              ContactForceFdi>;
 
 }  // namespace ftsense::biped

@@ -1,0 +1,163 @@
+#pragma once
+// Fault detection, isolation, classification and recovery for the contact-point force sensors of
+// both feet, from what is known accurately (beyond the paper; method.md section 7).
+//
+// The paper judges each point against a per-point virtual force that is off by ~100 N in stance.
+// This plugin uses three facts that hold to a few newtons instead:
+//   1. A pad that kinematics places above the ground carries nothing: pad height
+//      h_j = (o_f + R_f [x_j, y_j, 0])_z > airborne_height_m  =>  N_j = 0 (exactly, in the
+//      simulator; within noise on a robot).
+//   2. All pads together carry the total vertical force: sum_j N_j = F_z = m (R_wb f_imu)_z, up to
+//      the unmodelled limb dynamics (about 20 N RMS on the simulated SURALP). A single-channel
+//      fault of size f shifts the sum residual r = sum_j N_j - F_z by f.
+//   3. A healthy pad's force is continuous: it does not jump by tens of newtons in one tick while
+//      the total force stays put, and a noisy sensor never repeats a value exactly.
+//
+// Tests, per channel j, each tick (thresholds are parameters):
+//   invalid   N_j not finite.
+//   frozen    N_j repeated exactly (within stale_tolerance_N) for stale_ticks ticks; saturation
+//             when that value is the largest the channel has shown.
+//   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree (not
+//             within touchdown_guard_s of a touchdown: a landing heel rings like a spike); the flag
+//             stays spike_hold_s after the last spike.
+//   noise     over noise_window_s, more than half of the second differences exceed
+//             noise_factor * noise_std_N * sqrt(6) (their healthy standard deviation).
+//   airborne  while the pad has been airborne for airborne_settle_s, |mean N_j| > airborne_threshold_N:
+//             offset, drift or frozen-at-load; the mean measures the fault directly.
+//   jump      |N_j,k - N_j,k-1| > jump_threshold_N, on a foot standing flat (none of its pads
+//             airborne) and with no foot touching down within touchdown_guard_s (a landing impact
+//             jumps pads and, unseen by the trunk IMU, the sum residual); confirmed when the sum
+//             residual steps over jump_window_s by the net jump of the channels that jumped in
+//             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
+//             each other): an abrupt fault, isolated at once. While a loaded channel is
+//             substituted from the total force (frozen, noise, ...), the sum carries its
+//             unmeasured changes, so confirmation then takes 3 x jump_confirm_N, and none is
+//             confirmed while that channel's foot rolls on or off.
+// Type: invalid > frozen/saturation > noise > spikes > gain > drift > offset (a noise burst
+// also trips the spike test). A foot touches down when all its pads come below
+// touchdown_height_m. Offset and drift are
+// told apart by a line fitted to the fault's direct measurements (airborne means, onset jump);
+// a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load).
+// Re-admission: when the test that raised the flag has been clear for clear_s (an airborne zero,
+// a finite value, varying values, a reverse jump of the estimated size).
+//
+// Outputs per channel: fault, fault_type (codes of fault_type.hpp), fault_estimate (measured -
+// recovered), recovered (offset/drift: N - b(t); gain: N / k; noise: 10 Hz low-pass of N;
+// spikes: median of the last three readings; otherwise the virtual value),
+// virtual (leave-one-out: 0 when airborne, else F_z - sum of the other channels' recovered
+// values). `unisolated` is 1 while the low-passed sum residual exceeds sum_threshold_N with no
+// channel flagged: a fault of the virtual sensor's own inputs (IMU) or one that cannot be
+// isolated, reported as such rather than blamed on a force sensor.
+// Channel order: the left foot's points, then the right foot's, each in the order of `points`.
+
+#include <array>
+#include <string_view>
+#include <vector>
+
+#include "ftsense/plugin.hpp"
+
+namespace ftsense::biped {
+
+class ContactForceFdi {
+ public:
+  static constexpr std::string_view name = "contact_force_fdi";
+  static constexpr std::string_view summary =
+      "detects, isolates, classifies and recovers contact-point force faults from pad heights, "
+      "the total force and signal continuity";
+
+  struct Params {
+    std::vector<std::array<double, 2>> points;
+    double noise_std_N = 2.0;
+    double airborne_height_m = 0.005;
+    double airborne_settle_s = 0.02;
+    double airborne_threshold_N = 8.0;
+    double airborne_clear_N = 4.0;
+    double jump_threshold_N = 20.0;
+    double jump_confirm_N = 25.0;
+    double jump_window_s = 0.01;
+    double touchdown_guard_s = 0.15;
+    double touchdown_height_m = 0.001;
+    int stale_ticks = 20;
+    double stale_tolerance_N = 0.0;
+    double spike_threshold_N = 60.0;
+    double spike_hold_s = 0.8;
+    double noise_window_s = 0.05;
+    double noise_factor = 4.0;
+    double sum_cutoff_hz = 1.0;
+    double sum_threshold_N = 80.0;
+    double clear_s = 0.05;
+    double hold_s = 0.2;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kMeasured, kTotalForce, kLeftPos, kLeftRpy, kRightPos, kRightRpy };
+  enum Output : std::size_t { kFault, kFaultType, kFaultEstimate, kRecovered, kVirtual, kSumResidual, kUnisolated };
+
+  ContactForceFdi(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept;
+  void step(const StepIO& io) noexcept;
+
+ private:
+  // Least-squares line b(t) = a + s (t - t0) through direct measurements of a channel's fault.
+  struct LineFit {
+    double n = 0, st = 0, sb = 0, stt = 0, stb = 0, t0 = 0;
+    void clear(double origin) noexcept { *this = LineFit{}; t0 = origin; }
+    void add(double t, double b, double weight) noexcept;
+    [[nodiscard]] double span() const noexcept;
+    void solve(double& a, double& s) const noexcept;
+  };
+
+  struct Channel {
+    // evidence
+    double previous = 0.0, previous2 = 0.0;
+    int stale_count = 0;
+    double max_seen = 0.0;
+    double last_spike_s = -1e9;
+    std::vector<double> second_diff;  // ring, noise test
+    std::size_t second_diff_next = 0;
+    int airborne_ticks = 0;
+    double airborne_sum = 0.0;
+    int airborne_count = 0;
+    // the last jump candidate
+    bool jump_pending = false;  // a candidate this tick
+    bool jump_member = false;   // in the group awaiting confirmation
+    double jump_size = 0.0;
+    double candidate_load = 0.0;
+    double jump_load_before = 0.0;
+    // state
+    int type = 0;  // FaultType code, 0 healthy
+    double flagged_since = 0.0;
+    double clear_since = -1.0;
+    double offset = 0.0, slope = 0.0, gain = 1.0;
+    LineFit fit;
+    bool fit_has_air = false;
+    double recovered = 0.0;
+    double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
+  };
+
+  void raise(Channel& c, int type, double t) noexcept;
+  void clear(Channel& c) noexcept;
+
+  Ports ports_;
+  Params params_;
+  double period_s_;
+  std::size_t feet_points_;
+  std::vector<Channel> channels_;
+  std::vector<double> residual_ring_;  // sum residual history, 2 * jump window
+  std::size_t residual_next_ = 0;
+  std::size_t residual_count_ = 0;
+  double sum_filtered_ = 0.0;
+  bool started_ = false;
+  bool group_pending_ = false;  // jump candidates of one tick, awaiting confirmation
+  int group_age_ = 0;
+  double group_sum_ = 0.0;
+  int group_size_ = 0;
+  std::array<double, 2> last_touchdown_s_{-1e9, -1e9};
+  std::array<bool, 2> foot_airborne_{false, false};
+  double start_time_s_ = 0.0;
+  int noise_window_ticks_;
+  int jump_window_ticks_;
+};
+
+}  // namespace ftsense::biped

@@ -1,0 +1,469 @@
+#include "ftsense/biped/contact_force_fdi.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ftsense/biped/frames.hpp"
+#include "ftsense/fault_type.hpp"
+
+namespace ftsense::biped {
+
+namespace {
+
+constexpr int code(FaultType t) { return static_cast<int>(t); }
+
+// Which evidence wins when several tests fire on one channel.
+int priority(int type) {
+  switch (static_cast<FaultType>(type)) {
+    case FaultType::invalid: return 6;
+    case FaultType::frozen:
+    case FaultType::saturation: return 5;
+    case FaultType::noise: return 4;
+    case FaultType::spikes: return 3;
+    case FaultType::gain: return 2;
+    case FaultType::drift:
+    case FaultType::offset: return 1;
+    default: return 0;
+  }
+}
+
+bool corrects(int type) {
+  return type == code(FaultType::offset) || type == code(FaultType::drift) || type == code(FaultType::gain);
+}
+
+}  // namespace
+
+void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
+  schema.add("points", &Params::points, "contact points (x, y) of each foot, foot frame (both feet alike)")
+      .unit("m").count_at_least(1).count_at_most(8).required();
+  schema.add("noise_std_N", &Params::noise_std_N, "nominal standard deviation of a healthy sensor's noise")
+      .unit("N").greater_than(0.0);
+  schema.add("airborne_height_m", &Params::airborne_height_m, "a pad this high above the ground carries nothing")
+      .unit("m").greater_than(0.0);
+  schema.add("airborne_settle_s", &Params::airborne_settle_s, "time a pad must be airborne before it is tested")
+      .unit("s").at_least(0.0);
+  schema.add("airborne_threshold_N", &Params::airborne_threshold_N, "|mean reading| of an airborne pad that is a fault")
+      .unit("N").greater_than(0.0);
+  schema.add("airborne_clear_N", &Params::airborne_clear_N, "|mean reading| of an airborne pad that re-admits it")
+      .unit("N").greater_than(0.0);
+  schema.add("jump_threshold_N", &Params::jump_threshold_N, "one-tick change of a single channel that is a jump candidate")
+      .unit("N").greater_than(0.0);
+  schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump")
+      .unit("N").greater_than(0.0);
+  schema.add("jump_window_s", &Params::jump_window_s, "window of the sum-residual step test")
+      .unit("s").greater_than(0.0);
+  schema.add("touchdown_guard_s", &Params::touchdown_guard_s,
+             "no jump or spike test this long after any foot touches down (landing impacts)")
+      .unit("s").at_least(0.0);
+  schema.add("touchdown_height_m", &Params::touchdown_height_m,
+             "a foot touches down when all its pads come below this height")
+      .unit("m").greater_than(0.0);
+  schema.add("stale_ticks", &Params::stale_ticks, "repeated readings that make a channel frozen").at_least(2);
+  schema.add("stale_tolerance_N", &Params::stale_tolerance_N, "readings this close count as repeated (quantisation)")
+      .unit("N").at_least(0.0);
+  schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike")
+      .unit("N").greater_than(0.0);
+  schema.add("spike_hold_s", &Params::spike_hold_s, "the spikes flag stays this long after the last spike")
+      .unit("s").at_least(0.0);
+  schema.add("noise_window_s", &Params::noise_window_s, "window of the noise-burst test").unit("s").greater_than(0.0);
+  schema.add("noise_factor", &Params::noise_factor,
+             "second differences above this many healthy standard deviations count as noisy")
+      .greater_than(0.0);
+  schema.add("sum_cutoff_hz", &Params::sum_cutoff_hz, "low-pass cut-off of the sum residual for the unisolated test")
+      .unit("Hz").greater_than(0.0);
+  schema.add("sum_threshold_N", &Params::sum_threshold_N,
+             "|low-passed sum residual| with no channel flagged that is an unisolated or virtual-sensor fault")
+      .unit("N").greater_than(0.0);
+  schema.add("clear_s", &Params::clear_s, "time the raising test must stay clear to re-admit a channel")
+      .unit("s").at_least(0.0);
+  schema.add("hold_s", &Params::hold_s, "a raised flag stays at least this long; spikes keep it this long after the last")
+      .unit("s").at_least(0.0);
+}
+
+void ContactForceFdi::LineFit::add(double t, double b, double weight) noexcept {
+  const double x = t - t0;
+  n += weight;
+  st += weight * x;
+  sb += weight * b;
+  stt += weight * x * x;
+  stb += weight * x * b;
+}
+
+double ContactForceFdi::LineFit::span() const noexcept {
+  if (n <= 0) return 0.0;
+  const double variance = stt / n - (st / n) * (st / n);
+  return variance > 0 ? std::sqrt(12.0 * variance) : 0.0;  // the length of a uniform spread
+}
+
+void ContactForceFdi::LineFit::solve(double& a, double& s) const noexcept {
+  if (n <= 0) return;
+  const double det = n * stt - st * st;
+  if (det > 1e-12 * n * n) {
+    s = (n * stb - st * sb) / det;
+    a = (sb - s * st) / n;
+  } else {
+    s = 0.0;
+    a = sb / n;
+  }
+}
+
+ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& context)
+    : params_(params),
+      period_s_(context.sample_period_s()),
+      feet_points_(params.points.size()),
+      noise_window_ticks_(std::max(4, static_cast<int>(std::lround(params.noise_window_s / context.sample_period_s())))),
+      jump_window_ticks_(std::max(2, static_cast<int>(std::lround(params.jump_window_s / context.sample_period_s())))) {
+  if (params.airborne_clear_N >= params.airborne_threshold_N) {
+    throw ConfigError("/params/airborne_clear_N", " = " + format_number(params.airborne_clear_N) + " violates < " +
+                                                      format_number(params.airborne_threshold_N) +
+                                                      " (airborne_threshold_N: re-admission needs a lower level)");
+  }
+  const std::size_t n = 2 * feet_points_;
+  ports_.add_input({"measured", n, "N", "contact-point forces, left foot then right foot", PortRole::measured});
+  ports_.add_input({"total_force", 3, "N", "total ground reaction force m R_wb f_imu, world frame",
+                    PortRole::virtual_estimate});
+  ports_.add_input({"l_foot_pos", 3, "m", "left foot frame origin, world frame (kinematics)"});
+  ports_.add_input({"l_foot_rpy", 3, "rad", "left foot orientation roll, pitch, yaw (kinematics)"});
+  ports_.add_input({"r_foot_pos", 3, "m", "right foot frame origin, world frame (kinematics)"});
+  ports_.add_input({"r_foot_rpy", 3, "rad", "right foot orientation roll, pitch, yaw (kinematics)"});
+  ports_.add_output({"fault", n, "1", "1 when the channel is judged faulty"});
+  ports_.add_output({"fault_type", n, "1", "fault type code (fault_type.hpp)"});
+  ports_.add_output({"fault_estimate", n, "N", "measured - recovered: the estimated fault contribution"});
+  ports_.add_output({"recovered", n, "N", "the force to use downstream"});
+  ports_.add_output({"virtual", n, "N", "leave-one-out virtual force: 0 airborne, else F_z - sum of the others",
+                     PortRole::signal, /*leave_one_out=*/true});
+  ports_.add_output({"sum_residual", 1, "N", "low-passed sum of recovered forces - F_z"});
+  ports_.add_output({"unisolated", 1, "1", "1 while the sum residual is off with no channel to blame (virtual sensor fault)"});
+  channels_.resize(n);
+  for (auto& c : channels_) c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
+  residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
+}
+
+void ContactForceFdi::reset() noexcept {
+  for (auto& c : channels_) {
+    std::vector<double> ring = std::move(c.second_diff);
+    std::fill(ring.begin(), ring.end(), 0.0);
+    c = Channel{};
+    c.second_diff = std::move(ring);
+  }
+  std::fill(residual_ring_.begin(), residual_ring_.end(), 0.0);
+  residual_next_ = 0;
+  residual_count_ = 0;
+  sum_filtered_ = 0.0;
+  started_ = false;
+  group_pending_ = false;
+  last_touchdown_s_ = {-1e9, -1e9};
+  foot_airborne_ = {false, false};
+}
+
+void ContactForceFdi::raise(Channel& c, int type, double t) noexcept {
+  if (c.type == 0) {
+    c.flagged_since = t;
+    c.type = type;
+  } else if (priority(type) > priority(c.type)) {
+    c.type = type;
+  }
+  c.clear_since = -1.0;
+}
+
+void ContactForceFdi::clear(Channel& c) noexcept {
+  c.type = 0;
+  c.offset = c.slope = 0.0;
+  c.gain = 1.0;
+  c.fit_has_air = false;
+  c.clear_since = -1.0;
+}
+
+void ContactForceFdi::step(const StepIO& io) noexcept {
+  const double t = io.time_s;
+  const auto measured = io.in(kMeasured);
+  const double fz = io.in(kTotalForce)[2];
+  const bool fz_ok = std::isfinite(fz);
+  if (!started_) start_time_s_ = t;
+  const int ticks_since_start = started_ ? 2 : 0;
+
+  // Pad heights from kinematics (a foot with an unknown pose is taken as on the ground).
+  std::array<double, 16> height{};
+  const std::size_t feet[2][2] = {{kLeftPos, kLeftRpy}, {kRightPos, kRightRpy}};
+  for (std::size_t f = 0; f < 2; ++f) {
+    const auto pos = io.in(feet[f][0]);
+    const auto rpy = io.in(feet[f][1]);
+    const bool known = all_finite(pos) && all_finite(rpy);
+    const Eigen::Matrix3d rotation = known ? rotation_from_rpy(rpy) : Eigen::Matrix3d::Identity();
+    for (std::size_t l = 0; l < feet_points_ && f * feet_points_ + l < height.size(); ++l) {
+      const Eigen::Vector3d p(params_.points[l][0], params_.points[l][1], 0.0);
+      height[f * feet_points_ + l] = known ? pos[2] + rotation.row(2).dot(p) : 0.0;
+    }
+  }
+
+  // Evidence, channel by channel.
+  const double tick_noise = params_.noise_std_N * std::sqrt(6.0) * params_.noise_factor;
+  for (std::size_t f = 0; f < 2; ++f) {
+    bool any = false;
+    for (std::size_t l = 0; l < feet_points_ && f * feet_points_ + l < height.size(); ++l) {
+      any = any || height[f * feet_points_ + l] > params_.touchdown_height_m;
+    }
+    if (foot_airborne_[f] && !any) last_touchdown_s_[f] = t;
+    foot_airborne_[f] = any;
+  }
+  const bool touching_down = t - std::max(last_touchdown_s_[0], last_touchdown_s_[1]) < params_.touchdown_guard_s;
+  int jump_candidates = 0;
+  double jump_sum = 0.0;
+  double raw_sum = 0.0;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const double x = measured[j];
+    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    if (!std::isfinite(x)) {
+      raise(c, code(FaultType::invalid), t);
+      c.stale_count = 0;
+      c.airborne_ticks = c.airborne_count = 0;
+      c.airborne_sum = 0.0;
+      raw_sum += c.recovered;
+      continue;
+    }
+    raw_sum += x;
+    if (c.type == code(FaultType::invalid)) clear(c);  // a finite value re-admits at once
+    if (ticks_since_start > 0) {
+      const double change = x - c.previous;
+      c.stale_count = std::abs(change) <= params_.stale_tolerance_N ? c.stale_count + 1 : 0;
+      const double spike = c.previous - 0.5 * (x + c.previous2);
+      if (!touching_down && std::abs(spike) > params_.spike_threshold_N &&
+          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N) {
+        c.last_spike_s = t - period_s_;
+      }
+      c.second_diff[c.second_diff_next] = std::abs(x - 2.0 * c.previous + c.previous2);
+      c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
+      const bool landing = touching_down || foot_airborne_[std::min<std::size_t>(j / feet_points_, 1)];
+      c.jump_pending = false;
+      if (std::abs(change) > params_.jump_threshold_N && !landing && !group_pending_) {
+        c.jump_pending = true;
+        c.jump_size = change;
+        c.candidate_load = c.previous;
+        ++jump_candidates;
+        jump_sum += change;
+      }
+    }
+    if (airborne) {
+      ++c.airborne_ticks;
+      if (c.airborne_ticks * period_s_ >= params_.airborne_settle_s) {
+        c.airborne_sum += x;
+        ++c.airborne_count;
+      }
+    } else {
+      c.airborne_ticks = c.airborne_count = 0;
+      c.airborne_sum = 0.0;
+    }
+    c.max_seen = std::max(c.max_seen, x);
+  }
+
+  // Sum residual history for the jump confirmation.
+  const double raw_residual = fz_ok ? raw_sum - fz : 0.0;
+  residual_ring_[residual_next_] = raw_residual;
+  residual_next_ = (residual_next_ + 1) % residual_ring_.size();
+  residual_count_ = std::min(residual_count_ + 1, residual_ring_.size());
+  if (jump_candidates > 0 && fz_ok) {
+    group_pending_ = true;
+    group_age_ = 0;
+    group_sum_ = jump_sum;
+    group_size_ = jump_candidates;
+    for (auto& c : channels_) {
+      c.jump_member = c.jump_pending;
+      if (c.jump_member) c.jump_load_before = c.candidate_load;
+    }
+  }
+  // While a loaded channel is substituted from the total force, the sum residual carries that
+  // channel's unmeasured changes: confirming a jump then takes three times the step.
+  // When such a channel's foot is rolling on or off (some pads up), its load changes fast and
+  // unmeasured, and no jump is confirmed at all.
+  bool substituting_loaded = false;
+  bool substituting_rolling = false;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    const bool substituted = channels_[j].type != 0 && !corrects(channels_[j].type) && !airborne;
+    substituting_loaded = substituting_loaded || substituted;
+    substituting_rolling = substituting_rolling || (substituted && foot_airborne_[std::min<std::size_t>(j / feet_points_, 1)]);
+  }
+  if (substituting_rolling) group_pending_ = false;
+  const double confirm_N = substituting_loaded ? 3.0 * params_.jump_confirm_N : params_.jump_confirm_N;
+  // Confirm (or drop) the pending group once the window after the jump is complete.
+  bool group_confirmed = false;
+  bool group_decided = false;
+  if (group_pending_ && group_age_++ >= jump_window_ticks_ - 1) {
+    group_pending_ = false;
+    group_decided = true;
+    if (residual_count_ == residual_ring_.size()) {
+      const std::size_t w = static_cast<std::size_t>(jump_window_ticks_);
+      double before = 0.0, after = 0.0;
+      for (std::size_t i = 0; i < w; ++i) {
+        after += residual_ring_[(residual_next_ + residual_ring_.size() - 1 - i) % residual_ring_.size()];
+        before += residual_ring_[(residual_next_ + residual_ring_.size() - 1 - w - i) % residual_ring_.size()];
+      }
+      const double step = (after - before) / static_cast<double>(w);
+      // The residual steps by about the net jump: not much less, not much more. Pads trading
+      // load jump in opposite directions and leave the residual alone: not a fault.
+      group_confirmed = step * group_sum_ > 0.0 && std::abs(step) >= confirm_N && std::abs(group_sum_) >= confirm_N &&
+                        std::abs(step - group_sum_) <= std::max(params_.jump_confirm_N, 0.5 * std::abs(group_sum_));
+    }
+  }
+
+  // Decisions.
+  const int min_airborne_samples = std::max(10, static_cast<int>(0.02 / period_s_));
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const double x = measured[j];
+    if (!std::isfinite(x)) continue;
+    // The channel's jump, when its group is decided.
+    if (group_decided && c.jump_member) {
+      c.jump_member = false;
+      {
+        if (group_confirmed) {
+          // The size of the fault now: for a gain fault (k - 1) N = (1 - 1/k) x, x the reading
+          // before this jump.
+          const double estimate = c.type == code(FaultType::gain) ? (1.0 - 1.0 / c.gain) * c.jump_load_before
+                                                                   : c.offset + c.slope * (t - c.fit.t0);
+          if (corrects(c.type) && std::abs(c.jump_size + estimate) < 0.4 * std::abs(estimate) + 15.0) {
+            clear(c);  // the fault ended with a jump back
+          } else if (c.type == 0) {
+            raise(c, code(FaultType::offset), t);
+            c.fit.clear(t);
+            c.fit.add(t, c.jump_size, 1.0);
+            c.offset = c.jump_size;
+            c.slope = 0.0;
+          }
+        }
+      }
+    }
+    // Frozen / saturation.
+    if (c.stale_count >= params_.stale_ticks) {
+      const bool at_max = x > 50.0 && x >= c.max_seen - params_.stale_tolerance_N;
+      raise(c, code(at_max ? FaultType::saturation : FaultType::frozen), t);
+    } else if ((c.type == code(FaultType::frozen) || c.type == code(FaultType::saturation)) && c.stale_count == 0) {
+      if (c.clear_since < 0) c.clear_since = t;
+      if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
+    }
+    // Spikes.
+    if (t - c.last_spike_s < params_.spike_hold_s) {
+      raise(c, code(FaultType::spikes), t);
+    } else if (c.type == code(FaultType::spikes)) {
+      clear(c);
+    }
+    // Noise burst: most second differences far above their healthy spread.
+    int noisy = 0;
+    for (double d : c.second_diff) noisy += d > tick_noise;
+    if (noisy * 2 > noise_window_ticks_) {
+      raise(c, code(FaultType::noise), t);
+    } else if (c.type == code(FaultType::noise) && noisy * 4 < noise_window_ticks_) {
+      if (c.clear_since < 0) c.clear_since = t;
+      if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
+    }
+    // Airborne pad: its reading is the fault itself.
+    if (c.airborne_count >= min_airborne_samples) {
+      const double mean = c.airborne_sum / c.airborne_count;
+      if (c.type == 0 && std::abs(mean) > params_.airborne_threshold_N) {
+        raise(c, code(FaultType::offset), t);
+        c.fit.clear(t);
+        c.fit_has_air = false;
+      }
+      if (c.type == code(FaultType::offset) || c.type == code(FaultType::drift)) {
+        if (!c.fit_has_air && std::abs(mean) < params_.airborne_clear_N && c.airborne_count >= 3 * min_airborne_samples) {
+          // Raised by a jump, zero in the air: a gain fault if the pad was loaded, else over.
+          if (c.jump_load_before > 50.0 && std::abs(c.offset) > 0.1 * c.jump_load_before) {
+            c.type = code(FaultType::gain);
+            c.gain = 1.0 + c.offset / c.jump_load_before;
+          } else {
+            clear(c);
+          }
+        } else if (c.fit_has_air && std::abs(mean) < params_.airborne_clear_N && c.airborne_count >= 3 * min_airborne_samples &&
+                   t - c.flagged_since >= params_.hold_s) {
+          clear(c);  // reads zero in the air again: the offset or drift is over
+        } else {
+          if (!c.fit_has_air) c.fit.clear(t);  // the air measures directly: drop the jump's estimate
+          c.fit_has_air = true;
+          c.fit.add(t, x, 1.0);
+          double a = c.offset, s = 0.0;
+          c.fit.solve(a, s);
+          const bool drifting = c.fit.span() >= 0.3 && std::abs(s) > 2.0;
+          c.type = drifting ? code(FaultType::drift) : code(FaultType::offset);
+          c.offset = drifting ? a : c.fit.sb / c.fit.n;
+          c.slope = drifting ? s : 0.0;
+        }
+      }
+    }
+  }
+
+  // Recovery and the leave-one-out virtual sensor.
+  const auto fault = io.out(kFault);
+  const auto type = io.out(kFaultType);
+  const auto fault_estimate = io.out(kFaultEstimate);
+  const auto recovered = io.out(kRecovered);
+  const auto virtual_force = io.out(kVirtual);
+  double known_sum = 0.0;
+  int unknown_loaded = 0;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const double x = measured[j];
+    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    double value = x;
+    bool unknown = false;
+    if (c.type == code(FaultType::offset) || c.type == code(FaultType::drift)) {
+      value = airborne ? 0.0 : x - (c.offset + c.slope * (t - c.fit.t0));
+    } else if (c.type == code(FaultType::gain)) {
+      value = airborne ? 0.0 : x / c.gain;
+    } else if (c.type == code(FaultType::noise)) {
+      value = airborne ? 0.0 : c.smoothed;
+    } else if (c.type == code(FaultType::spikes)) {
+      // Median of the last three readings: an isolated spike never wins.
+      const double a = x, b = c.previous, d = c.previous2;
+      value = airborne ? 0.0 : std::max(std::min(a, b), std::min(std::max(a, b), d));
+    } else if (c.type != 0) {
+      value = 0.0;
+      unknown = !airborne;
+    }
+    recovered[j] = value;
+    if (unknown) {
+      ++unknown_loaded;
+    } else {
+      known_sum += value;
+    }
+  }
+  // Channels that must be substituted share what the total force leaves (>= 0).
+  const double share = fz_ok && unknown_loaded > 0 ? std::max(0.0, (fz - known_sum) / unknown_loaded) : 0.0;
+  double total = known_sum;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    const bool own_estimate = corrects(c.type) || c.type == code(FaultType::noise) || c.type == code(FaultType::spikes);
+    if (c.type != 0 && !own_estimate && !airborne) {
+      recovered[j] = fz_ok ? share : c.recovered;
+      total += recovered[j];
+    }
+  }
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    virtual_force[j] = airborne ? 0.0 : (fz_ok ? std::max(0.0, fz - (total - recovered[j])) : recovered[j]);
+    fault[j] = c.type != 0 ? 1.0 : 0.0;
+    type[j] = static_cast<double>(c.type);
+    const double x = measured[j];
+    fault_estimate[j] = std::isfinite(x) ? x - recovered[j] : 0.0;
+    c.recovered = recovered[j];
+    if (std::isfinite(x)) {
+      const double smoothing = -std::expm1(-2.0 * 3.141592653589793 * 10.0 * period_s_);
+      c.smoothed = ticks_since_start > 0 ? c.smoothed + smoothing * (x - c.smoothed) : x;
+      c.previous2 = ticks_since_start > 0 ? c.previous : x;
+      c.previous = x;
+    }
+  }
+  // The corrected sum residual: what no channel explains.
+  const double residual = fz_ok ? total - fz : 0.0;
+  const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
+  sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
+  io.out(kSumResidual)[0] = sum_filtered_;
+  bool any = false;
+  for (const auto& c : channels_) any = any || c.type != 0;
+  io.out(kUnisolated)[0] = (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any)) ? 1.0 : 0.0;
+  started_ = true;
+}
+
+}  // namespace ftsense::biped
