@@ -154,8 +154,8 @@ void bench_stage(benchmark::State& state, const std::string& solver, const std::
   state.SetItemsProcessed(state.iterations());
 }
 
-void bench_tick(benchmark::State& state, const std::string& solver) {
-  Pipeline p = Pipeline::build(suralp_config(solver), ftsense::reference_plugins::registry());
+void bench_tick_config(benchmark::State& state, const Json& config) {
+  Pipeline p = Pipeline::build(config, ftsense::reference_plugins::registry());
   const Walk& w = walk();
   p.reset();
   std::size_t k = 0;
@@ -182,9 +182,25 @@ void register_benchmarks() {
   }
   benchmark::RegisterBenchmark("stage/vfs_l [contact_force_distribution, solver ceres]",
                                [](benchmark::State& s) { bench_stage(s, "ceres", "vfs_l"); });
+  benchmark::RegisterBenchmark("stage/fdi [contact_force_fdi, robust config]", [](benchmark::State& s) {
+    StageReplay replay = make_stage_replay(read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp_robust.json"), "fdi");
+    const Walk& w = walk();
+    replay.pipeline.reset();
+    std::size_t k = 0;
+    for (auto _ : s) {
+      write_inputs(replay.pipeline, replay.inputs[k]);
+      replay.pipeline.step(w.time[k]);
+      benchmark::ClobberMemory();
+      if (++k == w.time.size()) k = 0;
+    }
+  });
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",
-                               [](benchmark::State& s) { bench_tick(s, "active_set"); });
-  benchmark::RegisterBenchmark("tick/suralp.json [ceres solver]", [](benchmark::State& s) { bench_tick(s, "ceres"); });
+                               [](benchmark::State& s) { bench_tick_config(s, suralp_config("active_set")); });
+  benchmark::RegisterBenchmark("tick/suralp.json [ceres solver]",
+                               [](benchmark::State& s) { bench_tick_config(s, suralp_config("ceres")); });
+  benchmark::RegisterBenchmark("tick/suralp_robust.json", [](benchmark::State& s) {
+    bench_tick_config(s, read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp_robust.json"));
+  });
 }
 
 std::size_t parse_count(const char* text) {

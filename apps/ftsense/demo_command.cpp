@@ -1,6 +1,11 @@
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <map>
 #include <iostream>
+#include <sstream>
 
 #include "cli.hpp"
 #include "report.hpp"
@@ -13,16 +18,73 @@ namespace ftsense::cli {
 
 namespace {
 
-// A copy of a scenario with another duration (for --quick), written into the demo folder.
+// A copy of a scenario, cut to duration_s for --quick (faults that would start later are dropped,
+// end times clipped), written into the demo folder.
 std::string scenario_copy(const std::string& source, const std::string& target, double duration_s) {
   Json s = parse_json_text(read_text_file(source, "scenario"), source);
-  if (duration_s > 0.0) s["duration_s"] = duration_s;
+  if (duration_s > 0.0 && s.value("duration_s", duration_s) > duration_s) {
+    s["duration_s"] = duration_s;
+    Json kept = Json::array();
+    for (auto f : s.value("faults", Json::array())) {
+      if (f.value("start_s", 0.0) >= duration_s) continue;
+      if (f.contains("end_s") && f["end_s"].get<double>() > duration_s) f["end_s"] = duration_s;
+      kept.push_back(f);
+    }
+    s["faults"] = kept;
+  }
   std::ofstream(target) << s.dump(2) << '\n';
   return target;
 }
 
-void step_line(int index, int total, const std::string& what) {
-  std::cout << "\n[" << index << "/" << total << "] " << what << std::endl;
+struct Variant {
+  std::string name;
+  std::string config;
+  std::string title;
+  bool calibrate;                    // thresholds from the fault-free walk (the paper's way)
+  std::vector<std::string> scenarios;  // empty: all
+};
+
+// One row of the side-by-side table, from a report's JSON.
+struct Row {
+  int faulty = 0, detected = 0, types = 0, false_alarms = 0;
+  double median_delay_s = std::nan(""), recovered_rmse = std::nan("");
+};
+
+Row summarise(const Json& report) {
+  Row r;
+  r.faulty = report["summary"]["faulty_channels"];
+  r.detected = report["summary"]["detected"];
+  r.types = report["summary"]["types_correct"];
+  r.false_alarms = report["summary"]["false_alarms_after_warmup"];
+  std::vector<double> delays;
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& c : report["channels"]) {
+    if (c["injected_type"] == "-") continue;
+    if (!c["detection_delay_s"].is_null()) delays.push_back(c["detection_delay_s"]);
+    if (!c["recovered_rmse"].is_null()) {
+      sum += c["recovered_rmse"].get<double>();
+      ++n;
+    }
+  }
+  if (!delays.empty()) {
+    std::sort(delays.begin(), delays.end());
+    r.median_delay_s = delays[delays.size() / 2];
+  }
+  if (n > 0) r.recovered_rmse = sum / n;
+  return r;
+}
+
+std::string cell(const Row& r) {
+  std::ostringstream os;
+  if (r.faulty > 0) {
+    os << r.detected << "/" << r.faulty << " det, " << r.types << "/" << r.faulty << " type, ";
+    if (std::isnan(r.median_delay_s)) os << "- s";
+    else os << std::fixed << std::setprecision(3) << r.median_delay_s << " s";
+    os << ", " << std::fixed << std::setprecision(1) << r.recovered_rmse << " N, ";
+  }
+  os << r.false_alarms << " FA";
+  return os.str();
 }
 
 }  // namespace
@@ -35,10 +97,12 @@ int demo_command(const std::vector<std::string>& args) {
   const auto options = parse_options("demo", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("demo",
-                            "The paper's experiment end to end: simulate a fault-free walk and the paper's\n"
-                            "fault scenario (MuJoCo), calibrate the thresholds on the fault-free walk, run\n"
-                            "the reference pipeline (configs/suralp.json) and the paper's literal measured-ZMP\n"
-                            "variant on the faulty walk, and write logs, metrics, figures and a report.",
+                            "The paper's experiment end to end, and beyond it: simulate fault-free walks at\n"
+                            "two gaits, the paper's fault scenario and four scenarios of other faults\n"
+                            "(MuJoCo); calibrate the paper pipeline's thresholds on the fault-free walk; run\n"
+                            "the paper's pipeline (configs/suralp.json), its literal measured-ZMP variant and\n"
+                            "the robust pipeline (configs/suralp_robust.json); write logs, metrics, figures\n"
+                            "and a report, and print the side-by-side summary.",
                             specs);
     return kExitOk;
   }
@@ -47,61 +111,93 @@ int demo_command(const std::vector<std::string>& args) {
   const bool quick = options.count("quick") > 0;
   std::filesystem::create_directories(out);
   const double duration = quick ? 9.0 : 0.0;  // 0: the scenario's own
-  const int total = 6;
 
-  step_line(1, total, "simulating the fault-free walk (MuJoCo)");
-  const std::string clean = scenario_copy(configs + "/scenarios/clean.json", out + "/clean_scenario.json", duration);
-  if (int rc = simulate_command({"--scenario", clean, "--out", out + "/clean.csv"}); rc != kExitOk) return rc;
-
-  step_line(2, total, "simulating the paper's fault scenario");
-  const std::string paper = scenario_copy(configs + "/scenarios/paper.json", out + "/paper_scenario.json", duration);
-  if (int rc = simulate_command({"--scenario", paper, "--out", out + "/paper.csv"}); rc != kExitOk) return rc;
-
-  struct Variant {
-    std::string name, config, title;
-  };
-  const Variant variants[] = {
-      {"reference", configs + "/suralp.json", "Reference pipeline (configs/suralp.json, planned ZMP)"},
+  const std::vector<std::string> scenarios{"clean", "clean_fast", "paper", "mixed", "offsets", "drifts_frozen",
+                                           "gains_bursts"};
+  const std::vector<Variant> variants{
+      {"reference", configs + "/suralp.json", "paper pipeline (configs/suralp.json)", true, {}},
       {"measured_zmp", configs + "/suralp_measured_zmp.json",
-       "Paper's literal choice (configs/suralp_measured_zmp.json, measured ZMP into the CoM estimator)"}};
-  Json metrics = {{"quick", quick}, {"variants", Json::object()}};
-  std::string tables;
-  int index = 3;
+       "paper pipeline, measured ZMP into the CoM estimator (configs/suralp_measured_zmp.json)", true,
+       {"clean", "paper"}},
+      {"robust", configs + "/suralp_robust.json", "robust pipeline (configs/suralp_robust.json)", false, {}}};
+  const int total_steps = static_cast<int>(scenarios.size()) + 2;
+  int step = 0;
+  auto progress = [&](const std::string& what) {
+    std::cout << "\n[" << ++step << "/" << total_steps << "] " << what << std::endl;
+  };
+
+  for (const auto& s : scenarios) {
+    progress("simulating scenario '" + s + "' (MuJoCo)");
+    const std::string copy = scenario_copy(configs + "/scenarios/" + s + ".json", out + "/" + s + "_scenario.json", duration);
+    if (int rc = simulate_command({"--scenario", copy, "--out", out + "/" + s + ".csv", "--quiet"}); rc != kExitOk) return rc;
+  }
+
+  progress("calibrating the paper pipelines' thresholds on the fault-free walk");
   for (const auto& v : variants) {
-    step_line(index++, total, "calibrating and running: " + v.title);
+    if (!v.calibrate) continue;
     const std::string thresholds = out + "/thresholds_" + v.name + ".json";
     if (int rc = calibrate_command({"--config", v.config, "--input", out + "/clean.csv", "--output", thresholds}); rc) return rc;
-    for (const std::string log : {"clean", "paper"}) {
-      const std::string run_out = out + "/" + log + "_run_" + v.name + ".csv";
-      if (int rc = run_command({"--config", v.config, "--thresholds", thresholds, "--input", out + "/" + log + ".csv",
-                                "--output", run_out});
-          rc != kExitOk) {
-        return rc;
+  }
+
+  progress("running every pipeline on every scenario and writing the reports");
+  Json metrics = {{"quick", quick}, {"variants", Json::object()}};
+  std::map<std::string, std::map<std::string, Row>> table;
+  std::string paper_tables;
+  for (const auto& v : variants) {
+    for (const auto& s : scenarios) {
+      if (!v.scenarios.empty() && std::find(v.scenarios.begin(), v.scenarios.end(), s) == v.scenarios.end()) continue;
+      const std::string run_out = out + "/" + s + "_run_" + v.name + ".csv";
+      std::vector<std::string> run_args{"--config", v.config, "--input", out + "/" + s + ".csv", "--output", run_out};
+      if (v.calibrate) {
+        run_args.push_back("--thresholds");
+        run_args.push_back(out + "/thresholds_" + v.name + ".json");
       }
+      std::streambuf* saved = std::cout.rdbuf();
+      std::ostringstream quiet;
+      std::cout.rdbuf(quiet.rdbuf());  // one summary table instead of one per run
+      const int rc = run_command(run_args);
+      std::cout.rdbuf(saved);
+      if (rc != kExitOk) return rc;
       ReportOptions ro;
-      ro.title = v.title + ", " + log + " walk";
-      ro.figures = v.name == "reference" && log == "paper";
-      const std::string report_dir = out + "/" + v.name + "_" + log;
-      const Report r = make_report(run_out, out + "/" + log + ".csv", report_dir, ro);
-      metrics["variants"][v.name][log] = r.json;
-      tables += "\n" + ro.title + ":\n" + r.table;
+      ro.title = v.title + ", scenario " + s;
+      ro.figures = s == "paper" && v.name != "measured_zmp";
+      const Report r = make_report(run_out, out + "/" + s + ".csv", out + "/" + v.name + "_" + s, ro);
+      metrics["variants"][v.name][s] = r.json;
+      table[s][v.name] = summarise(r.json);
+      if (s == "paper" && v.name != "measured_zmp") paper_tables += "\nThe paper's fault scenario, " + v.title + ":\n" + r.table;
+      std::cout << "  " << v.name << " on " << s << ": " << cell(table[s][v.name]) << '\n';
     }
   }
-  step_line(total, total, "writing the metrics and the report");
+
+  std::ostringstream summary;
+  summary << paper_tables << "\nSide by side (det: faulty channels detected; type: type shown most while faulty is the\n"
+             "injected one; median detection delay; mean recovered-signal RMSE on the faulty channels;\n"
+             "FA: false alarms after the 2 s warm-up, outside each fault and its 1 s re-admission):\n\n";
+  summary << std::left << std::setw(15) << "scenario" << std::setw(52) << "paper pipeline (suralp.json)"
+          << "robust pipeline (suralp_robust.json)\n";
+  for (const auto& s : scenarios) {
+    summary << std::left << std::setw(15) << s << std::setw(52) << cell(table[s]["reference"]) << cell(table[s]["robust"])
+            << '\n';
+  }
+  summary << "\nThe paper's literal measured-ZMP variant: clean " << cell(table["clean"]["measured_zmp"]) << "; paper "
+          << cell(table["paper"]["measured_zmp"]) << '\n';
+
+  progress("writing the metrics and the report");
   std::ofstream(out + "/metrics.json") << metrics.dump(2) << '\n';
   std::ofstream md(out + "/report.md");
-  md << "# ftsense demo: the paper's experiment\n\n"
-     << (quick ? "**Quick run (9 s walks): a smoke test, not the published numbers.**\n\n" : "")
-     << "- Reference pipeline on the paper's faults: [reference_paper/report.md](reference_paper/report.md) "
-        "(with the four figures)\n"
-     << "- Reference pipeline on the fault-free walk: [reference_clean/report.md](reference_clean/report.md)\n"
-     << "- Measured-ZMP variant: [measured_zmp_paper/report.md](measured_zmp_paper/report.md), "
-        "[measured_zmp_clean/report.md](measured_zmp_clean/report.md)\n\n"
+  md << "# ftsense demo: the paper's experiment, and beyond it\n\n"
+     << (quick ? "**Quick run (walks cut at 9 s): a smoke test, not the published numbers.**\n\n" : "")
+     << "Every scenario is in `configs/scenarios/`; each pipeline's report per scenario is in "
+        "`<pipeline>_<scenario>/report.md` beside this file.\n\n```\n"
+     << summary.str() << "```\n\n"
+     << "## The paper's figures, paper pipeline\n\n"
      << "![Fig. 4](reference_paper/fig4_virtual_vs_true.png)\n\n![Fig. 5](reference_paper/fig5_fault_estimate.png)\n\n"
      << "![Fig. 6](reference_paper/fig6_recovered.png)\n\n![Fig. 7](reference_paper/fig7_detection_flags.png)\n\n"
-     << "```\n" << tables << "```\n";
-  std::cout << tables << "\nftsense demo: wrote " << out << "/report.md, " << out << "/metrics.json and the figures in "
-            << out << "/reference_paper/\n";
+     << "## The same figures, robust pipeline\n\n"
+     << "![Fig. 4](robust_paper/fig4_virtual_vs_true.png)\n\n![Fig. 5](robust_paper/fig5_fault_estimate.png)\n\n"
+     << "![Fig. 6](robust_paper/fig6_recovered.png)\n\n![Fig. 7](robust_paper/fig7_detection_flags.png)\n";
+  std::cout << summary.str() << "\nftsense demo: wrote " << out << "/report.md and " << out
+            << "/metrics.json; figures in " << out << "/reference_paper/ and " << out << "/robust_paper/\n";
   return kExitOk;
 }
 

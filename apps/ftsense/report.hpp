@@ -9,6 +9,7 @@
 // Per channel (definitions; docs/results.md repeats them):
 //   - fault onset/end: first/last sample with truth fault != 0; injected fault = measured - truth;
 //   - detection delay: first flag at or after onset, minus onset (missed: none before the end);
+//   - type shown: the fault type the channel shows most while the fault is active and flagged;
 //   - fault estimate error: RMS of (fault_estimate - injected) from onset + settle_s to the end
 //     of the fault (settle_s = 5 s = 5 time constants of the paper's filter);
 //   - recovered RMSE: RMS of (recovered - truth) from onset to the end of the fault, or over the
@@ -41,6 +42,7 @@ struct ChannelMetrics {
   double onset_s = 0.0, end_s = 0.0;
   double detection_delay_s = 0.0;  // NaN: missed
   int detected_type = 0;           // fault_type output at detection
+  int shown_type = 0;              // the type shown most while the fault is active and flagged
   double fault_estimate_rmse = 0.0;
   double recovered_rmse = 0.0;
   double readmission_s = 0.0;     // NaN: the fault lasts to the end, or the flag never clears

@@ -28,7 +28,7 @@ int simulate_command(const std::vector<std::string>& args) {
     scenario = sim::load_scenario(options.at("scenario"));
   } catch (const sim::ScenarioError& e) {
     std::string message;
-    for (const auto& p : e.problems()) message += (message.empty() ? "" : "\n") + ("error: " + options.at("scenario") + ":" + p);
+    for (const auto& p : e.problems()) message += (message.empty() ? "" : "\n") + ("error: " + p);
     throw UsageError{message};
   }
   std::uint64_t seed = scenario.seed;

@@ -13,23 +13,30 @@ bad() { failures=$((failures + 1)); echo "FAIL $1"; }
 "$ftsense" demo --quick --out "$out" > "$out/stdout" 2> "$out/stderr"
 status=$?
 [ $status -eq 0 ] && ok "demo exits 0" || { bad "demo exit $status"; tail -20 "$out/stderr"; }
-for f in report.md metrics.json clean.csv paper.csv thresholds_reference.json \
+for f in report.md metrics.json clean.csv clean_fast.csv paper.csv mixed.csv thresholds_reference.json \
          reference_paper/fig4_virtual_vs_true.png reference_paper/fig5_fault_estimate.png \
-         reference_paper/fig6_recovered.png reference_paper/fig7_detection_flags.png reference_paper/report.md; do
+         reference_paper/fig6_recovered.png reference_paper/fig7_detection_flags.png reference_paper/report.md \
+         robust_paper/fig4_virtual_vs_true.png robust_paper/fig7_detection_flags.png robust_paper/report.md \
+         robust_gains_bursts/report.md measured_zmp_paper/report.md; do
   [ -s "$out/$f" ] && ok "$f written" || bad "$f missing"
 done
 # The output columns of design.md, for all 8 SURALP channels.
-header=$(head -1 "$out/paper_run_reference.csv")
+for run in paper_run_reference.csv paper_run_robust.csv; do
+header=$(head -1 "$out/$run")
 for ch in l_foot/p1 l_foot/p4 r_foot/p1 r_foot/p4; do
   for q in measured_N virtual_N fault_estimate_N recovered_N fault fault_type; do
     case ",$header," in *",$ch/$q,"*) ;; *) bad "column $ch/$q missing"; continue 2;; esac
   done
-  ok "columns of $ch"
+  ok "columns of $ch in $run"
+done
 done
 rows=$(($(wc -l < "$out/paper_run_reference.csv") - 1))
 [ "$rows" -eq 9000 ] && ok "9000 rows" || bad "rows: $rows"
-# The terminal summary names every channel of the paper scenario.
-grep -q "r_foot/p2   offset" "$out/stdout" && ok "summary table" || bad "summary table"
+# The terminal summary: the paper scenario per channel, then every scenario side by side.
+grep -q "r_foot/p2   offset" "$out/stdout" && ok "per-channel table" || bad "per-channel table"
+grep -q "^gains_bursts " "$out/stdout" && ok "side-by-side table" || bad "side-by-side table"
+# The robust pipeline finds the paper's four faults even in the quick run.
+grep -E "^paper .*4/4 det, 4/4 type" "$out/stdout" > /dev/null && ok "robust: paper faults" || bad "robust: paper faults"
 # Every number in the metrics is finite or null (never NaN text).
 grep -qi "nan" "$out/metrics.json" && bad "NaN in metrics.json" || ok "metrics.json has no NaN"
 echo "$passes passed, $failures failed"
