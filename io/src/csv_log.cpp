@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <utility>
 
 namespace ftsense::io {
 
@@ -21,7 +22,10 @@ bool parse_cell(std::string_view cell, double& out) {
     out = std::numeric_limits<double>::quiet_NaN();
     return true;
   }
-  if (cell.front() == '+') cell.remove_prefix(1);
+  if (cell.front() == '+') {
+    cell.remove_prefix(1);
+    if (!cell.empty() && (cell.front() == '-' || cell.front() == '+')) return false;  // "+-1"
+  }
   const char* end = cell.data() + cell.size();
   const auto [ptr, ec] = std::from_chars(cell.data(), end, out);
   if (ec == std::errc::result_out_of_range) {
@@ -40,9 +44,17 @@ CsvLogReader::CsvLogReader(const std::string& path) : path_(path), file_(path) {
     throw LogError(LogError::Kind::cannot_open,
                    path + ": cannot open the log file; check the path and read permission");
   }
-  if (!std::getline(file_, line_buffer_)) {
+  read_header();
+}
+
+CsvLogReader::CsvLogReader(std::istream& in, std::string name) : path_(std::move(name)), stream_(&in) {
+  read_header();
+}
+
+void CsvLogReader::read_header() {
+  if (!std::getline(in(), line_buffer_)) {
     throw LogError(LogError::Kind::bad_header,
-                   path + ":1: the file is empty; a log starts with a header line 'time_s,...'");
+                   path_ + ":1: the file is empty; a log starts with a header line 'time_s,...'");
   }
   std::string_view header = line_buffer_;
   if (header.size() >= 3 && static_cast<unsigned char>(header[0]) == 0xEF &&
@@ -81,7 +93,7 @@ void CsvLogReader::fail(const std::string& what) const {
 
 bool CsvLogReader::next(std::vector<double>& values) {
   while (true) {
-    if (!std::getline(file_, line_buffer_)) return false;
+    if (!std::getline(in(), line_buffer_)) return false;
     ++line_;
     if (!trim(line_buffer_).empty()) break;  // blank lines (e.g. a trailing newline) are skipped
   }

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstddef>
 #include <fstream>
+#include <istream>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -32,6 +33,9 @@ class CsvLogReader {
   // Opens `path` and reads the header; throws LogError when the file is missing, empty, or the
   // header is not `time_s,...` with unique non-empty names.
   explicit CsvLogReader(const std::string& path);
+  // Reads a log from `in` (which must outlive the reader); `name` stands for the file in
+  // messages. Same header checks and errors as above, except cannot_open.
+  CsvLogReader(std::istream& in, std::string name);
 
   [[nodiscard]] const std::vector<std::string>& columns() const noexcept { return columns_; }
   [[nodiscard]] std::optional<std::size_t> find_column(std::string_view name) const noexcept;
@@ -46,9 +50,12 @@ class CsvLogReader {
 
  private:
   [[noreturn]] void fail(const std::string& what) const;
+  void read_header();
+  std::istream& in() noexcept { return stream_ != nullptr ? *stream_ : file_; }
 
   std::string path_;
-  std::ifstream file_;
+  std::ifstream file_;             // when opened from a path
+  std::istream* stream_ = nullptr;  // when reading a caller's stream
   std::vector<std::string> columns_;
   std::string line_buffer_;
   std::size_t line_ = 1;
