@@ -43,14 +43,17 @@ std::vector<std::string> monitor_columns(const Monitor& monitor) {
 }
 
 RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnMap& map,
-                        io::CsvLogWriter* out, const std::function<void(double)>& after_step) {
+                        io::CsvLogWriter* out, const std::function<void(double)>& after_step,
+                        const std::vector<SignalRef>& recorded) {
   const Monitor& m = pipeline.monitor();
   const std::size_t channels = m.channels.size();
   RunSummary summary;
   summary.first_fault_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> row;
   const std::size_t per_channel = 6 + m.extra.size();
-  std::vector<double> out_row(1 + per_channel * channels);
+  std::size_t recorded_values = 0;
+  for (const SignalRef& r : recorded) recorded_values += r.dim;
+  std::vector<double> out_row(1 + per_channel * channels + recorded_values);
   const double period = pipeline.sample_period_s();
   double last_time = std::numeric_limits<double>::quiet_NaN();
   pipeline.reset();
@@ -85,6 +88,10 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
       o[5] = fault_type[c];
       for (std::size_t e = 0; e < m.extra.size(); ++e) o[6 + e] = pipeline.values(m.extra[e].signal)[c];
       if (fault[c] != 0.0 && std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
+    }
+    std::size_t at = 1 + per_channel * channels;
+    for (const SignalRef& r : recorded) {
+      for (double v : pipeline.values(r)) out_row[at++] = v;
     }
     if (out != nullptr) out->write_row(out_row);
     if (after_step) after_step(t);

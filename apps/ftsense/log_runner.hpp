@@ -32,8 +32,10 @@ struct RunSummary {
 
 // Steps the pipeline once per log row, writes the monitored channels to `out` (if given) and
 // calls `after_step(t)` after each tick (if given). Throws io::LogError on a malformed row.
+// `recorded` signals are appended to each output row after the monitored channels.
 RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnMap& map,
-                        io::CsvLogWriter* out, const std::function<void(double)>& after_step = {});
+                        io::CsvLogWriter* out, const std::function<void(double)>& after_step = {},
+                        const std::vector<SignalRef>& recorded = {});
 
 // Thresholds written by `ftsense calibrate`: sets params.thresholds of each named stage in
 // `config`. Throws ConfigError naming the file and the stage when one does not fit.

@@ -12,7 +12,8 @@ int run_command(const std::vector<std::string>& args) {
       {"config", true, true, "pipeline config (JSON); see docs/config_reference.md"},
       {"input", true, true, "input log (CSV, first column time_s)"},
       {"output", true, true, "where to write the monitored channels (CSV)"},
-      {"thresholds", true, false, "thresholds from 'ftsense calibrate' (JSON), applied to the config"}};
+      {"thresholds", true, false, "thresholds from 'ftsense calibrate' (JSON), applied to the config"},
+      {"record", true, false, "further signals to write, comma-separated \"<stage>.<port>\" or \"input.<name>\""}};
   const auto options = parse_options("run", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("run",
@@ -52,9 +53,37 @@ int run_command(const std::vector<std::string>& args) {
       throw ConfigError(std::move(problems));
     }
   }();
+  std::vector<SignalRef> recorded;
+  std::vector<std::string> columns = monitor_columns(pipeline.monitor());
+  if (const auto r = options.find("record"); r != options.end()) {
+    std::vector<std::pair<std::string, std::string>> units;
+    for (const auto& [name, unit] : pipeline.signal_names()) units.emplace_back(name, unit);
+    for (std::size_t start = 0; start <= r->second.size();) {
+      const std::size_t comma = std::min(r->second.find(',', start), r->second.size());
+      const std::string name = r->second.substr(start, comma - start);
+      start = comma + 1;
+      SignalRef ref;
+      try {
+        ref = pipeline.signal(name);
+      } catch (const ConfigError& e) {
+        throw UsageError{"ftsense run: --record: " + std::string(e.what())};
+      }
+      std::string unit;
+      for (const auto& [n, u] : units) {
+        if (n == name) unit = u;
+      }
+      for (std::size_t i = 0; i < ref.dim; ++i) {
+        std::string column = name;
+        if (ref.dim > 1) column += '/' + std::to_string(i);
+        if (unit != "1") column += '_' + unit;
+        columns.push_back(column);
+      }
+      recorded.push_back(ref);
+    }
+  }
   std::optional<io::CsvLogWriter> out;
   try {
-    out.emplace(output_path, monitor_columns(pipeline.monitor()));
+    out.emplace(output_path, columns);
   } catch (const io::LogError& e) {
     throw UsageError{std::string("error: ") + e.what()};
   }
@@ -62,7 +91,7 @@ int run_command(const std::vector<std::string>& args) {
   // 3. Every row.
   RunSummary summary;
   try {
-    summary = run_over_log(pipeline, *log, map, &*out);
+    summary = run_over_log(pipeline, *log, map, &*out, {}, recorded);
   } catch (const io::LogError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitRuntime;

@@ -222,6 +222,15 @@ void read_sensors(const json& j, const std::string& path, SensorParams& s, std::
     ri.vec3("acc_bias_m_s2", s.acc_bias_m_s2, closed(-10.0, 10.0));
     ri.number("gyro_noise_std_rad_s", s.gyro_noise_std_rad_s, false, closed(0.0, 10.0));
     ri.vec3("gyro_bias_rad_s", s.gyro_bias_rad_s, closed(-1.0, 1.0));
+    if (const json* af = ri.object("acc_fault", false)) {
+      ObjectReader ra(*af, ri.at("acc_fault"), e);
+      double start = 0.0;
+      ra.number("start_s", start, true, closed(0.0, 1e6));
+      s.acc_fault_start_s = start;
+      ra.number("end_s", s.acc_fault_end_s, closed(0.0, 1e6));
+      ra.vec3("offset_m_s2", s.acc_fault_offset_m_s2, closed(-50.0, 50.0));
+      ra.finish();
+    }
     ri.finish();
   }
   if (const json* f = r.object("encoder", false)) {

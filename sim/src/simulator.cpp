@@ -352,9 +352,12 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
       codes[c] = out.fault;
       row.num(out.value);
     }
+    const bool acc_fault = sp.acc_fault_start_s && t >= *sp.acc_fault_start_s &&
+                           (!sp.acc_fault_end_s || t < *sp.acc_fault_end_s);
     for (int i = 0; i < 3; ++i)
       row.num(d->sensordata[acc_adr + i] + sp.acc_bias_m_s2[static_cast<std::size_t>(i)] +
-              sp.acc_noise_std_m_s2 * imu_rng.normal());
+              sp.acc_noise_std_m_s2 * imu_rng.normal() +
+              (acc_fault ? sp.acc_fault_offset_m_s2[static_cast<std::size_t>(i)] : 0.0));
     for (int i = 0; i < 3; ++i)
       row.num(d->sensordata[gyro_adr + i] + sp.gyro_bias_rad_s[static_cast<std::size_t>(i)] +
               sp.gyro_noise_std_rad_s * imu_rng.normal());

@@ -91,6 +91,12 @@ struct SensorParams {
   std::array<double, 3> gyro_bias_rad_s = {0.001, -0.0008, 0.0005};
   double encoder_noise_std_rad = 1e-4;
   double base_rpy_noise_std_rad = 0.0;
+  /// A fault of the IMU's accelerometer (the virtual sensor's own input): a step offset added
+  /// to the specific force [m/s^2] from start_s until end_s (absent: the end). Disabled when
+  /// start_s is absent.
+  std::optional<double> acc_fault_start_s;
+  std::optional<double> acc_fault_end_s;
+  std::array<double, 3> acc_fault_offset_m_s2 = {0.0, 0.0, 0.0};
 };
 
 /// One force channel: noise plus the faults scheduled on it (non-overlapping in time).
