@@ -140,8 +140,8 @@ StageReplay make_stage_replay(const Json& config, const std::string& stage_name)
   return replay;
 }
 
-void bench_stage(benchmark::State& state, const std::string& solver, const std::string& stage_name) {
-  StageReplay replay = make_stage_replay(suralp_config(solver), stage_name);
+void bench_stage(benchmark::State& state, const Json& config, const std::string& stage_name) {
+  StageReplay replay = make_stage_replay(config, stage_name);
   const Walk& w = walk();
   replay.pipeline.reset();
   std::size_t k = 0;
@@ -177,22 +177,13 @@ void register_benchmarks() {
   for (const auto& [stage, what] : stages) {
     const std::string name = std::string("stage/") + stage + " [" + what + "]";
     benchmark::RegisterBenchmark(name.c_str(), [stage = std::string(stage)](benchmark::State& s) {
-      bench_stage(s, "active_set", stage);
+      bench_stage(s, suralp_config("active_set"), stage);
     });
   }
   benchmark::RegisterBenchmark("stage/vfs_l [contact_force_distribution, solver ceres]",
-                               [](benchmark::State& s) { bench_stage(s, "ceres", "vfs_l"); });
+                               [](benchmark::State& s) { bench_stage(s, suralp_config("ceres"), "vfs_l"); });
   benchmark::RegisterBenchmark("stage/fdi [contact_force_fdi, robust config]", [](benchmark::State& s) {
-    StageReplay replay = make_stage_replay(read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp_robust.json"), "fdi");
-    const Walk& w = walk();
-    replay.pipeline.reset();
-    std::size_t k = 0;
-    for (auto _ : s) {
-      write_inputs(replay.pipeline, replay.inputs[k]);
-      replay.pipeline.step(w.time[k]);
-      benchmark::ClobberMemory();
-      if (++k == w.time.size()) k = 0;
-    }
+    bench_stage(s, read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp_robust.json"), "fdi");
   });
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",
                                [](benchmark::State& s) { bench_tick_config(s, suralp_config("active_set")); });

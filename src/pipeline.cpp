@@ -871,6 +871,30 @@ class PipelineBuilder {
     }
   }
 
+  // Resolves every end of a monitor wire; null when an end is unresolved or the values do not
+  // number one per channel (both reported).
+  std::optional<std::vector<const SignalInfo*>> resolve_monitor_wire(const Wire& w, std::size_t channels) {
+    std::vector<const SignalInfo*> ends;
+    std::size_t dim = 0;
+    bool complete = true;
+    for (std::size_t e = 0; e < w.ends.size(); ++e) {
+      const SignalInfo* s = resolve(w.ends[e], w.ends.size() > 1 ? json_pointer_append(w.path, e) : w.path);
+      if (s == nullptr) {
+        complete = false;
+        continue;
+      }
+      ends.push_back(s);
+      dim += s->ref.dim;
+    }
+    if (!complete) return std::nullopt;
+    if (dim != channels && channels != 0) {
+      diag_.error(w.path, "carries " + std::to_string(dim) + " values but the monitor has " +
+                              std::to_string(channels) + " channels");
+      return std::nullopt;
+    }
+    return ends;
+  }
+
   void read_monitor() {
     const auto it = cfg_.find("monitor");
     if (it == cfg_.end()) return;
@@ -927,17 +951,12 @@ class PipelineBuilder {
         ok = false;
         continue;
       }
-      std::vector<const SignalInfo*> ends;
-      bool complete = true;
-      std::size_t dim = 0;
-      for (std::size_t e = 0; e < w.ends.size(); ++e) {
-        const SignalInfo* s = resolve(w.ends[e], w.ends.size() > 1 ? json_pointer_append(w.path, e) : w.path);
-        if (s == nullptr) {
-          complete = false;
-          continue;
-        }
-        ends.push_back(s);
-        dim += s->ref.dim;
+      const auto ends = resolve_monitor_wire(w, m.channels.size());
+      if (!ends) {
+        ok = false;
+        continue;
+      }
+      for (const SignalInfo* s : *ends) {
         if (f < 2) {
           deps[f].insert(s->depends_on.begin(), s->depends_on.end());
           units[f] = s->unit;
@@ -947,17 +966,7 @@ class PipelineBuilder {
           virtual_all_leave_one_out = virtual_all_leave_one_out && !s->leave_one_out_of.empty();
         }
       }
-      if (!complete) {
-        ok = false;
-        continue;
-      }
-      if (dim != m.channels.size() && !m.channels.empty()) {
-        diag_.error(w.path, "carries " + std::to_string(dim) + " values but the monitor has " +
-                                std::to_string(m.channels.size()) + " channels");
-        ok = false;
-        continue;
-      }
-      *targets[f] = place(ends, pipeline_.monitor_gathers_);
+      *targets[f] = place(*ends, pipeline_.monitor_gathers_);
     }
     if (const auto extra = it->find("extra"); extra != it->end()) {
       if (!extra->is_object()) {
@@ -977,29 +986,12 @@ class PipelineBuilder {
             ok = false;
             continue;
           }
-          std::vector<const SignalInfo*> ends;
-          std::size_t dim = 0;
-          bool complete = true;
-          for (std::size_t e = 0; e < w.ends.size(); ++e) {
-            const SignalInfo* s = resolve(w.ends[e], w.ends.size() > 1 ? json_pointer_append(w.path, e) : w.path);
-            if (s == nullptr) {
-              complete = false;
-              continue;
-            }
-            ends.push_back(s);
-            dim += s->ref.dim;
-          }
-          if (!complete) {
+          const auto ends = resolve_monitor_wire(w, m.channels.size());
+          if (!ends) {
             ok = false;
             continue;
           }
-          if (dim != m.channels.size()) {
-            diag_.error(w.path, "carries " + std::to_string(dim) + " values but the monitor has " +
-                                    std::to_string(m.channels.size()) + " channels");
-            ok = false;
-            continue;
-          }
-          m.extra.push_back({name, ends.front()->unit, place(ends, pipeline_.monitor_gathers_)});
+          m.extra.push_back({name, ends->front()->unit, place(*ends, pipeline_.monitor_gathers_)});
         }
       }
     }

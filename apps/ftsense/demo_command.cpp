@@ -87,6 +87,16 @@ std::string cell(const Row& r) {
   return os.str();
 }
 
+// `ftsense run` without its per-run summary on stdout (the demo prints one table instead).
+int run_quietly(const std::vector<std::string>& args) {
+  std::streambuf* saved = std::cout.rdbuf();
+  std::ostringstream quiet;
+  std::cout.rdbuf(quiet.rdbuf());
+  const int rc = run_command(args);
+  std::cout.rdbuf(saved);
+  return rc;
+}
+
 }  // namespace
 
 int demo_command(const std::vector<std::string>& args) {
@@ -152,12 +162,7 @@ int demo_command(const std::vector<std::string>& args) {
         run_args.push_back("--thresholds");
         run_args.push_back(out + "/thresholds_" + v.name + ".json");
       }
-      std::streambuf* saved = std::cout.rdbuf();
-      std::ostringstream quiet;
-      std::cout.rdbuf(quiet.rdbuf());  // one summary table instead of one per run
-      const int rc = run_command(run_args);
-      std::cout.rdbuf(saved);
-      if (rc != kExitOk) return rc;
+      if (int rc = run_quietly(run_args); rc != kExitOk) return rc;
       ReportOptions ro;
       ro.title = v.title + ", scenario " + s;
       ro.figures = s == "paper" && v.name != "measured_zmp";
@@ -194,12 +199,7 @@ int demo_command(const std::vector<std::string>& args) {
           run_args.push_back("--thresholds");
           run_args.push_back(out + "/thresholds_" + v.name + ".json");
         }
-        std::streambuf* saved = std::cout.rdbuf();
-        std::ostringstream quiet;
-        std::cout.rdbuf(quiet.rdbuf());
-        const int rc = run_command(run_args);
-        std::cout.rdbuf(saved);
-        if (rc != kExitOk) return rc;
+        if (int rc = run_quietly(run_args); rc != kExitOk) return rc;
         ReportOptions ro;
         ro.figures = false;
         const Report r = make_report(run_out, out + "/" + name + ".csv", "", ro);
