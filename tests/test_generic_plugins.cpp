@@ -249,6 +249,14 @@ TEST(FaultRecovery, WhenFlaggedPassesHealthyChannelsThrough) {
   EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 2.0), 100.0);
 }
 
+TEST(FaultRecovery, ACodeOutsideTheTableCountsAsInvalid) {
+  // Found by fuzzing: a fault-type input of 1e300 was cast to int (undefined behaviour).
+  RecoveryRig rig(generic::FaultRecovery::Params{});
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 1e300), 90.0);
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, -3.0), 90.0);
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 2.5), 90.0);
+}
+
 TEST(FaultRecovery, UnknownSubstituteTypeIsAConfigError) {
   Diagnostics d;
   (void)load_params<generic::FaultRecovery::Params>(Json::parse(R"({"substitute_types": ["frozn"]})"),

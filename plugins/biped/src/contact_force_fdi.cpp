@@ -51,7 +51,7 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump")
       .unit("N").greater_than(0.0);
   schema.add("jump_window_s", &Params::jump_window_s, "window of the sum-residual step test")
-      .unit("s").greater_than(0.0);
+      .unit("s").greater_than(0.0).at_most(1.0);
   schema.add("touchdown_guard_s", &Params::touchdown_guard_s,
              "no jump or spike test this long after any foot touches down (landing impacts)")
       .unit("s").at_least(0.0);
@@ -65,7 +65,8 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
       .unit("N").greater_than(0.0);
   schema.add("spike_hold_s", &Params::spike_hold_s, "the spikes flag stays this long after the last spike")
       .unit("s").at_least(0.0);
-  schema.add("noise_window_s", &Params::noise_window_s, "window of the noise-burst test").unit("s").greater_than(0.0);
+  schema.add("noise_window_s", &Params::noise_window_s, "window of the noise-burst test")
+      .unit("s").greater_than(0.0).at_most(1.0);
   schema.add("noise_factor", &Params::noise_factor,
              "second differences above this many healthy standard deviations count as noisy")
       .greater_than(0.0);
@@ -107,12 +108,27 @@ void ContactForceFdi::LineFit::solve(double& a, double& s) const noexcept {
   }
 }
 
+namespace {
+// Window lengths in ticks, checked before anything is allocated: a window is at most 100,000
+// ticks (e.g. 1 s at 100 kHz), so a tiny tick period cannot ask for gigabytes.
+int window_ticks(double window_s, double period_s, int minimum, const char* key) {
+  const double ticks = window_s / period_s;
+  if (!(ticks <= 100000.0)) {
+    throw ConfigError(std::string("/params/") + key,
+                      " = " + format_number(window_s) + " violates at most 100000 ticks of the pipeline's " +
+                          format_number(period_s) + " s (a window this long is a configuration error)");
+  }
+  return std::max(minimum, static_cast<int>(std::lround(ticks)));
+}
+}  // namespace
+
 ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& context)
     : params_(params),
       period_s_(context.sample_period_s()),
       feet_points_(params.points.size()),
-      noise_window_ticks_(std::max(4, static_cast<int>(std::lround(params.noise_window_s / context.sample_period_s())))),
-      jump_window_ticks_(std::max(2, static_cast<int>(std::lround(params.jump_window_s / context.sample_period_s())))) {
+      noise_window_ticks_(window_ticks(params.noise_window_s, context.sample_period_s(), 4, "noise_window_s")),
+      jump_window_ticks_(window_ticks(params.jump_window_s, context.sample_period_s(), 2, "jump_window_s")) {
+  min_airborne_samples_ = window_ticks(0.02, context.sample_period_s(), 10, "airborne_settle_s");
   if (params.airborne_clear_N >= params.airborne_threshold_N) {
     throw ConfigError("/params/airborne_clear_N", " = " + format_number(params.airborne_clear_N) + " violates < " +
                                                       format_number(params.airborne_threshold_N) +
@@ -308,7 +324,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
 
   // Decisions.
-  const int min_airborne_samples = std::max(10, static_cast<int>(0.02 / period_s_));
+  const int min_airborne_samples = min_airborne_samples_;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];

@@ -322,6 +322,24 @@ TEST(ContactForceDistribution, WeightsMustMatchThePoints) {
   EXPECT_EQ(d.errors()[0].path, "/stages/5/params/weights");
 }
 
+TEST(ContactForceFdi, WindowsTooLongForTheTickAreConfigErrors) {
+  // Found by fuzzing: huge windows overflowed int or asked for gigabytes per channel.
+  Diagnostics d;
+  (void)load_params<ContactForceFdi::Params>(Json{{"points", kSuralpFoot}, {"jump_window_s", 1.5e6}},
+                                             "/stages/2/params", "contact_force_fdi", d);
+  ASSERT_EQ(d.errors().size(), 1u);
+  EXPECT_EQ(d.errors()[0].path, "/stages/2/params/jump_window_s");
+  ContactForceFdi::Params p;
+  p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  try {
+    const ContactForceFdi fdi(p, StageContext(1e-10, "fdi"));
+    FAIL() << "a 1e-10 s tick makes the 0.05 s noise window 5e8 ticks long";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.problems()[0].path, "/params/noise_window_s");
+    EXPECT_NE(e.problems()[0].message.find("at most 100000 ticks"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ZmpFromContactForces, IsTheCentreOfPressureOfAllPads) {
   PluginHarness<ZmpFromContactForces> h;
   h.plugin().reset();

@@ -51,7 +51,10 @@ void FaultRecovery::step(const StepIO& io) noexcept {
   const auto type = io.in(kFaultType);
   const auto out = io.out(kRecovered);
   for (std::size_t j = 0; j < out.size(); ++j) {
-    const int code = std::isfinite(type[j]) ? static_cast<int>(type[j]) : static_cast<int>(FaultType::invalid);
+    // A code that is not one of the table's integers is itself invalid data.
+    const double t = type[j];
+    const bool known = std::isfinite(t) && t >= 0.0 && t <= 255.0 && t == std::floor(t);
+    const int code = known ? static_cast<int>(t) : static_cast<int>(FaultType::invalid);
     const bool substitute = !std::isfinite(measured[j]) ||
                             std::find(substitute_codes_.begin(), substitute_codes_.end(), code) !=
                                 substitute_codes_.end();

@@ -158,6 +158,7 @@ class ContactForceFdi {
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
   int jump_window_ticks_;
+  int min_airborne_samples_ = 10;
 };
 
 }  // namespace ftsense::biped
