@@ -1,0 +1,412 @@
+// insole_fdi: fault detection on a real pressure-insole walk with a virtual sensor of our own.
+//
+//   insole_fdi fit --config config/insole_fdi.json --data data/GaCo01_01.csv [--write]
+//       fits the virtual sensor's coefficients on the healthy stretch [0, 40) s, prints the fit,
+//       and checks them against the config (exit 1 when they differ); --write stores them.
+//   insole_fdi run --config config/insole_fdi.json --data data/GaCo01_01.csv
+//       runs the pipeline over the walk twice: as recorded (virtual-sensor error, false alarms)
+//       and with the fault schedule below injected (detection delay, false alarms). Exit 1 when
+//       an injected fault is missed or an alarm is raised outside the faults.
+//
+// Exit status: 0 success, 1 a check failed, 2 a usage, config or data error.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ftsense/io/csv_log.hpp"
+#include "ftsense/pipeline.hpp"
+#include "insole/insole_fit.hpp"
+#include "insole/insole_plugins.hpp"
+
+namespace {
+
+// The healthy stretch the coefficients are fitted on; everything after it is held out.
+constexpr double kFitEndS = 40.0;
+// Alarms on a channel up to this long after its fault ends are the flag clearing, not false alarms.
+constexpr double kClearGraceS = 5.0;
+
+enum class FaultKind { offset, drift, frozen };
+struct InjectedFault {
+  std::string channel;  // monitor channel, e.g. "left/L3"; the log column is channel + "/force_N"
+  FaultKind kind;
+  double start_s;
+  double end_s;
+  double size;  // offset [N], drift rate [N/s]; unused for frozen (holds the value at start_s)
+};
+// The fault schedule (deterministic: no random numbers). One fault at a time, 5 s apart at least.
+const std::vector<InjectedFault> kSchedule = {
+    {"left/L3", FaultKind::offset, 50.0, 65.0, 80.0},
+    {"right/R6", FaultKind::drift, 70.0, 85.0, 8.0},
+    {"right/R2", FaultKind::frozen, 95.0, 110.0, 0.0},
+};
+
+const char* to_string(FaultKind kind) {
+  switch (kind) {
+    case FaultKind::offset: return "offset";
+    case FaultKind::drift: return "drift";
+    case FaultKind::frozen: return "frozen";
+  }
+  return "?";
+}
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Log {
+  std::vector<std::string> columns;  // without time_s
+  std::vector<double> time_s;
+  std::vector<std::vector<double>> rows;  // values per column, time excluded
+};
+
+Log read_log(const std::string& path) {
+  ftsense::io::CsvLogReader reader(path);
+  Log log;
+  log.columns.assign(reader.columns().begin() + 1, reader.columns().end());
+  std::vector<double> row;
+  while (reader.next(row)) {
+    log.time_s.push_back(row[0]);
+    log.rows.emplace_back(row.begin() + 1, row.end());
+  }
+  if (log.rows.empty()) throw UsageError(path + ": no data rows");
+  return log;
+}
+
+std::size_t column_index(const Log& log, const std::string& name, const std::string& where) {
+  const auto it = std::find(log.columns.begin(), log.columns.end(), name);
+  if (it == log.columns.end()) throw UsageError(where + ": the data has no column '" + name + "'");
+  return static_cast<std::size_t>(it - log.columns.begin());
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw UsageError(path + ": cannot open");
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// fit
+
+double round_significant(double value, int digits) {
+  if (value == 0.0 || !std::isfinite(value)) return value;
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return std::stod(text);
+}
+
+int fit_command(const std::string& config_path, const std::string& data_path, bool write) {
+  ftsense::Json config = ftsense::parse_json_text(read_text(config_path), config_path);
+  const Log log = read_log(data_path);
+  const auto fit_rows = static_cast<Eigen::Index>(
+      std::lower_bound(log.time_s.begin(), log.time_s.end(), kFitEndS) - log.time_s.begin());
+  std::cout << "fit on the healthy stretch [" << log.time_s.front() << ", " << kFitEndS << ") s, "
+            << fit_rows << " samples\n";
+  bool all_match = true;
+  bool any_stage = false;
+  for (auto& stage : config.at("stages")) {
+    if (stage.at("plugin") != insole::InsoleVirtualSensor::name) continue;
+    any_stage = true;
+    const std::string stage_name = stage.at("name").get<std::string>();
+    const std::string wire = stage.at("inputs").at("measured").get<std::string>();
+    if (wire.rfind("input.", 0) != 0) {
+      throw UsageError(config_path + ": stage " + stage_name + ": fit needs 'measured' wired to a pipeline input");
+    }
+    const auto& columns = config.at("inputs").at(wire.substr(6)).at("columns");
+    std::vector<std::string> names;
+    std::vector<std::size_t> indices;
+    for (const auto& c : columns) {
+      names.push_back(c.get<std::string>());
+      indices.push_back(column_index(log, names.back(), data_path));
+    }
+    auto& params = stage.at("params");
+    const insole::InsoleVirtualSensor::Params defaults{};
+    insole::FitOptions options;
+    options.body_weight_N = params.at("body_weight_N").get<double>();
+    options.contact_force_N = params.value("contact_force_N", defaults.contact_force_N);
+    options.min_loaded_sensors = params.value("min_loaded_sensors", defaults.min_loaded_sensors);
+    Eigen::MatrixXd samples(fit_rows, static_cast<Eigen::Index>(names.size()));
+    for (Eigen::Index t = 0; t < fit_rows; ++t) {
+      for (std::size_t k = 0; k < indices.size(); ++k) {
+        samples(t, static_cast<Eigen::Index>(k)) = log.rows[static_cast<std::size_t>(t)][indices[k]];
+      }
+    }
+    const insole::FootFit fit = insole::fit_foot(samples, names, options);
+    std::vector<double> rounded;
+    for (double c : fit.coefficients) rounded.push_back(round_significant(c, 6));
+
+    std::cout << "stage " << stage_name << ":\n";
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      std::printf("  %-18s rms error %6.2f N  stance samples %5zu  reciprocal condition %.3g\n",
+                  names[j].c_str(), fit.rms_error_N[j], fit.stance_samples[j],
+                  fit.reciprocal_condition[j]);
+    }
+    const auto it = params.find("coefficients");
+    bool match = it != params.end() && it->is_array() && it->size() == rounded.size();
+    for (std::size_t i = 0; match && i < rounded.size(); ++i) {
+      const double stored = (*it)[i].get<double>();
+      match = std::abs(stored - rounded[i]) <= 1e-5 * std::max(1.0, std::abs(rounded[i]));
+    }
+    std::cout << "  coefficients in the config: " << (match ? "match the fit" : "DIFFER from the fit") << '\n';
+    all_match = all_match && match;
+    params["coefficients"] = rounded;
+  }
+  if (!any_stage) throw UsageError(config_path + ": no stage uses plugin insole_virtual_sensor");
+  if (write) {
+    std::ofstream out(config_path);
+    out << config.dump(2) << '\n';
+    if (!out) throw UsageError(config_path + ": cannot write");
+    std::cout << "wrote the fitted coefficients to " << config_path << '\n';
+    return 0;
+  }
+  if (!all_match) {
+    std::cerr << config_path << ": the coefficients are not those of the fit; run `insole_fdi fit --write`\n";
+    return 1;
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// run
+
+struct ChannelStats {
+  // healthy (as recorded) run, held-out part t >= kFitEndS
+  double sum_sq_error = 0.0;
+  std::size_t samples = 0;
+  double stance_sum_sq_error = 0.0;
+  std::size_t stance_samples = 0;
+  int healthy_alarms = 0;
+  double healthy_alarm_s = 0.0;
+  // faulty run
+  std::optional<double> detection_delay_s;
+  int false_alarms = 0;  // raised while no fault is active anywhere (nor clearing)
+  double false_alarm_s = 0.0;
+  int cross_alarms = 0;  // raised on this healthy channel while another channel is faulty
+  double cross_alarm_s = 0.0;
+};
+
+// Runs the pipeline over the whole log; `faults` are injected into the measured columns.
+// `on_tick(k, pipeline)` sees every tick after the step.
+template <class OnTick>
+void run_pipeline(ftsense::Pipeline& pipeline, const Log& log, const std::vector<InjectedFault>& faults,
+                  const std::vector<std::vector<std::size_t>>& input_columns, OnTick&& on_tick) {
+  pipeline.reset();
+  std::vector<double> row(log.columns.size());
+  std::map<std::size_t, double> frozen_value;  // column -> value held
+  std::vector<std::size_t> fault_columns;
+  for (const auto& f : faults) fault_columns.push_back(column_index(log, f.channel + "/force_N", "schedule"));
+  for (std::size_t k = 0; k < log.rows.size(); ++k) {
+    const double t = log.time_s[k];
+    row = log.rows[k];
+    for (std::size_t i = 0; i < faults.size(); ++i) {
+      const auto& f = faults[i];
+      if (t < f.start_s || t >= f.end_s) continue;
+      double& value = row[fault_columns[i]];
+      switch (f.kind) {
+        case FaultKind::offset: value += f.size; break;
+        case FaultKind::drift: value += f.size * (t - f.start_s); break;
+        case FaultKind::frozen: value = frozen_value.try_emplace(fault_columns[i], value).first->second; break;
+      }
+    }
+    for (std::size_t in = 0; in < input_columns.size(); ++in) {
+      auto values = pipeline.input_values(in);
+      for (std::size_t c = 0; c < values.size(); ++c) values[c] = row[input_columns[in][c]];
+    }
+    pipeline.step(t);
+    on_tick(k, pipeline);
+  }
+}
+
+int run_command(const std::string& config_path, const std::string& data_path) {
+  const auto registry = insole::plugins::registry();
+  ftsense::Pipeline pipeline =
+      ftsense::Pipeline::build(ftsense::parse_json_text(read_text(config_path), config_path), registry);
+  if (!pipeline.has_monitor()) throw UsageError(config_path + ": needs a 'monitor' section");
+  const Log log = read_log(data_path);
+  std::vector<std::vector<std::size_t>> input_columns;
+  for (const auto& in : pipeline.inputs()) {
+    input_columns.emplace_back();
+    for (const auto& c : in.columns) input_columns.back().push_back(column_index(log, c, data_path));
+  }
+  const ftsense::Monitor& monitor = pipeline.monitor();
+  const std::size_t n = monitor.channels.size();
+  std::optional<ftsense::SignalRef> stance;
+  for (const auto& e : monitor.extra) {
+    if (e.name == "stance") stance = e.signal;
+  }
+  const double dt = pipeline.sample_period_s();
+  std::vector<ChannelStats> stats(n);
+
+  // 1. As recorded: the virtual sensor's error on held-out healthy data, and alarms (all false).
+  std::vector<double> previous(n, 0.0);
+  run_pipeline(pipeline, log, {}, input_columns, [&](std::size_t k, const ftsense::Pipeline& p) {
+    const auto measured = p.values(monitor.measured);
+    const auto virtual_value = p.values(monitor.virtual_value);
+    const auto fault = p.values(monitor.fault);
+    for (std::size_t c = 0; c < n; ++c) {
+      if (fault[c] != 0.0) {
+        stats[c].healthy_alarm_s += dt;
+        if (previous[c] == 0.0) ++stats[c].healthy_alarms;
+      }
+      previous[c] = fault[c];
+      if (log.time_s[k] < kFitEndS) continue;
+      const double e = measured[c] - virtual_value[c];
+      if (!std::isfinite(e)) continue;
+      stats[c].sum_sq_error += e * e;
+      ++stats[c].samples;
+      if (stance && p.values(*stance)[c] != 0.0) {
+        stats[c].stance_sum_sq_error += e * e;
+        ++stats[c].stance_samples;
+      }
+    }
+  });
+
+  // 2. With the fault schedule injected.
+  std::vector<std::optional<std::size_t>> fault_of(n);  // channel -> index in kSchedule
+  for (std::size_t i = 0; i < kSchedule.size(); ++i) {
+    const auto it = std::find(monitor.channels.begin(), monitor.channels.end(), kSchedule[i].channel);
+    if (it == monitor.channels.end()) throw UsageError("schedule: no monitored channel " + kSchedule[i].channel);
+    fault_of[static_cast<std::size_t>(it - monitor.channels.begin())] = i;
+  }
+  std::fill(previous.begin(), previous.end(), 0.0);
+  run_pipeline(pipeline, log, kSchedule, input_columns, [&](std::size_t k, const ftsense::Pipeline& p) {
+    const double t = log.time_s[k];
+    const auto fault = p.values(monitor.fault);
+    bool any_fault_active = false;
+    for (const auto& f : kSchedule) any_fault_active = any_fault_active || (t >= f.start_s && t < f.end_s + kClearGraceS);
+    for (std::size_t c = 0; c < n; ++c) {
+      const bool raised = fault[c] != 0.0 && previous[c] == 0.0;
+      previous[c] = fault[c];
+      if (fault[c] == 0.0) continue;
+      if (fault_of[c]) {
+        const auto& f = kSchedule[*fault_of[c]];
+        if (t >= f.start_s && t < f.end_s) {
+          if (!stats[c].detection_delay_s) stats[c].detection_delay_s = t - f.start_s;
+          continue;
+        }
+        if (t >= f.end_s && t < f.end_s + kClearGraceS) continue;  // clearing
+      }
+      ChannelStats& s = stats[c];
+      if (any_fault_active) {
+        s.cross_alarm_s += dt;
+        s.cross_alarms += raised ? 1 : 0;
+      } else {
+        s.false_alarm_s += dt;
+        s.false_alarms += raised ? 1 : 0;
+      }
+    }
+  });
+
+  std::printf("insole_fdi: %s over %s (%zu samples, %.2f s)\n", config_path.c_str(), data_path.c_str(),
+              log.rows.size(), log.time_s.back() - log.time_s.front());
+  std::printf("coefficients fitted on [0, %.0f) s; errors on the held-out [%.0f, end) s of the recorded walk\n",
+              kFitEndS, kFitEndS);
+  std::printf("fault schedule (deterministic, no random numbers):\n");
+  for (const auto& f : kSchedule) {
+    std::printf("  %-9s %-6s from %5.1f s to %5.1f s", f.channel.c_str(), to_string(f.kind), f.start_s, f.end_s);
+    if (f.kind == FaultKind::offset) std::printf(", %+.0f N", f.size);
+    if (f.kind == FaultKind::drift) std::printf(", %+.1f N/s", f.size);
+    if (f.kind == FaultKind::frozen) std::printf(", held at the value read at %.1f s", f.start_s);
+    std::printf("\n");
+  }
+  std::printf("\n%-9s | %9s %9s | %14s | %-6s %9s | %14s | %14s\n", "channel", "rms err", "stance", "alarms",
+              "fault", "delay", "false alarms", "cross alarms");
+  std::printf("%-9s | %9s %9s | %14s | %-6s %9s | %14s | %14s\n", "", "[N]", "rms [N]", "recorded n/s",
+              "", "[s]", "injected n/s", "injected n/s");
+  int missed = 0;
+  int false_alarms = 0;
+  int cross_alarms = 0;
+  for (std::size_t c = 0; c < n; ++c) {
+    const ChannelStats& s = stats[c];
+    const double rms = s.samples > 0 ? std::sqrt(s.sum_sq_error / static_cast<double>(s.samples)) : NAN;
+    const double stance_rms =
+        s.stance_samples > 0 ? std::sqrt(s.stance_sum_sq_error / static_cast<double>(s.stance_samples)) : NAN;
+    std::string kind = "-";
+    std::string delay = "-";
+    if (fault_of[c]) {
+      kind = to_string(kSchedule[*fault_of[c]].kind);
+      if (s.detection_delay_s) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.2f", *s.detection_delay_s);
+        delay = text;
+      } else {
+        delay = "MISSED";
+        ++missed;
+      }
+    }
+    false_alarms += s.healthy_alarms + s.false_alarms;
+    cross_alarms += s.cross_alarms;
+    std::printf("%-9s | %9.2f %9.2f | %6d %6.2f s | %-6s %9s | %6d %6.2f s | %6d %6.2f s\n",
+                monitor.channels[c].c_str(), rms, stance_rms, s.healthy_alarms, s.healthy_alarm_s,
+                kind.c_str(), delay.c_str(), s.false_alarms, s.false_alarm_s, s.cross_alarms,
+                s.cross_alarm_s);
+  }
+  std::printf("\nmissed faults %d, false alarms %d (recorded walk, and injected walk outside the faults "
+              "and %.0f s after each), cross alarms %d (healthy channels flagged while another is faulty)\n",
+              missed, false_alarms, kClearGraceS, cross_alarms);
+  if (missed > 0 || false_alarms > 0) {
+    std::printf("FAIL\n");
+    return 1;
+  }
+  std::printf("OK\n");
+  return 0;
+}
+
+void print_usage(std::ostream& out) {
+  out << "usage: insole_fdi fit --config C.json --data LOG.csv [--write]\n"
+         "       insole_fdi run --config C.json --data LOG.csv\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string config_path;
+  std::string data_path;
+  try {
+    if (argc < 2) throw UsageError("missing verb");
+    const std::string verb = argv[1];
+    if (verb == "--help" || verb == "-h") {
+      print_usage(std::cout);
+      return 0;
+    }
+    bool write = false;
+    for (int i = 2; i < argc; ++i) {
+      const std::string arg = argv[i];
+      if (arg == "--config" && i + 1 < argc) config_path = argv[++i];
+      else if (arg == "--data" && i + 1 < argc) data_path = argv[++i];
+      else if (arg == "--write" && verb == "fit") write = true;
+      else throw UsageError("unknown or incomplete argument '" + arg + "'");
+    }
+    if (config_path.empty() || data_path.empty()) throw UsageError("--config and --data are required");
+    if (verb == "fit") return fit_command(config_path, data_path, write);
+    if (verb == "run") return run_command(config_path, data_path);
+    throw UsageError("unknown verb '" + verb + "'");
+  } catch (const UsageError& e) {
+    std::cerr << "insole_fdi: " << e.what() << '\n';
+    print_usage(std::cerr);
+    return 2;
+  } catch (const ftsense::ConfigError& e) {
+    for (const auto& p : e.problems()) std::cerr << config_path << ": " << p.text() << '\n';
+    return 2;
+  } catch (const ftsense::io::LogError& e) {
+    std::cerr << e.what() << '\n';
+    return 2;
+  } catch (const insole::FitError& e) {
+    std::cerr << e.what() << '\n';
+    return 2;
+  } catch (const ftsense::Json::exception& e) {
+    std::cerr << config_path << ": " << e.what() << '\n';
+    return 2;
+  }
+}
