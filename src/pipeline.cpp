@@ -320,7 +320,8 @@ std::string join(const std::set<std::string>& items) {
 
 class PipelineBuilder {
  public:
-  PipelineBuilder(const Json& config, const PluginRegistry& plugins) : cfg_(config), plugins_(plugins) {}
+  PipelineBuilder(const Json& config, const PluginRegistry& plugins, std::filesystem::path config_directory)
+      : cfg_(config), plugins_(plugins), config_directory_(std::move(config_directory)) {}
 
   Pipeline build() {
     if (!cfg_.is_object()) {
@@ -714,7 +715,7 @@ class PipelineBuilder {
     if (!all_resolved) return;  // the cause is reported; parameters are still checked later
     constructed_attempted_.insert(d.name);
     StageContext context(pipeline_.sample_period_s_ > 0 ? pipeline_.sample_period_s_ : 1e-3, d.name,
-                         wired_dims);
+                         wired_dims, config_directory_);
     std::unique_ptr<Stage> stage = d.plugin->create(d.params, d.path, context, diag_);
     if (!stage) return;
     const Ports& ports = stage->ports();
@@ -799,7 +800,14 @@ class PipelineBuilder {
       SignalInfo info;
       if (out.leave_one_out) info.leave_one_out_of = measured_depends_on;
       info.ref = allocate(out.dim);
-      info.unit = out.unit.empty() ? generic_unit.value_or(std::string(kDimensionless)) : out.unit;
+      const std::string common_unit = generic_unit.value_or(std::string(kDimensionless));
+      if (out.unit.empty()) {
+        info.unit = common_unit;
+      } else if (out.unit == kAnyUnitSquared) {
+        info.unit = common_unit == kDimensionless ? common_unit : common_unit + "^2";
+      } else {
+        info.unit = out.unit;
+      }
       info.depends_on = stage_depends_on;
       run.output_refs.push_back(info.ref);
       run.output_units.push_back(info.unit);
@@ -1013,6 +1021,7 @@ class PipelineBuilder {
 
   const Json& cfg_;
   const PluginRegistry& plugins_;
+  std::filesystem::path config_directory_;
   Diagnostics diag_;
   Pipeline pipeline_;
   std::size_t next_offset_ = 0;
@@ -1023,8 +1032,9 @@ class PipelineBuilder {
   std::set<std::string> constructed_attempted_;
 };
 
-Pipeline Pipeline::build(const Json& config, const PluginRegistry& plugins) {
-  return PipelineBuilder(config, plugins).build();
+Pipeline Pipeline::build(const Json& config, const PluginRegistry& plugins,
+                         const std::filesystem::path& config_directory) {
+  return PipelineBuilder(config, plugins, config_directory).build();
 }
 
 }  // namespace ftsense

@@ -45,10 +45,17 @@ std::vector<std::string> Ports::input_names() const { return port_names(inputs_)
 std::vector<std::string> Ports::output_names() const { return port_names(outputs_); }
 
 StageContext::StageContext(double sample_period_s, std::string stage_name,
-                           std::vector<std::pair<std::string, std::size_t>> wired_dims)
+                           std::vector<std::pair<std::string, std::size_t>> wired_dims,
+                           std::filesystem::path config_directory)
     : sample_period_s_(sample_period_s),
       stage_name_(std::move(stage_name)),
-      wired_dims_(std::move(wired_dims)) {}
+      wired_dims_(std::move(wired_dims)),
+      config_directory_(std::move(config_directory)) {}
+
+std::filesystem::path StageContext::resolve_path(const std::filesystem::path& path) const {
+  if (path.is_absolute() || config_directory_.empty()) return path;
+  return config_directory_ / path;
+}
 
 std::size_t StageContext::wired_dim(std::string_view input, std::size_t fallback) const noexcept {
   for (const auto& [name, dim] : wired_dims_) {

@@ -1,6 +1,7 @@
 // Generic plugins: the contract suite and analytic oracles.
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -120,6 +121,34 @@ TEST(ThresholdDetector, NonFiniteSignalIsFlaggedInvalidAtOnce) {
   EXPECT_EQ(fault[1], 0.0);
 }
 
+TEST(ThresholdDetector, NonFiniteMeasuredValueIsFlaggedInvalidWhenChecked) {
+  // The fault filter holds its estimate while a reading is NaN, so the signal alone never shows
+  // it; with check_measured the reading itself raises 'invalid' on that tick and clears after.
+  generic::ThresholdDetector::Params params;
+  params.thresholds = {100.0};
+  params.warmup_s = 1.0;  // invalid readings are flagged during the warm-up too
+  params.check_measured = true;
+  generic::ThresholdDetector detector(params, StageContext(1e-3, "d", {{"signal", 3}, {"measured", 3}}));
+  ASSERT_EQ(detector.ports().inputs().size(), 2u);
+  EXPECT_EQ(detector.ports().inputs()[1].name, "measured");
+  detector.reset();
+  std::vector<double> s{0.0, 0.0, 0.0};
+  std::vector<double> measured{std::nan(""), -std::numeric_limits<double>::infinity(), 250.0};
+  std::vector<double> fault(3, 0.0), type(3, 0.0);
+  const std::span<const double> ins[] = {s, measured};
+  const std::span<double> outs[] = {fault, type};
+  detector.step(StepIO{0.0, ins, outs});
+  EXPECT_EQ(fault, (std::vector<double>{1.0, 1.0, 0.0}));
+  EXPECT_EQ(type, (std::vector<double>{8.0, 8.0, 0.0}));
+  measured = {240.0, 250.0, 250.0};
+  detector.step(StepIO{0.001, ins, outs});
+  EXPECT_EQ(fault, (std::vector<double>{0.0, 0.0, 0.0}));
+
+  params.check_measured = false;  // without it the input does not exist
+  generic::ThresholdDetector plain(params, StageContext(1e-3, "d", {{"signal", 3}}));
+  EXPECT_EQ(plain.ports().inputs().size(), 1u);
+}
+
 TEST(ThresholdDetector, PerChannelThresholds) {
   generic::ThresholdDetector::Params params;
   params.thresholds = {1.0, 10.0};
@@ -146,11 +175,12 @@ struct FaultFilterRig {
     measured[0] = measured_value;
     estimate[0] = virtual_value;
     const std::span<const double> ins[] = {measured, estimate};
-    const std::span<double> outs[] = {fault, truth, ready};
+    const std::span<double> outs[] = {fault, truth, ready, variance, resets};
     filter.step(StepIO{0.0, ins, outs});
   }
   generic::RandomWalkFaultFilter filter;
-  std::vector<double> measured{0.0}, estimate{0.0}, fault{0.0}, truth{0.0}, ready{0.0};
+  std::vector<double> measured{0.0}, estimate{0.0}, fault{0.0}, truth{0.0}, ready{0.0}, variance{0.0},
+      resets{0.0};
 };
 
 TEST(RandomWalkFaultFilter, SteadyStateGainSolvesTheDiscreteRiccatiEquation) {
@@ -214,6 +244,61 @@ TEST(RandomWalkFaultFilter, NonFiniteInputHoldsTheEstimate) {
   EXPECT_EQ(rig.fault[0], before);
   EXPECT_EQ(rig.truth[0], 100.0);  // falls back on the virtual sensor
   EXPECT_EQ(rig.filter.covariance_resets(), 0u);
+}
+
+TEST(RandomWalkFaultFilter, VirtualSensorNotReadyHoldsTheStateAndClearsReady) {
+  generic::RandomWalkFaultFilter::Params p;
+  FaultFilterRig rig(p);
+  for (int k = 0; k < 20000; ++k) rig.step(120.0, 100.0);
+  ASSERT_EQ(rig.ready[0], 1.0);
+  const double fault_before = rig.fault[0];
+  const double variance_before = rig.variance[0];
+  for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    rig.step(120.0, bad);
+    EXPECT_EQ(rig.ready[0], 0.0);  // the virtual sensor is not ready: nothing is judged
+    EXPECT_EQ(rig.fault[0], fault_before);
+    EXPECT_EQ(rig.variance[0], variance_before);
+    EXPECT_EQ(rig.truth[0], 120.0 - fault_before);
+  }
+  rig.step(120.0, 100.0);
+  EXPECT_EQ(rig.ready[0], 1.0);
+}
+
+TEST(RandomWalkFaultFilter, VarianceOutputIsTheSteadyStateAndStaysBounded) {
+  generic::RandomWalkFaultFilter::Params p;
+  FaultFilterRig rig(p);
+  double largest = 0.0;
+  for (int k = 0; k < 20000; ++k) {
+    rig.step(300.0 + 50.0 * std::sin(1e-3 * k), 290.0);
+    largest = std::max(largest, rig.variance[0]);
+    ASSERT_GT(rig.variance[0], 0.0) << "tick " << k;
+  }
+  // From P0 = 1e-4 the variance only shrinks towards the Riccati fixed point (below P0 + q).
+  EXPECT_LE(largest, p.initial_fault_variance + p.fault_process_noise);
+  EXPECT_NEAR(rig.variance[0], rig.filter.steady_state_fault_variance(),
+              1e-6 * rig.filter.steady_state_fault_variance());
+}
+
+TEST(RandomWalkFaultFilter, OverflowingInputsResetTheCovarianceAndSayHowOften) {
+  // Finite but huge readings overflow the innovation to Inf; the channel resets (estimate and
+  // covariance) instead of carrying Inf or NaN forward, and the reset is counted per channel.
+  generic::RandomWalkFaultFilter::Params p;
+  FaultFilterRig rig(p);
+  for (int k = 0; k < 100; ++k) rig.step(100.0, 100.0);
+  EXPECT_EQ(rig.resets[0], 0.0);
+  rig.step(1e308, -1e308);
+  EXPECT_EQ(rig.resets[0], 1.0);
+  EXPECT_EQ(rig.filter.covariance_resets(), 1u);
+  EXPECT_TRUE(std::isfinite(rig.fault[0]));
+  EXPECT_EQ(rig.variance[0], p.initial_fault_variance);
+  rig.step(1e308, -1e308);
+  EXPECT_EQ(rig.resets[0], 2.0);
+  for (int k = 0; k < 100; ++k) rig.step(100.0, 100.0);
+  EXPECT_EQ(rig.resets[0], 2.0);  // cumulative until reset()
+  EXPECT_TRUE(std::isfinite(rig.fault[0]));
+  rig.filter.reset();
+  rig.step(100.0, 100.0);
+  EXPECT_EQ(rig.resets[0], 0.0);
 }
 
 struct RecoveryRig {

@@ -1,3 +1,4 @@
+#include <filesystem>
 #include <iostream>
 
 #include "cli.hpp"
@@ -32,7 +33,8 @@ Pipeline load_pipeline(const std::string& config_path, const std::string& thresh
       apply_thresholds(config, parse_json_text(read_text_file(thresholds_path, "thresholds file"), thresholds_path),
                        thresholds_path);
     }
-    Pipeline pipeline = Pipeline::build(config, reference_plugins::registry());
+    Pipeline pipeline = Pipeline::build(config, reference_plugins::registry(),
+                                        std::filesystem::path(config_path).parent_path());
     for (const auto& w : pipeline.warnings()) std::cerr << "warning: " << config_path << ":" << w.text() << '\n';
     return pipeline;
   } catch (const ConfigError& e) {

@@ -26,6 +26,7 @@
 // exception, no string lookup.
 
 #include <cstddef>
+#include <filesystem>
 #include <memory>
 #include <span>
 #include <string>
@@ -81,7 +82,10 @@ inline constexpr std::size_t kMaxJsonDepth = 100;
 class Pipeline {
  public:
   // Builds and checks the pipeline; throws ConfigError listing every problem found.
-  [[nodiscard]] static Pipeline build(const Json& config, const PluginRegistry& plugins);
+  // `config_directory`: where the config file lives; plugins resolve relative file parameters
+  // (a URDF, say) against it (StageContext::resolve_path). Empty: the working directory.
+  [[nodiscard]] static Pipeline build(const Json& config, const PluginRegistry& plugins,
+                                      const std::filesystem::path& config_directory = {});
 
   Pipeline(Pipeline&&) noexcept;
   Pipeline& operator=(Pipeline&&) noexcept;

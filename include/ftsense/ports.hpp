@@ -7,6 +7,7 @@
 // into preallocated buffers: in(i) has inputs()[i].dim values, out(i) has outputs()[i].dim.
 
 #include <cstddef>
+#include <filesystem>
 #include <optional>
 #include <span>
 #include <string>
@@ -25,6 +26,8 @@ enum class PortRole { signal, measured, virtual_estimate };
 // of the stage's any-unit inputs, so unit-generic plugins (filters, differences) pass units on.
 inline constexpr std::string_view kAnyUnit = "";
 inline constexpr std::string_view kDimensionless = "1";
+// An output in the square of that common unit (a variance of a unit-generic estimate).
+inline constexpr std::string_view kAnyUnitSquared = "^2";
 
 struct PortSpec {
   std::string name;
@@ -70,7 +73,8 @@ struct StepIO {
 class StageContext {
  public:
   StageContext(double sample_period_s, std::string stage_name,
-               std::vector<std::pair<std::string, std::size_t>> wired_dims = {});
+               std::vector<std::pair<std::string, std::size_t>> wired_dims = {},
+               std::filesystem::path config_directory = {});
 
   // The pipeline's fixed tick period T [s].
   [[nodiscard]] double sample_period_s() const noexcept { return sample_period_s_; }
@@ -78,11 +82,18 @@ class StageContext {
   // Number of values wired to input `input`, or `fallback` when nothing is wired to it (the
   // pipeline reports the missing wire; the plugin only needs a size to construct with).
   [[nodiscard]] std::size_t wired_dim(std::string_view input, std::size_t fallback) const noexcept;
+  // The directory of the config file the pipeline was built from (empty when it was not read from
+  // a file). Plugins resolve relative file parameters against it (resolve_path).
+  [[nodiscard]] const std::filesystem::path& config_directory() const noexcept { return config_directory_; }
+  // `path` as given when absolute, else relative to config_directory() (or to the working
+  // directory when that is empty).
+  [[nodiscard]] std::filesystem::path resolve_path(const std::filesystem::path& path) const;
 
  private:
   double sample_period_s_;
   std::string stage_name_;
   std::vector<std::pair<std::string, std::size_t>> wired_dims_;
+  std::filesystem::path config_directory_;
 };
 
 }  // namespace ftsense

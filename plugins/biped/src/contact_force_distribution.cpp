@@ -1,5 +1,6 @@
 #include "ftsense/biped/contact_force_distribution.hpp"
 
+#include <limits>
 #include <stdexcept>
 
 #include "ftsense/biped/contact_force_qp_ceres.hpp"
@@ -58,7 +59,12 @@ void ContactForceDistribution::step(const StepIO& io) noexcept {
   const auto cop = io.in(kCop);
   solver_->solve(io.in(kNormalForce)[0], Eigen::Vector2d(cop[0], cop[1]), solution_);
   const auto forces = io.out(kForces);
-  for (std::size_t l = 0; l < forces.size(); ++l) forces[l] = solution_.forces(static_cast<Eigen::Index>(l));
+  // No answer (invalid input: the virtual sensor upstream is not ready; or a solver failure) is
+  // NaN, not zero: zero forces would be a confident, wrong virtual value.
+  const bool answered = solution_.ok();
+  for (std::size_t l = 0; l < forces.size(); ++l) {
+    forces[l] = answered ? solution_.forces(static_cast<Eigen::Index>(l)) : std::numeric_limits<double>::quiet_NaN();
+  }
   io.out(kStatus)[0] = static_cast<double>(solution_.status);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ftsense/biped/frames.hpp"
 #include "ftsense/fault_type.hpp"
@@ -150,6 +151,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                      PortRole::signal, /*leave_one_out=*/true});
   ports_.add_output({"sum_residual", 1, "N", "low-passed sum of recovered forces - F_z"});
   ports_.add_output({"unisolated", 1, "1", "1 while the sum residual is off with no channel to blame (virtual sensor fault)"});
+  ports_.add_output({"virtual_ready", 1, "1", "1 while the total force F_z is finite (0: virtual sensor not ready)"});
   channels_.resize(n);
   for (auto& c : channels_) c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
   residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
@@ -458,7 +460,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
-    virtual_force[j] = airborne ? 0.0 : (fz_ok ? std::max(0.0, fz - (total - recovered[j])) : recovered[j]);
+    virtual_force[j] = airborne ? 0.0
+                       : fz_ok  ? std::max(0.0, fz - (total - recovered[j]))
+                                : std::numeric_limits<double>::quiet_NaN();
     fault[j] = c.type != 0 ? 1.0 : 0.0;
     type[j] = static_cast<double>(c.type);
     const double x = measured[j];
@@ -474,11 +478,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // The corrected sum residual: what no channel explains.
   const double residual = fz_ok ? total - fz : 0.0;
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
-  sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
+  // Without F_z the residual is unknown, not zero: hold the filter rather than pull it to zero.
+  if (fz_ok || !started_) sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
   io.out(kSumResidual)[0] = sum_filtered_;
   bool any = false;
   for (const auto& c : channels_) any = any || c.type != 0;
   io.out(kUnisolated)[0] = (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any)) ? 1.0 : 0.0;
+  io.out(kVirtualReady)[0] = fz_ok ? 1.0 : 0.0;
   started_ = true;
 }
 

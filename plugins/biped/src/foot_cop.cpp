@@ -1,5 +1,7 @@
 #include "ftsense/biped/foot_cop.hpp"
 
+#include <limits>
+
 namespace ftsense::biped {
 
 void FootCop::Params::describe(ParamSchema<Params>& schema) {
@@ -26,11 +28,13 @@ FootCop::FootCop(const Params& params, const StageContext& /*context*/)
 
 void FootCop::step(const StepIO& io) noexcept {
   const auto cop = io.out(kCop);
-  double normal = 0.0;
-  Eigen::Vector2d r = polygon_.centroid();
+  // Unknown inputs give an unknown CoP and normal force (NaN: virtual sensor not ready).
+  double normal = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Vector2d r = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
   bool loaded = false;
   if (all_finite(io.in(kCom)) && all_finite(io.in(kForce)) && all_finite(io.in(kFootPos)) &&
       all_finite(io.in(kFootRpy))) {
+    r = polygon_.centroid();
     const Eigen::Matrix3d rotation = rotation_from_rpy(io.in(kFootRpy));
     const Eigen::Vector3d d = rotation.transpose() * (vector3(io.in(kCom)) - vector3(io.in(kFootPos)));
     const Eigen::Vector3d f = rotation.transpose() * vector3(io.in(kForce));

@@ -2,16 +2,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ftsense/biped/frames.hpp"
 
 namespace ftsense::biped {
 
 void LegForceSplit::Params::describe(ParamSchema<Params>& schema) {
-  schema.add("mass_kg", &Params::mass_kg, "total robot mass m").unit("kg").greater_than(0.0).required();
+  schema.add("mass_kg", &Params::mass_kg, "total robot mass m; required unless mass_source is input")
+      .unit("kg").at_least(0.0);
   schema.add("lateral_reach_m", &Params::lateral_reach_m,
              "c_lat_max of eq. 7; 0 records |c_lat| at each single-support onset")
       .unit("m").at_least(0.0);
+  schema.add_choice("mass_source", &Params::mass_source,
+                    "where m comes from: mass_kg, or input port mass (e.g. the URDF's total mass)",
+                    {{"param", MassSource::param}, {"input", MassSource::input}});
+}
+
+void LegForceSplit::Params::validate(Diagnostics& diag, std::string_view path) const {
+  if (mass_source == MassSource::param && !(mass_kg > 0.0)) {
+    diag.error(json_pointer_append(path, "mass_kg"),
+               "a total robot mass > 0 is required with mass_source = param (or set mass_source to input)");
+  }
 }
 
 LegForceSplit::LegForceSplit(const Params& params, const StageContext& /*context*/) : params_(params) {
@@ -21,6 +33,9 @@ LegForceSplit::LegForceSplit(const Params& params, const StageContext& /*context
   ports_.add_input({"l_foot_pos", 3, "m", "left foot frame origin o_L, world frame"});
   ports_.add_input({"r_foot_pos", 3, "m", "right foot frame origin o_R, world frame"});
   ports_.add_input({"contact", 2, "1", "contact state (left, right) from the gait schedule, 0 or 1"});
+  if (params.mass_source == Params::MassSource::input) {
+    ports_.add_input({"mass", 1, "kg", "total robot mass m (mass_source = input)"});
+  }
   ports_.add_output({"l_force", 3, "N", "left foot ground reaction force F_L, world frame"});
   ports_.add_output({"r_force", 3, "N", "right foot ground reaction force F_R, world frame"});
   ports_.add_output({"total_force", 3, "N", "total ground reaction force F = m R_wb f_imu"});
@@ -36,10 +51,14 @@ void LegForceSplit::step(const StepIO& io) noexcept {
   const auto contact = io.in(kContact);
   const bool left = contact[0] > 0.5;
   const bool right = contact[1] > 0.5;
-  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  // Without a finite IMU reading, orientation or contact state the total force is unknown: NaN
+  // tells the stages downstream that the virtual sensor is not ready (a zero would be a value).
+  Eigen::Vector3d total = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   if (all_finite(io.in(kImuAcc)) && all_finite(io.in(kBaseRpy))) {
-    total = params_.mass_kg * (rotation_from_rpy(io.in(kBaseRpy)) * vector3(io.in(kImuAcc)));
+    const double mass = params_.mass_source == Params::MassSource::input ? io.in(kMass)[0] : params_.mass_kg;
+    total = mass * (rotation_from_rpy(io.in(kBaseRpy)) * vector3(io.in(kImuAcc)));
   }
+  if (!all_finite(contact)) total.setConstant(std::numeric_limits<double>::quiet_NaN());
   const Eigen::Vector3d o_l = vector3(io.in(kLeftFootPos));
   const Eigen::Vector3d o_r = vector3(io.in(kRightFootPos));
   const Eigen::Vector3d c = vector3(io.in(kCom));
@@ -60,7 +79,7 @@ void LegForceSplit::step(const StepIO& io) noexcept {
     alpha = 1.0;
   } else if (right) {
     alpha = -1.0;
-  } else {
+  } else if (all_finite(contact)) {
     total.setZero();  // flight, or the robot lifted: no ground force to split
   }
   const auto fl = io.out(kLeftForce);

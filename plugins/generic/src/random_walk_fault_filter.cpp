@@ -34,7 +34,12 @@ RandomWalkFaultFilter::RandomWalkFaultFilter(const Params& params, const StageCo
   ports_.add_output({"fault_estimate", dim, std::string(kAnyUnit), "eta_hat, the estimated sensor fault"});
   ports_.add_output({"true_estimate", dim, std::string(kAnyUnit), "the filter's estimate of the true signal N"});
   ports_.add_output({"ready", dim, std::string(kDimensionless),
-                     "1 once the fault variance has converged to its steady state"});
+                     "1 once the fault variance has converged and both inputs are finite (0: virtual "
+                     "sensor not ready, the state holds)"});
+  ports_.add_output({"fault_variance", dim, std::string(kAnyUnitSquared),
+                     "posterior variance p of eta_hat (unit of the signal, squared), for health monitoring"});
+  ports_.add_output({"covariance_resets", dim, std::string(kDimensionless),
+                     "number of covariance resets of the channel since reset (non-finite or non-positive P)"});
   channels_.resize(dim);
   reset();
 }
@@ -54,6 +59,7 @@ void RandomWalkFaultFilter::reset_channel(Channel& c) const noexcept {
 void RandomWalkFaultFilter::reset() noexcept {
   for (auto& c : channels_) {
     c.fault = 0.0;
+    c.resets = 0.0;
     reset_channel(c);
   }
   covariance_resets_ = 0;
@@ -65,6 +71,8 @@ void RandomWalkFaultFilter::step(const StepIO& io) noexcept {
   const auto fault_out = io.out(kFaultEstimate);
   const auto true_out = io.out(kTrueEstimate);
   const auto ready_out = io.out(kReady);
+  const auto variance_out = io.out(kFaultVariance);
+  const auto resets_out = io.out(kCovarianceResets);
   const double q_fault = params_.fault_process_noise;
   const double q_force = params_.force_process_noise;
   const double r = params_.measurement_noise;
@@ -72,7 +80,8 @@ void RandomWalkFaultFilter::step(const StepIO& io) noexcept {
     Channel& c = channels_[j];
     const double u = measured[j];
     const double y = estimate[j];
-    if (std::isfinite(u) && std::isfinite(y)) {
+    const bool inputs_finite = std::isfinite(u) && std::isfinite(y);
+    if (inputs_finite) {
       // Predict: x- = A x + B u; with A = [1 0; -1 0] only var(eta) survives the propagation.
       const double a = c.p_fault;
       const double prior_fault_var = a + q_fault;
@@ -94,12 +103,16 @@ void RandomWalkFaultFilter::step(const StepIO& io) noexcept {
         c.fault = std::isfinite(c.fault) ? c.fault : 0.0;
         reset_channel(c);
         ++covariance_resets_;
+        c.resets += 1.0;
       }
     } else {
       true_out[j] = std::isfinite(u) ? u - c.fault : y;
     }
     fault_out[j] = c.fault;
-    ready_out[j] = std::abs(c.p_fault - steady_variance_) <= params_.ready_tolerance * steady_variance_ ? 1.0 : 0.0;
+    const bool converged = std::abs(c.p_fault - steady_variance_) <= params_.ready_tolerance * steady_variance_;
+    ready_out[j] = inputs_finite && converged ? 1.0 : 0.0;
+    variance_out[j] = c.p_fault;
+    resets_out[j] = c.resets;
   }
 }
 

@@ -22,13 +22,16 @@ void ThresholdDetector::Params::describe(ParamSchema<Params>& schema) {
              "no threshold flags during this time after reset (initialisation transient)")
       .unit("s")
       .at_least(0.0);
+  schema.add("check_measured", &Params::check_measured,
+             "also flag a channel invalid while its measured value is NaN or Inf (adds input measured)");
 }
 
 ThresholdDetector::ThresholdDetector(const Params& params, const StageContext& context)
     : sample_period_s_(context.sample_period_s()),
       on_delay_s_(params.on_delay_s),
       off_delay_s_(params.off_delay_s),
-      warmup_s_(params.warmup_s) {
+      warmup_s_(params.warmup_s),
+      check_measured_(params.check_measured) {
   const std::size_t dim = context.wired_dim("signal", params.thresholds.size());
   if (params.thresholds.size() != 1 && params.thresholds.size() != dim) {
     throw ConfigError("/params/thresholds",
@@ -38,6 +41,9 @@ ThresholdDetector::ThresholdDetector(const Params& params, const StageContext& c
   thresholds_.assign(dim, params.thresholds.front());
   if (params.thresholds.size() == dim) thresholds_ = params.thresholds;
   ports_.add_input({"signal", dim, std::string(kAnyUnit), "the evaluated signal s (e.g. filtered fault estimate)"});
+  if (check_measured_) {
+    ports_.add_input({"measured", dim, std::string(kAnyUnit), "the monitored sensor, checked for NaN/Inf"});
+  }
   ports_.add_output({"fault", dim, std::string(kDimensionless), "1 when a fault is detected, else 0"});
   ports_.add_output({"fault_type", dim, std::string(kDimensionless),
                      "fault type code: 0 none, 1 unclassified, 8 invalid"});
@@ -63,7 +69,7 @@ void ThresholdDetector::step(const StepIO& io) noexcept {
   }
   const bool warming_up = io.time_s - start_time_s_ < warmup_s_ - 0.5 * sample_period_s_;
   for (std::size_t j = 0; j < thresholds_.size(); ++j) {
-    if (!std::isfinite(s[j])) {
+    if (!std::isfinite(s[j]) || (check_measured_ && !std::isfinite(io.in(kMeasured)[j]))) {
       fault[j] = 1.0;
       type[j] = static_cast<double>(FaultType::invalid);
       continue;

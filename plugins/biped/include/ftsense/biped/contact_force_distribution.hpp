@@ -17,7 +17,9 @@
 // equality-constrained subproblems Ceres solves (as the user asked; Ceres allocates internally,
 // so it is for offline runs and cross-checks). Outputs N [N] in the order of `points`, and the
 // solver status code (0 optimal, 1 zero load, 2 invalid input, 3 iteration limit, 4 solver
-// failure). Forces are never NaN.
+// failure). Forces are NaN exactly when there is no answer (status 2 or more): an invalid input
+// means the virtual sensor upstream is not ready, and NaN makes the fault filter hold its state
+// instead of judging the sensors against a made-up zero.
 
 #include <array>
 #include <memory>

@@ -45,7 +45,9 @@
 // recovered), recovered (offset/drift: N - b(t); gain: N / k; noise: 10 Hz low-pass of N;
 // spikes: median of the last three readings; otherwise the virtual value),
 // virtual (leave-one-out: 0 when airborne, else F_z - sum of the other channels' recovered
-// values). `unisolated` is 1 while the low-passed sum residual exceeds sum_threshold_N with no
+// values; NaN while F_z is not finite, the virtual sensor not ready), virtual_ready (1 while F_z
+// is finite; while it is not, the sum residual holds and no channel is judged on it).
+// `unisolated` is 1 while the low-passed sum residual exceeds sum_threshold_N with no
 // channel flagged: a fault of the virtual sensor's own inputs (IMU) or one that cannot be
 // isolated, reported as such rather than blamed on a force sensor.
 // Channel order: the left foot's points, then the right foot's, each in the order of `points`.
@@ -91,7 +93,8 @@ class ContactForceFdi {
   };
 
   enum Input : std::size_t { kMeasured, kTotalForce, kLeftPos, kLeftRpy, kRightPos, kRightRpy };
-  enum Output : std::size_t { kFault, kFaultType, kFaultEstimate, kRecovered, kVirtual, kSumResidual, kUnisolated };
+  enum Output : std::size_t {
+    kFault, kFaultType, kFaultEstimate, kRecovered, kVirtual, kSumResidual, kUnisolated, kVirtualReady };
 
   ContactForceFdi(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }

@@ -10,7 +10,8 @@
 // equivalently r_i = [-M_y / f_z, M_x / f_z] with M = d x f, the moment about the foot origin.
 // r_i is clamped to the support polygon (the convex hull of the contact points). When
 // f_z < min_normal_force_N (swing, flight, a foot barely touching) there is no division: the
-// CoP is the polygon's centroid, `loaded` is 0 and normal_force is max(f_z, 0).
+// CoP is the polygon's centroid, `loaded` is 0 and normal_force is max(f_z, 0). A non-finite
+// input (the IMU or kinematics not available) makes cop and normal_force NaN and loaded 0.
 
 #include <array>
 #include <string_view>

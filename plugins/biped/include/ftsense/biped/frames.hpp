@@ -28,6 +28,15 @@ namespace ftsense::biped {
   return rotation_from_rpy(rpy[0], rpy[1], rpy[2]);
 }
 
+// The inverse of rotation_from_rpy: roll, pitch, yaw with pitch in [-pi/2, pi/2]. At pitch = +-pi/2
+// (where only roll - yaw or roll + yaw is defined) yaw is set to 0; the rotation still round-trips.
+[[nodiscard]] inline Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& r) noexcept {
+  const double cos_pitch = std::hypot(r(0, 0), r(1, 0));
+  const double pitch = std::atan2(-r(2, 0), cos_pitch);
+  if (cos_pitch > 1e-12) return {std::atan2(r(2, 1), r(2, 2)), pitch, std::atan2(r(1, 0), r(0, 0))};
+  return {std::atan2(-r(1, 2), r(1, 1)), pitch, 0.0};
+}
+
 [[nodiscard]] inline Eigen::Vector3d vector3(std::span<const double> v) noexcept {
   return {v[0], v[1], v[2]};
 }

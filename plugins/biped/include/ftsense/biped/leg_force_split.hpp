@@ -11,8 +11,12 @@
 //
 // c_lat_max is `lateral_reach_m` when > 0; otherwise it is recorded as |c_lat| at each onset of
 // single support (starting from half the feet's distance). A foot the contact schedule says is in
-// swing carries nothing (alpha = +-1); with neither foot in contact both forces are zero.
+// swing carries nothing (alpha = +-1); with neither foot in contact both forces are zero. A
+// non-finite IMU reading, orientation or contact state with a foot possibly in contact makes the
+// forces NaN: the virtual sensor is not ready, and the stages downstream pass that on.
 // o_L, o_R are the foot frame origins (sole plane under the ankle) in the world frame [m].
+// m is `mass_kg`, or with mass_source = "input" the value of input `mass` (for example the URDF's
+// total mass from urdf_kinematics).
 
 #include <string_view>
 
@@ -29,10 +33,13 @@ class LegForceSplit {
   struct Params {
     double mass_kg = 0.0;
     double lateral_reach_m = 0.0;
+    enum class MassSource { param, input };
+    MassSource mass_source = MassSource::param;
     static void describe(ParamSchema<Params>& schema);
+    void validate(Diagnostics& diag, std::string_view path) const;
   };
 
-  enum Input : std::size_t { kImuAcc, kBaseRpy, kCom, kLeftFootPos, kRightFootPos, kContact };
+  enum Input : std::size_t { kImuAcc, kBaseRpy, kCom, kLeftFootPos, kRightFootPos, kContact, kMass };
   enum Output : std::size_t { kLeftForce, kRightForce, kTotalForce, kAlpha };
 
   LegForceSplit(const Params& params, const StageContext& context);

@@ -12,12 +12,16 @@
 // N_vfs - (N_meas - eta), and eta_hat tracks N_meas - N_vfs with a time constant set by Q/R.
 // In steady state the posterior fault variance p solves p^2 - q_eta p - q_eta (q_N + r) = 0 and
 // the fault gain is K_eta = -p / (p + q_N + r) (about -1e-3 per tick, tau ~ 1 s, with the
-// paper's values). `ready` is 1 once p is within `ready_tolerance` of that steady state: before
-// that the estimate is an initialisation transient, not evidence.
+// paper's values). `ready` is 1 once p is within `ready_tolerance` of that steady state (before
+// that the estimate is an initialisation transient, not evidence) and both inputs are finite on
+// this tick: a NaN or Inf virtual value means the virtual sensor is not ready, the channel's state
+// holds and no fault is blamed on the sensor.
 //
 // Covariance: each channel keeps [[a, b], [b, c]] as three numbers, so it is symmetric by
 // construction; the update is P = P- - (P- H^T)(P- H^T)^T / S. A non-finite or non-positive
-// variance (it cannot happen with valid parameters, but data can be hostile) resets that channel.
+// variance (it cannot happen with valid parameters, but data can be hostile) resets that channel
+// and is reported: output `covariance_resets` counts the resets of each channel since reset().
+// Output `fault_variance` is p itself, for health monitoring (it stays in (0, P0 + k q_eta]).
 // A non-finite input skips the update for that channel: the state holds.
 // Units: eta and N in the unit of the inputs (N for forces); q and r in that unit squared.
 
@@ -44,7 +48,7 @@ class RandomWalkFaultFilter {
   };
 
   enum Input : std::size_t { kMeasured, kVirtual };
-  enum Output : std::size_t { kFaultEstimate, kTrueEstimate, kReady };
+  enum Output : std::size_t { kFaultEstimate, kTrueEstimate, kReady, kFaultVariance, kCovarianceResets };
 
   RandomWalkFaultFilter(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
@@ -56,7 +60,7 @@ class RandomWalkFaultFilter {
   [[nodiscard]] double steady_state_fault_gain() const noexcept;
   [[nodiscard]] double steady_state_fault_variance() const noexcept { return steady_variance_; }
   [[nodiscard]] double fault_variance(std::size_t j) const noexcept { return channels_[j].p_fault; }
-  // Number of covariance resets since reset() (a health counter for reports).
+  // Number of covariance resets of all channels since reset() (a health counter for reports).
   [[nodiscard]] std::size_t covariance_resets() const noexcept { return covariance_resets_; }
 
  private:
@@ -66,6 +70,7 @@ class RandomWalkFaultFilter {
     double p_cross = 0.0;   // b = cov(eta, N)
     double p_force = 0.0;   // c = var(N)
     double fault_gain = 0.0;
+    double resets = 0.0;    // covariance resets of this channel since reset()
   };
   void reset_channel(Channel& c) const noexcept;
 

@@ -9,6 +9,10 @@
 // a non-finite s_j raises the flag at once with type code 8 (invalid). During the first
 // `warmup_s` seconds after reset (the estimators' initialisation transient) no threshold flag is
 // raised; invalid values are still flagged.
+//
+// With `check_measured`, the detector also reads the monitored sensor itself (input `measured`):
+// a NaN or Inf reading flags its channel invalid (8) on that very tick, whatever s says (a fault
+// filter holds its estimate on such a tick, so s alone would never show it).
 
 #include <string_view>
 #include <vector>
@@ -28,10 +32,11 @@ class ThresholdDetector {
     double on_delay_s = 0.0;
     double off_delay_s = 0.0;
     double warmup_s = 0.0;
+    bool check_measured = false;
     static void describe(ParamSchema<Params>& schema);
   };
 
-  enum Input : std::size_t { kSignal };
+  enum Input : std::size_t { kSignal, kMeasured };
   enum Output : std::size_t { kFault, kFaultType };
 
   ThresholdDetector(const Params& params, const StageContext& context);
@@ -48,6 +53,7 @@ class ThresholdDetector {
   double warmup_s_;
   double start_time_s_ = 0.0;
   bool started_ = false;
+  bool check_measured_ = false;
   std::vector<double> above_for_s_;
   std::vector<double> below_for_s_;
   std::vector<unsigned char> raised_;
