@@ -6,9 +6,12 @@
 
 #include "ftsense/biped/biped_plugins.hpp"
 #include "ftsense/generic/generic_plugins.hpp"
+#include "ftsense/robot_model/robot_model_plugins.hpp"
 
 namespace ftsense {
 
-using reference_plugins = merge_plugin_sets<generic::generic_plugins, biped::biped_plugins>;
+using reference_plugins =
+    merge_plugin_sets<merge_plugin_sets<generic::generic_plugins, biped::biped_plugins>,
+                      robot_model::robot_model_plugins>;
 
 }  // namespace ftsense

@@ -1,0 +1,82 @@
+#pragma once
+// Forward kinematics of a robot described by a URDF: CoM, sole frames, IMU orientation and a
+// kinematic contact state, from the base pose and the joint encoders.
+//
+// Inputs: the world pose of `base_link` (p_WB [m], roll-pitch-yaw of R_WB [rad] with
+// R = Rz(yaw) Ry(pitch) Rx(roll)) and the positions q of the joints listed in `joints`, in that
+// order [rad; m for prismatic joints]. Joints listed in `held_joints` are held at q = 0.
+// The maths of the tree is in kinematic_tree.hpp:
+//
+//   T_WL = T_WB * prod_{joints B -> L} T_PC(q)^(+-1),    c_W = sum_L m_L (R_WL c_L + p_WL) / M
+//
+// Outputs, world frame (z up):
+//   com          c_W [m], from the URDF's link masses (M = sum m_L, output `mass` [kg])
+//   l_sole_pos   p_W of `left_sole_link` [m]; l_sole_rpy its roll, pitch, yaw [rad]; same for r_
+//   imu_rpy      roll, pitch, yaw of R_W,IMU = R_WB R_B,IMU [rad]: the IMU frame is not the base
+//                frame, and a virtual force sensor rotating the IMU's specific force needs this one
+//   sole_height  h_i = min_l (p_W,i + R_W,i [x_l, y_l, 0])_z - g over the sole points (x_l, y_l)
+//                of `left_sole_points_m` / `right_sole_points_m` (sole frame; the geometry a URDF
+//                with mesh-only feet lacks), or of the sole origin when none [m]. The ground g is
+//                `ground_height_m` (ground_reference = plane) or the lower foot's lowest point
+//                min_l z of both soles (ground_reference = lowest_sole: walking on flat ground, one
+//                foot is always down; immune to a drifting world height of the base estimate)
+//   contact      1 when h_i < contact_height_m, else 0 (left, right): a contact state from
+//                kinematics, independent of the force sensors
+//
+// The URDF path is resolved against the config file's directory (StageContext::resolve_path).
+// A missing or unparsable URDF, an unknown link or joint name, or a movable joint the kinematics
+// needs that is neither read nor held is a ConfigError with the parameter's JSON Pointer.
+// Parsing and the tree walk's plan happen in the constructor; step() does not allocate.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ftsense/plugin.hpp"
+#include "ftsense/robot_model/kinematic_tree.hpp"
+
+namespace ftsense::robot_model {
+
+class UrdfKinematics {
+ public:
+  static constexpr std::string_view name = "urdf_kinematics";
+  static constexpr std::string_view summary =
+      "URDF forward kinematics: CoM, sole poses, IMU orientation and kinematic contact from base pose and joints";
+
+  struct Params {
+    std::string urdf;
+    std::vector<std::string> joints;
+    std::vector<std::string> held_joints;
+    std::string base_link;
+    std::string imu_link;
+    std::string left_sole_link;
+    std::string right_sole_link;
+    std::vector<std::array<double, 2>> left_sole_points_m;
+    std::vector<std::array<double, 2>> right_sole_points_m;
+    enum class GroundReference { plane, lowest_sole };
+    GroundReference ground_reference = GroundReference::plane;
+    double ground_height_m = 0.0;
+    double contact_height_m = 0.01;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kBasePos, kBaseRpy, kJointPositions };
+  enum Output : std::size_t {
+    kCom, kLeftSolePos, kLeftSoleRpy, kRightSolePos, kRightSoleRpy, kImuRpy, kSoleHeight, kContact, kMass
+  };
+
+  UrdfKinematics(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept {}
+  void step(const StepIO& io) noexcept;
+
+ private:
+  enum Frame : std::size_t { kImuFrame, kLeftSoleFrame, kRightSoleFrame };
+  Ports ports_;
+  Params params_;
+  std::optional<ForwardKinematics> kinematics_;
+};
+
+}  // namespace ftsense::robot_model
