@@ -59,10 +59,14 @@ int calibrate_command(const std::vector<std::string>& args) {
   }
   const ColumnMap map = ColumnMap::make(pipeline, *log);
   double start = std::nan("");
+  double last = std::nan("");
+  const ClockPolicy clock;
   RunSummary summary;
   try {
     summary = run_over_log(pipeline, *log, map, nullptr, [&](double t) {
-      if (std::isnan(start)) start = t;
+      // The runner resets the pipeline after a long gap: the warm-up starts again there.
+      if (std::isnan(start) || t - last > clock.gap_reset_periods * pipeline.sample_period_s()) start = t;
+      last = t;
       for (auto& d : detectors) {
         if (t - start < d.warmup_s) continue;
         const auto s = pipeline.values(d.signal);
@@ -75,6 +79,8 @@ int calibrate_command(const std::vector<std::string>& args) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitRuntime;
   }
+
+  std::cerr << clock_warnings(options.at("input"), summary, pipeline.sample_period_s(), clock);
 
   Json out = {{"description", "thresholds = margin x max |detector input| over a fault-free run, after warm-up"},
               {"config", config_path},

@@ -1,7 +1,10 @@
 #include "log_runner.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
+#include <sstream>
 
 namespace ftsense::cli {
 
@@ -42,9 +45,39 @@ std::vector<std::string> monitor_columns(const Monitor& monitor) {
   return columns;
 }
 
+namespace {
+
+// Reads up to `count` rows ahead and checks that their median time step is the config's T.
+std::deque<std::vector<double>> read_ahead_and_check_rate(io::CsvLogReader& log, double period,
+                                                          std::size_t count) {
+  std::deque<std::vector<double>> rows;
+  std::vector<double> row;
+  while (rows.size() < count && log.next(row)) rows.push_back(row);
+  if (rows.empty()) {
+    throw io::LogError(io::LogError::Kind::bad_row,
+                       log.path() + ":2: the log has a header but no data rows; nothing to run");
+  }
+  if (rows.size() < 3) return rows;
+  std::vector<double> steps;
+  for (std::size_t k = 1; k < rows.size(); ++k) steps.push_back(rows[k][0] - rows[k - 1][0]);
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  const double median = steps[steps.size() / 2];
+  if (std::abs(median - period) > 0.1 * period) {
+    std::ostringstream message;
+    message << log.path() << ": the log is sampled every " << median << " s (" << 1.0 / median
+            << " Hz, median of the first " << rows.size() << " rows) but the config's sample_period_s is "
+            << period << " s (" << 1.0 / period << " Hz); set sample_period_s to " << median
+            << " or resample the log (the filters' time constants are per tick)";
+    throw io::LogError(io::LogError::Kind::bad_row, message.str());
+  }
+  return rows;
+}
+
+}  // namespace
+
 RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnMap& map,
                         io::CsvLogWriter* out, const std::function<void(double)>& after_step,
-                        const std::vector<SignalRef>& recorded) {
+                        const std::vector<SignalRef>& recorded, const ClockPolicy& clock) {
   const Monitor& m = pipeline.monitor();
   const std::size_t channels = m.channels.size();
   RunSummary summary;
@@ -57,12 +90,30 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
   const double period = pipeline.sample_period_s();
   double last_time = std::numeric_limits<double>::quiet_NaN();
   pipeline.reset();
-  while (log.next(row)) {
+  std::deque<std::vector<double>> ahead = read_ahead_and_check_rate(log, period, clock.rate_check_rows);
+  std::size_t line = 1;  // of the row being stepped (the header is line 1)
+  while (true) {
+    if (!ahead.empty()) {
+      row = std::move(ahead.front());
+      ahead.pop_front();
+      ++line;
+    } else if (log.next(row)) {
+      line = log.line();
+    } else {
+      break;
+    }
     const double t = row[0];
-    if (!std::isnan(last_time) && std::abs((t - last_time) - period) > 0.1 * period) {
-      if (summary.irregular_steps++ == 0) {
-        summary.first_irregular_line = log.line();
-        summary.first_irregular_dt = t - last_time;
+    if (!std::isnan(last_time)) {
+      const double dt = t - last_time;
+      if (dt > clock.gap_reset_periods * period) {
+        pipeline.reset();
+        if (summary.gap_resets++ == 0) {
+          summary.first_gap_line = line;
+          summary.first_gap_s = dt;
+        }
+      } else if (std::abs(dt - period) > 0.1 * period && summary.irregular_steps++ == 0) {
+        summary.first_irregular_line = line;
+        summary.first_irregular_dt = dt;
       }
     }
     last_time = t;
@@ -99,6 +150,24 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
   }
   if (out != nullptr) out->flush();
   return summary;
+}
+
+std::string clock_warnings(const std::string& input_path, const RunSummary& summary, double period_s,
+                           const ClockPolicy& clock) {
+  std::ostringstream text;
+  if (summary.gap_resets > 0) {
+    text << "warning: " << input_path << ": " << summary.gap_resets << " time gap"
+         << (summary.gap_resets == 1 ? "" : "s") << " longer than " << clock.gap_reset_periods
+         << " T = " << clock.gap_reset_periods * period_s << " s (first at line " << summary.first_gap_line
+         << ": " << summary.first_gap_s << " s); the pipeline was reset at each: filters restarted and "
+         << "the detectors' warm-up ran again\n";
+  }
+  if (summary.irregular_steps > 0) {
+    text << "warning: " << input_path << ": " << summary.irregular_steps << " rows are not T = " << period_s
+         << " s after the previous one (first at line " << summary.first_irregular_line
+         << ", dt = " << summary.first_irregular_dt << " s); the filters assume the configured fixed tick\n";
+  }
+  return text.str();
 }
 
 void apply_thresholds(Json& config, const Json& thresholds, const std::string& thresholds_path) {

@@ -27,15 +27,37 @@ struct RunSummary {
   std::size_t irregular_steps = 0;  // rows whose time step differs from T by more than 10 %
   std::size_t first_irregular_line = 0;
   double first_irregular_dt = 0.0;
+  std::size_t gap_resets = 0;       // time steps longer than the gap limit: the pipeline was reset
+  std::size_t first_gap_line = 0;
+  double first_gap_s = 0.0;
   std::vector<double> first_fault_time_s;  // per channel; NaN when never flagged
 };
 
+// How the runner treats the log's clock (documented in docs/reliability.md):
+// - the median time step of the first rows (up to `rate_check_rows`) must be within 10 % of the
+//   config's T, else LogError: the log and the config disagree on the sample rate and every
+//   filter time constant would be off by their ratio;
+// - a time step longer than `gap_reset_periods` T (lost samples, a paused logger) resets the
+//   pipeline before that row: filters restart from their initial state and the detectors' warm-up
+//   runs again, rather than one predict step pretending to bridge the gap; counted and reported;
+// - smaller irregularities (jitter, a dropped sample or two) are counted and reported only.
+// Rows not after the previous one are rejected by the reader (io::LogError).
+struct ClockPolicy {
+  double gap_reset_periods = 10.0;
+  std::size_t rate_check_rows = 50;
+};
+
 // Steps the pipeline once per log row, writes the monitored channels to `out` (if given) and
-// calls `after_step(t)` after each tick (if given). Throws io::LogError on a malformed row.
-// `recorded` signals are appended to each output row after the monitored channels.
+// calls `after_step(t)` after each tick (if given). Throws io::LogError on a malformed row, a log
+// with no data rows, or a sample rate that is not the config's. `recorded` signals are appended
+// to each output row after the monitored channels.
 RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnMap& map,
                         io::CsvLogWriter* out, const std::function<void(double)>& after_step = {},
-                        const std::vector<SignalRef>& recorded = {});
+                        const std::vector<SignalRef>& recorded = {}, const ClockPolicy& clock = {});
+
+// Warnings about the log's clock (irregular steps, gap resets) for stderr; empty when none.
+std::string clock_warnings(const std::string& input_path, const RunSummary& summary, double period_s,
+                           const ClockPolicy& clock);
 
 // Thresholds written by `ftsense calibrate`: sets params.thresholds of each named stage in
 // `config`. Throws ConfigError naming the file and the stage when one does not fit.

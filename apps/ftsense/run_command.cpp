@@ -1,4 +1,5 @@
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 
 #include "cli.hpp"
@@ -13,7 +14,8 @@ int run_command(const std::vector<std::string>& args) {
       {"input", true, true, "input log (CSV, first column time_s)"},
       {"output", true, true, "where to write the monitored channels (CSV)"},
       {"thresholds", true, false, "thresholds from 'ftsense calibrate' (JSON), applied to the config"},
-      {"record", true, false, "further signals to write, comma-separated \"<stage>.<port>\" or \"input.<name>\""}};
+      {"record", true, false, "further signals to write, comma-separated \"<stage>.<port>\" or \"input.<name>\""},
+      {"gap-reset", true, false, "a time step longer than this many sample periods resets the pipeline (default 10)"}};
   const auto options = parse_options("run", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("run",
@@ -27,6 +29,17 @@ int run_command(const std::vector<std::string>& args) {
   const std::string& config_path = options.at("config");
   const std::string& input_path = options.at("input");
   const std::string& output_path = options.at("output");
+
+  ClockPolicy clock;
+  if (const auto g = options.find("gap-reset"); g != options.end()) {
+    char* end = nullptr;
+    clock.gap_reset_periods = std::strtod(g->second.c_str(), &end);
+    if (end == g->second.c_str() || *end != '\0' || !(clock.gap_reset_periods >= 1.5) ||
+        !std::isfinite(clock.gap_reset_periods)) {
+      throw UsageError{"ftsense run: --gap-reset " + g->second +
+                       ": give a number of sample periods >= 1.5 (a step of 1 T is no gap)"};
+    }
+  }
 
   // 1. The config, completely, before any data file is touched.
   Pipeline pipeline = options.count("thresholds") ? load_pipeline(config_path, options.at("thresholds"))
@@ -91,18 +104,12 @@ int run_command(const std::vector<std::string>& args) {
   // 3. Every row.
   RunSummary summary;
   try {
-    summary = run_over_log(pipeline, *log, map, &*out, {}, recorded);
+    summary = run_over_log(pipeline, *log, map, &*out, {}, recorded, clock);
   } catch (const io::LogError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitRuntime;
   }
-  if (summary.irregular_steps > 0) {
-    std::cerr << "warning: " << input_path << ": " << summary.irregular_steps
-              << " rows are not T = " << pipeline.sample_period_s()
-              << " s after the previous one (first at line " << summary.first_irregular_line
-              << ", dt = " << summary.first_irregular_dt
-              << " s); the filters assume the configured fixed tick\n";
-  }
+  std::cerr << clock_warnings(input_path, summary, pipeline.sample_period_s(), clock);
   std::cout << "ftsense run: " << summary.ticks << " ticks, " << pipeline.monitor().channels.size()
             << " channels -> " << output_path << '\n';
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {

@@ -82,5 +82,40 @@ check output_unwritable 2 $? "cannot create the output file" "$work/err"
 "$ftsense" check --config "$work/bad.json" > "$work/out" 2> "$work/err"; check check_bad 2 $? "unknown plugin" "$work/err"
 "$ftsense" plugins > "$work/out" 2> "$work/err"; check plugins 0 $? "^low_pass" "$work/out"
 
+# The log's clock (docs/reliability.md): no data rows, another sample rate, gaps, jitter.
+head -1 "$work/log.csv" > "$work/header_only.csv"
+"$ftsense" run --config "$good" --input "$work/header_only.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check header_only 1 $? "header_only.csv:2: the log has a header but no data rows" "$work/err"
+awk -F, -v OFS=, 'NR == 1 { print; next } { $1 = sprintf("%.3f", (NR - 2) / 100); print }' "$work/log.csv" > "$work/100hz.csv"
+"$ftsense" run --config "$good" --input "$work/100hz.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check sample_rate_mismatch 1 $? "100hz.csv: the log is sampled every 0.01 s \(100 Hz" "$work/err" \
+    "sample_period_s is 0.001 s \(1000 Hz\); set sample_period_s to 0.01 or resample" "$work/err"
+# c2 is off by +20 N from 1 s to 2 s, then the logger stops for 0.5 s: after the gap the
+# pipeline starts afresh (no stale +20 N in the low-pass), unless --gap-reset says the gap is none.
+awk -F, -v OFS=, 'NR == 1 { print; next } { t = $1 + 0; if (t >= 2.0 && t < 2.5) next; if (t >= 2.0) $3 = $2; print }' \
+    "$work/log.csv" > "$work/gap.csv"
+"$ftsense" run --config "$good" --input "$work/gap.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check gap_reset_reported 0 $? "gap.csv: 1 time gap longer than 10 T = 0.01 s \(first at line 2002: 0.501 s\); the pipeline was reset" "$work/err"
+flag_after_gap=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "c2/fault") c = i; next } $1 + 0 == 2.5 { print $c }' "$work/o.csv")
+[ "$flag_after_gap" = "0" ] && { passes=$((passes + 1)); echo "ok   gap_resets_the_filters"; } \
+  || { failures=$((failures + 1)); echo "FAIL gap_resets_the_filters: c2/fault at 2.5 s = '$flag_after_gap'"; }
+"$ftsense" run --config "$good" --input "$work/gap.csv" --output "$work/o.csv" --gap-reset 1000 > "$work/out" 2> "$work/err"
+check gap_not_reset_when_allowed 0 $? "1 rows are not T = 0.001 s after the previous one \(first at line 2002, dt = 0.501 s\)" "$work/err"
+flag_after_gap=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "c2/fault") c = i; next } $1 + 0 == 2.5 { print $c }' "$work/o.csv")
+[ "$flag_after_gap" = "1" ] && { passes=$((passes + 1)); echo "ok   gap_bridged_without_reset"; } \
+  || { failures=$((failures + 1)); echo "FAIL gap_bridged_without_reset: c2/fault at 2.5 s = '$flag_after_gap'"; }
+sed '501d' "$work/log.csv" > "$work/dropped.csv"
+"$ftsense" run --config "$good" --input "$work/dropped.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check one_dropped_sample_is_jitter 0 $? "1 rows are not T = 0.001 s after the previous one \(first at line 501, dt = 0.002 s\)" "$work/err"
+grep -q "gap" "$work/err" && { failures=$((failures + 1)); echo "FAIL one_dropped_sample_no_reset"; } || { passes=$((passes + 1)); echo "ok   one_dropped_sample_no_reset"; }
+"$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/o.csv" --gap-reset 1 > "$work/out" 2> "$work/err"
+check gap_reset_too_small 2 $? "--gap-reset 1: give a number of sample periods >= 1.5" "$work/err"
+
+# Determinism: the same log and config give byte-identical output.
+"$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/d1.csv" > /dev/null 2>&1
+"$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/d2.csv" > /dev/null 2>&1
+cmp -s "$work/d1.csv" "$work/d2.csv" && { passes=$((passes + 1)); echo "ok   run_is_deterministic"; } \
+  || { failures=$((failures + 1)); echo "FAIL run_is_deterministic: two runs differ"; }
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -6,6 +6,11 @@
 
 namespace ftsense::biped {
 
+namespace {
+// Initial state covariance: 0.1 m on c, 0.1 m/s on c', 1 m/s^2 on c'' (standard deviations).
+Eigen::Matrix3d initial_covariance() noexcept { return Eigen::Vector3d(1e-2, 1e-2, 1.0).asDiagonal(); }
+}  // namespace
+
 void LipmComEstimator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("com_height_m", &Params::com_height_m, "constant CoM height z_c of the LIPM")
       .unit("m").greater_than(0.0).required();
@@ -53,13 +58,14 @@ LipmComEstimator::LipmComEstimator(const Params& params, const StageContext& con
   ports_.add_output({"com", 3, "m", "CoM position (x, y, z_c), world frame"});
   ports_.add_output({"com_velocity", 2, "m/s", "CoM velocity (x, y)"});
   ports_.add_output({"com_acceleration", 2, "m/s^2", "CoM acceleration (x, y)"});
+  ports_.add_output({"com_variance", 2, "m^2", "posterior variance of the CoM position (x, y)"});
   reset();
 }
 
 void LipmComEstimator::reset() noexcept {
   for (Axis& a : axes_) {
     a.s.setZero();
-    a.P = Eigen::Vector3d(1e-2, 1e-2, 1.0).asDiagonal();
+    a.P = initial_covariance();
     a.previous_zmp = 0.0;
   }
   initialised_ = false;
@@ -112,10 +118,19 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
   const auto com = io.out(kCom);
   const auto vel = io.out(kComVelocity);
   const auto accel = io.out(kComAcceleration);
+  const auto variance = io.out(kComVariance);
   for (int i = 0; i < 2; ++i) {
-    com[i] = axes_[i].s(0);
-    vel[i] = axes_[i].s(1);
-    accel[i] = axes_[i].s(2);
+    Axis& a = axes_[i];
+    if (!(a.s.allFinite() && a.P.allFinite() && (a.P.diagonal().array() > 0.0).all())) {
+      // Hostile data overflowed the filter: restart this axis where it was last known to be.
+      const double c = std::isfinite(a.s(0)) ? a.s(0) : a.previous_zmp;
+      a.s = Eigen::Vector3d(std::isfinite(c) ? c : 0.0, 0.0, 0.0);
+      a.P = initial_covariance();
+    }
+    com[i] = a.s(0);
+    vel[i] = a.s(1);
+    accel[i] = a.s(2);
+    variance[i] = a.P(0, 0);
   }
   com[2] = params_.com_height_m;
 }

@@ -20,8 +20,11 @@
 // independence rule unless the config allows it).
 //
 // Outputs: com = [c_x, c_y, z_c] in the world frame [m] (z_c above the ground plane z = 0),
-// com_velocity [m/s], com_acceleration [m/s^2]. The state starts at c = p (first ZMP), c' = c'' = 0.
-// A non-finite measurement skips its update; the prediction always runs. Allocation-free.
+// com_velocity [m/s], com_acceleration [m/s^2], com_variance = [P_x(0,0), P_y(0,0)] [m^2] (the
+// posterior variance of c per axis, for health monitoring). The state starts at c = p (first ZMP),
+// c' = c'' = 0. A non-finite measurement skips its update; the prediction always runs. P stays
+// symmetric (symmetrised after each update); should it stop being finite and positive on its
+// diagonal (hostile data), the axis restarts from its initial covariance. Allocation-free.
 
 #include <array>
 #include <string_view>
@@ -53,7 +56,7 @@ class LipmComEstimator {
   };
 
   enum Input : std::size_t { kImuAcc, kBaseRpy, kZmp, kKinematicCom };
-  enum Output : std::size_t { kCom, kComVelocity, kComAcceleration };
+  enum Output : std::size_t { kCom, kComVelocity, kComAcceleration, kComVariance };
 
   LipmComEstimator(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
