@@ -734,6 +734,10 @@ class PipelineBuilder {
     std::string generic_unit_source;
     // Per input port: the dependencies of what is wired, for the independence rule.
     std::vector<std::set<std::string>> port_depends_on(ports.inputs().size());
+    // Per input port: the sensors its values leave out channel by channel (leave-one-out outputs),
+    // and whether every value wired to it is such an output.
+    std::vector<std::set<std::string>> port_leaves_out(ports.inputs().size());
+    std::vector<bool> port_all_leave_one_out(ports.inputs().size(), true);
     for (std::size_t p = 0; p < ports.inputs().size(); ++p) {
       const PortSpec& spec = ports.inputs()[p];
       std::size_t w = 0;
@@ -761,6 +765,8 @@ class PipelineBuilder {
       for (std::size_t e = 0; e < wire.ends.size(); ++e) {
         const SignalInfo& s = *resolved[w].ends[e];
         port_depends_on[p].insert(s.depends_on.begin(), s.depends_on.end());
+        port_leaves_out[p].insert(s.leave_one_out_of.begin(), s.leave_one_out_of.end());
+        port_all_leave_one_out[p] = port_all_leave_one_out[p] && !s.leave_one_out_of.empty();
         if (spec.unit.empty()) {
           if (!generic_unit) {
             generic_unit = s.unit;
@@ -781,7 +787,7 @@ class PipelineBuilder {
       }
       stage_depends_on.insert(port_depends_on[p].begin(), port_depends_on[p].end());
     }
-    check_independence(d, ports, port_depends_on);
+    check_independence(d, ports, port_depends_on, port_leaves_out, port_all_leave_one_out);
     if (!ok) return;
     // Buffers: an input wired to exactly one signal reads it in place; a concatenation is
     // gathered into a block of its own before each step.
@@ -848,16 +854,32 @@ class PipelineBuilder {
   }
 
   void check_independence(const StageDecl& d, const Ports& ports,
-                          const std::vector<std::set<std::string>>& depends_on) {
+                          const std::vector<std::set<std::string>>& depends_on,
+                          const std::vector<std::set<std::string>>& leaves_out,
+                          const std::vector<bool>& all_leave_one_out) {
     for (std::size_t v = 0; v < ports.inputs().size(); ++v) {
       if (ports.inputs()[v].role != PortRole::virtual_estimate) continue;
       for (std::size_t m = 0; m < ports.inputs().size(); ++m) {
         if (ports.inputs()[m].role != PortRole::measured) continue;
         report_dependence(d.path + "/inputs/" + json_pointer_token(ports.inputs()[v].name),
                           "'" + ports.inputs()[v].name + "' of stage '" + d.name + "'",
-                          "'" + ports.inputs()[m].name + "'", depends_on[v], depends_on[m]);
+                          "'" + ports.inputs()[m].name + "'",
+                          independent_part(depends_on[v], leaves_out[v], all_leave_one_out[v], depends_on[m]),
+                          depends_on[m]);
       }
     }
+  }
+
+  // What a virtual signal depends on, less the sensors it leaves out channel by channel when it
+  // is a leave-one-out estimate of exactly the measured signal (the same rule as the monitor's).
+  static std::set<std::string> independent_part(std::set<std::string> virtual_deps,
+                                                const std::set<std::string>& leaves_out,
+                                                bool all_leave_one_out,
+                                                const std::set<std::string>& measured_deps) {
+    if (all_leave_one_out && measured_deps == leaves_out) {
+      for (const auto& name : leaves_out) virtual_deps.erase(name);
+    }
+    return virtual_deps;
   }
 
   void report_dependence(const std::string& path, const std::string& virtual_what,
@@ -1012,10 +1034,9 @@ class PipelineBuilder {
     m.unit = units[0];
     // A leave-one-out virtual sensor of exactly the measured signal is independent channel by
     // channel: the inputs it leaves out do not count as shared.
-    if (virtual_all_leave_one_out && deps[0] == virtual_leave_one_out) {
-      for (const auto& name : virtual_leave_one_out) deps[1].erase(name);
-    }
-    report_dependence(path + "/virtual", "'monitor/virtual'", "'monitor/measured'", deps[1], deps[0]);
+    report_dependence(path + "/virtual", "'monitor/virtual'", "'monitor/measured'",
+                      independent_part(deps[1], virtual_leave_one_out, virtual_all_leave_one_out, deps[0]),
+                      deps[0]);
     pipeline_.has_monitor_ = true;
   }
 

@@ -122,6 +122,45 @@ TEST(Pipeline, SurvivesBeingMoved) {
   EXPECT_EQ(moved.values(moved.signal("residual.residual"))[2], 3.0);
 }
 
+// A leave-one-out virtual sensor (channel j computed from every sensor but j) may be compared
+// with exactly the sensors it leaves out, in a stage as in the monitor; anything else that
+// depends on those sensors still trips the independence rule.
+Json leave_one_out_config(const std::string& virtual_wire) {
+  return parse_json_text(R"({
+    "sample_period_s": 0.001,
+    "inputs": {
+      "forces": {"columns": ["f1", "f2", "f3", "f4", "f5", "f6", "f7", "f8"], "unit": "N"},
+      "total_force": {"columns": ["fx", "fy", "fz"], "unit": "N"},
+      "l_pos": {"columns": ["lx", "ly", "lz"], "unit": "m"},
+      "l_rpy": {"columns": ["lr", "lp", "lw"], "unit": "rad"},
+      "r_pos": {"columns": ["rx", "ry", "rz"], "unit": "m"},
+      "r_rpy": {"columns": ["rr", "rp", "rw"], "unit": "rad"}
+    },
+    "stages": [
+      {"name": "fdi", "plugin": "contact_force_fdi",
+       "params": {"points": [[0.1, 0.05], [0.1, -0.05], [-0.1, 0.05], [-0.1, -0.05]]},
+       "inputs": {"measured": "input.forces", "total_force": "input.total_force",
+                  "l_foot_pos": "input.l_pos", "l_foot_rpy": "input.l_rpy",
+                  "r_foot_pos": "input.r_pos", "r_foot_rpy": "input.r_rpy"}},
+      {"name": "residual", "plugin": "difference_residual",
+       "inputs": {"measured": "input.forces", "virtual": ")" + virtual_wire + R"("}}
+    ]
+  })", "leave_one_out.json");
+}
+
+TEST(Pipeline, LeaveOneOutVirtualSensorMayJudgeTheSensorsItLeavesOut) {
+  const Pipeline p = build(leave_one_out_config("fdi.virtual"));
+  EXPECT_TRUE(p.warnings().empty());
+  try {
+    (void)build(leave_one_out_config("fdi.recovered"));  // channel j of recovered uses sensor j
+    FAIL() << "a recovered signal judged against its own sensors was accepted";
+  } catch (const ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1u) << e.what();
+    EXPECT_EQ(e.problems()[0].path, "/stages/1/inputs/virtual");
+    EXPECT_NE(e.problems()[0].message.find("independence rule"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Pipeline, MonitorGathersConcatenatedSignals) {
   Json config = test::base_config();
   config["inputs"]["extra"] = Json::parse(R"({"columns": ["e"], "unit": "N"})");
