@@ -49,6 +49,7 @@ int run_command(const std::vector<std::string>& args);
 int check_command(const std::vector<std::string>& args);
 int calibrate_command(const std::vector<std::string>& args);
 int simulate_command(const std::vector<std::string>& args);
+int inject_command(const std::vector<std::string>& args);
 int demo_command(const std::vector<std::string>& args);
 int plugins_command(const std::vector<std::string>& args);
 

@@ -19,6 +19,7 @@ constexpr const char* kHelp =
 #ifdef FTSENSE_HAVE_SIM
     "  simulate  simulate the SURALP biped walking a scenario (MuJoCo), with faults\n"
     "  demo      the paper's experiment end to end (what make demo runs)\n"
+    "  inject    apply the simulator's fault models to columns of a recorded log\n"
 #endif
     "  run       run a pipeline (JSON config) over a CSV log and write the monitored channels\n"
     "  check     check a pipeline config and list every problem\n"
@@ -48,10 +49,11 @@ int main(int argc, char** argv) {
 #ifdef FTSENSE_HAVE_SIM
     if (verb == "simulate") return simulate_command(args);
     if (verb == "demo") return demo_command(args);
+    if (verb == "inject") return inject_command(args);
 #endif
     if (verb == "plugins") return plugins_command(args);
     std::cerr << "ftsense: unknown verb '" << verb << "'; "
-              << ftsense::suggest(verb, {"run", "check", "calibrate", "report", "simulate", "demo", "plugins"}) << "\nsee 'ftsense --help'\n";
+              << ftsense::suggest(verb, {"run", "check", "calibrate", "report", "simulate", "demo", "inject", "plugins"}) << "\nsee 'ftsense --help'\n";
     return kExitUsage;
   } catch (const UsageError& e) {
     std::cerr << e.message << '\n';

@@ -247,7 +247,7 @@ void read_sensors(const json& j, const std::string& path, SensorParams& s, std::
 }
 
 std::optional<FaultSpec> read_fault(const json& j, const std::string& path, double duration,
-                                    std::vector<std::string>& e) {
+                                    const std::vector<std::string_view>& channels, std::vector<std::string>& e) {
   if (!j.is_object()) {
     e.push_back(path + " = " + j.dump() + " has type " + type_name(j) + ", expected object");
     return std::nullopt;
@@ -255,7 +255,6 @@ std::optional<FaultSpec> read_fault(const json& j, const std::string& path, doub
   const std::size_t before = e.size();
   ObjectReader r(j, path, e);
   FaultSpec f;
-  std::vector<std::string_view> channels(kForceChannels.begin(), kForceChannels.end());
   if (auto ch = r.choice("channel", channels))
     f.channel = static_cast<int>(std::find(channels.begin(), channels.end(), *ch) - channels.begin());
   const auto type = r.choice("type", fault_type_names());
@@ -299,6 +298,30 @@ std::optional<FaultSpec> read_fault(const json& j, const std::string& path, doub
 
 }  // namespace
 
+std::vector<FaultSpec> parse_faults(const json& faults, const std::string& path,
+                                    const std::vector<std::string_view>& channels, double duration_s,
+                                    std::vector<std::string>& e) {
+  std::vector<std::pair<std::size_t, FaultSpec>> ok;
+  for (std::size_t i = 0; i < faults.size(); ++i) {
+    if (auto f = read_fault(faults[i], path + "/" + std::to_string(i), duration_s, channels, e)) ok.emplace_back(i, *f);
+  }
+  // Faults on one channel must not overlap in time (one truth label per tick).
+  for (std::size_t a = 0; a < ok.size(); ++a)
+    for (std::size_t b = a + 1; b < ok.size(); ++b) {
+      const FaultSpec &fa_ = ok[a].second, &fb = ok[b].second;
+      if (fa_.channel != fb.channel) continue;
+      const double ea = fa_.end_s.value_or(std::numeric_limits<double>::infinity());
+      const double eb = fb.end_s.value_or(std::numeric_limits<double>::infinity());
+      if (fa_.start_s < eb && fb.start_s < ea)
+        e.push_back(path + "/" + std::to_string(ok[b].first) + " overlaps " + path + "/" + std::to_string(ok[a].first) +
+                    " in time on channel " + std::string(channels[static_cast<std::size_t>(fa_.channel)]) +
+                    "; faults on one channel must not overlap (end_s of one <= start_s of the other)");
+    }
+  std::vector<FaultSpec> out;
+  for (auto& [i, f] : ok) out.push_back(f);
+  return out;
+}
+
 ScenarioError::ScenarioError(std::vector<std::string> problems)
     : std::runtime_error(join(problems, "\n")), problems_(std::move(problems)) {}
 
@@ -317,25 +340,8 @@ Scenario parse_scenario(const json& doc) {
   if (const json* g = r.object("gait", true)) read_gait(*g, r.at("gait"), s.gait, e);
   if (const json* se = r.object("sensors", false)) read_sensors(*se, r.at("sensors"), s.sensors, e);
   if (const json* fa = r.array("faults", true)) {
-    std::vector<std::pair<std::size_t, FaultSpec>> ok;
-    for (std::size_t i = 0; i < fa->size(); ++i) {
-      if (auto f = read_fault((*fa)[i], r.at("faults") + "/" + std::to_string(i), s.duration_s, e))
-        ok.emplace_back(i, *f);
-    }
-    // Faults on one channel must not overlap in time (one truth label per tick).
-    for (std::size_t a = 0; a < ok.size(); ++a)
-      for (std::size_t b = a + 1; b < ok.size(); ++b) {
-        const FaultSpec &fa_ = ok[a].second, &fb = ok[b].second;
-        if (fa_.channel != fb.channel) continue;
-        const double ea = fa_.end_s.value_or(std::numeric_limits<double>::infinity());
-        const double eb = fb.end_s.value_or(std::numeric_limits<double>::infinity());
-        if (fa_.start_s < eb && fb.start_s < ea)
-          e.push_back("/faults/" + std::to_string(ok[b].first) + " overlaps /faults/" +
-                      std::to_string(ok[a].first) + " in time on channel " +
-                      std::string(kForceChannels[static_cast<std::size_t>(fa_.channel)]) +
-                      "; faults on one channel must not overlap (end_s of one <= start_s of the other)");
-      }
-    for (auto& [i, f] : ok) s.faults.push_back(f);
+    const std::vector<std::string_view> channels(kForceChannels.begin(), kForceChannels.end());
+    s.faults = parse_faults(*fa, r.at("faults"), channels, s.duration_s, e);
   }
   r.finish();
   if (!e.empty()) throw ScenarioError(std::move(e));

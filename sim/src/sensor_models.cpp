@@ -80,8 +80,31 @@ ForceChannelModel::ForceChannelModel(int channel, double noise_std, std::vector<
     const auto start = static_cast<std::int64_t>(std::llround(f.start_s / dt));
     const std::int64_t end = f.end_s ? static_cast<std::int64_t>(std::llround(*f.end_s / dt))
                                      : std::numeric_limits<std::int64_t>::max();
-    faults_.push_back(Active{f, start, end, Rng(seed, stream++), 0.0, false});
+    faults_.push_back(Active{f, start, end, FaultState{Rng(seed, stream++), 0.0, false}});
   }
+}
+
+double apply_fault(const FaultSpec& f, double elapsed_s, double tick_s, double y,
+                   std::optional<double> previous, FaultState& state) {
+  switch (f.type) {
+    case FaultType::offset: return y + f.offset_N;
+    case FaultType::drift: return y + f.slope_N_s * elapsed_s;
+    case FaultType::frozen:
+      if (!state.frozen_set) {
+        state.frozen_value = f.value_N ? *f.value_N : previous.value_or(y);
+        state.frozen_set = true;
+      }
+      return state.frozen_value;
+    case FaultType::gain: return y * f.gain;
+    case FaultType::noise: return y + f.std_N * state.rng.normal();
+    case FaultType::spikes:
+      if (state.rng.uniform() < f.rate_hz * tick_s) y += (state.rng.uniform() < 0.5 ? -1.0 : 1.0) * f.amplitude_N;
+      return y;
+    case FaultType::invalid: return std::numeric_limits<double>::quiet_NaN();
+    case FaultType::saturation: return std::clamp(y, f.min_N, f.max_N);
+    case FaultType::none: break;
+  }
+  return y;
 }
 
 ForceChannelModel::Output ForceChannelModel::step(std::int64_t k, double true_force) {
@@ -89,27 +112,9 @@ ForceChannelModel::Output ForceChannelModel::step(std::int64_t k, double true_fo
   FaultType code = FaultType::none;
   for (auto& a : faults_) {
     if (k < a.start_tick || k >= a.end_tick) continue;
-    const FaultSpec& f = a.spec;
-    code = f.type;
-    switch (f.type) {
-      case FaultType::offset: y += f.offset_N; break;
-      case FaultType::drift: y += f.slope_N_s * static_cast<double>(k - a.start_tick) * dt_; break;
-      case FaultType::frozen:
-        if (!a.frozen_set) {
-          a.frozen_value = f.value_N ? *f.value_N : (has_last_ ? last_output_ : y);
-          a.frozen_set = true;
-        }
-        y = a.frozen_value;
-        break;
-      case FaultType::gain: y *= f.gain; break;
-      case FaultType::noise: y += f.std_N * a.rng.normal(); break;
-      case FaultType::spikes:
-        if (a.rng.uniform() < f.rate_hz * dt_) y += (a.rng.uniform() < 0.5 ? -1.0 : 1.0) * f.amplitude_N;
-        break;
-      case FaultType::invalid: y = std::numeric_limits<double>::quiet_NaN(); break;
-      case FaultType::saturation: y = std::clamp(y, f.min_N, f.max_N); break;
-      case FaultType::none: break;
-    }
+    code = a.spec.type;
+    y = apply_fault(a.spec, static_cast<double>(k - a.start_tick) * dt_, dt_, y,
+                    has_last_ ? std::optional<double>(last_output_) : std::nullopt, a.state);
     break;  // faults on one channel never overlap (checked when loading the scenario)
   }
   last_output_ = y;

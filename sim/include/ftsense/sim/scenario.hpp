@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -39,6 +40,13 @@ class ScenarioError : public std::runtime_error {
 };
 
 [[nodiscard]] Scenario parse_scenario(const nlohmann::json& doc);
+/// Reads a scenario-style "faults" array (the keys of sim/README.md) whose "channel" names one of
+/// `channels` (FaultSpec::channel is its index there), with start and end times in [0, duration_s].
+/// Problems, faults overlapping in time on one channel included, are appended to `errors`, each
+/// starting with its JSON Pointer under `path`.
+[[nodiscard]] std::vector<FaultSpec> parse_faults(const nlohmann::json& faults, const std::string& path,
+                                                  const std::vector<std::string_view>& channels,
+                                                  double duration_s, std::vector<std::string>& errors);
 /// Parses JSON text; syntax errors are reported as a ScenarioError too.
 [[nodiscard]] Scenario parse_scenario_text(const std::string& text);
 [[nodiscard]] Scenario load_scenario(const std::filesystem::path& path);

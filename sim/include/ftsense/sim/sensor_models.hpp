@@ -99,6 +99,21 @@ struct SensorParams {
   std::array<double, 3> acc_fault_offset_m_s2 = {0.0, 0.0, 0.0};
 };
 
+/// What a fault model keeps between samples: its own random stream (noise bursts, spikes) and the
+/// value a frozen channel holds.
+struct FaultState {
+  Rng rng;
+  double frozen_value = 0.0;
+  bool frozen_set = false;
+};
+
+/// The fault models of this header applied to one sample y of an active fault: `elapsed_s` after
+/// its start, `tick_s` the sample period (a spike occurs with probability rate_hz tick_s),
+/// `previous` the channel's output the sample before (frozen without value_N holds it; none: y).
+/// Shared by the simulator and `ftsense inject` (faults on a recorded log).
+[[nodiscard]] double apply_fault(const FaultSpec& f, double elapsed_s, double tick_s, double y,
+                                 std::optional<double> previous, FaultState& state);
+
 /// One force channel: noise plus the faults scheduled on it (non-overlapping in time).
 class ForceChannelModel {
  public:
@@ -116,9 +131,7 @@ class ForceChannelModel {
     FaultSpec spec;
     std::int64_t start_tick;
     std::int64_t end_tick;  // exclusive; INT64_MAX if open
-    Rng rng;
-    double frozen_value = 0.0;
-    bool frozen_set = false;
+    FaultState state;
   };
   double noise_std_;
   double dt_;
