@@ -111,6 +111,11 @@ grep -q "gap" "$work/err" && { failures=$((failures + 1)); echo "FAIL one_droppe
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/o.csv" --gap-reset 1 > "$work/out" 2> "$work/err"
 check gap_reset_too_small 2 $? "--gap-reset 1: give a number of sample periods >= 1.5" "$work/err"
 
+# A thresholds file that does not fit the config names the file and the stage.
+printf '{"stages": {"detekt": {"thresholds": [1.0]}}}\n' > "$work/thresholds.json"
+"$ftsense" run --config "$good" --thresholds "$work/thresholds.json" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check thresholds_do_not_fit 2 $? "thresholds.json:/stages/detekt/thresholds: the config has no stage named 'detekt'" "$work/err"
+
 # Determinism: the same log and config give byte-identical output.
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/d1.csv" > /dev/null 2>&1
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/d2.csv" > /dev/null 2>&1

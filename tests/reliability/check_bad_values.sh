@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # check_bad_values.sh FTSENSE ROOT: bad values in a real-looking log, one table row each.
 # Simulates a 12 s fault-free walk, calibrates the paper pipeline on it, then for every row of
-# the table below replaces one column by a bad value over a time window and runs the paper
+# the table below replaces one column (or several, joined by +) by a bad value over a time
+# window and runs the paper
 # (configs/suralp.json) and the robust (configs/suralp_robust.json) pipelines over the result.
 # What each row expects (docs/reliability.md):
 #   invalid:CH  CH is flagged with type 8 (invalid) on every tick of the window; no other flag
@@ -33,14 +34,16 @@ contact_plan_nan      plan/contact_l       6.0   6.2   nan    not_ready
 foot_pos_nan          l_foot/pos_x_m       6.0   6.2   nan    quiet
 planned_zmp_nan       plan/zmp_x_m         6.0   6.2   nan    quiet
 zero_vertical_force   imu/acc_z_m_s2       6.0   6.2   0      finite
-cop_far_outside       plan/zmp_y_m         6.0   7.0   2.0    finite"
+cop_far_outside       plan/zmp_y_m         6.0   7.0   2.0    finite
+robot_lifted          l_foot/p1/force_N+l_foot/p2/force_N+l_foot/p3/force_N+l_foot/p4/force_N+r_foot/p1/force_N+r_foot/p2/force_N+r_foot/p3/force_N+r_foot/p4/force_N 6.0 6.2 0 finite"
 
 passes=0
 failures=0
 while read -r name column from to value expect; do
   awk -F, -v OFS=, -v name="$column" -v t0="$from" -v t1="$to" -v val="$value" \
-      'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) c = i; if (!c) exit 3; print; next }
-       { if ($1 + 0 >= t0 && $1 + 0 < t1) $c = val; print }' "$work/clean.csv" > "$work/bad.csv" \
+      'NR == 1 { n = split(name, want, "+"); for (i = 1; i <= NF; i++) for (k = 1; k <= n; k++) if ($i == want[k]) cols[++found] = i
+                 if (found != n) exit 3; print; next }
+       { if ($1 + 0 >= t0 && $1 + 0 < t1) for (k = 1; k <= found; k++) $(cols[k]) = val; print }' "$work/clean.csv" > "$work/bad.csv" \
     || { echo "FAIL $name: column $column not in the log"; failures=$((failures + 1)); continue; }
   for config in suralp suralp_robust; do
     thresholds=()
@@ -59,6 +62,7 @@ header = next(rows)
 channels = [h[:-len("/fault")] for h in header if h.endswith("/fault")]
 col = {h: i for i, h in enumerate(header)}
 problems = []
+flagged_channels = set()
 in_window = 0
 for row in rows:
     t = float(row[0])
@@ -69,6 +73,8 @@ for row in rows:
         if not math.isfinite(recovered):
             problems.append(f"t = {t}: {ch} recovered = {recovered}")
         flag, kind = float(row[col[ch + "/fault"]]), int(float(row[col[ch + "/fault_type"]]))
+        if flag != 0:
+            flagged_channels.add(f"{ch}:{kind}")
         virtual = float(row[col[ch + "/virtual_N"]])
         if expect.startswith("invalid:"):
             if ch == expect[len("invalid:"):] and inside and (flag != 1 or kind != 8):
@@ -82,6 +88,8 @@ for row in rows:
             problems.append(f"t = {t}: {ch} virtual = {virtual} while the virtual sensor cannot be ready (want NaN)")
 if in_window == 0:
     problems.append("no row inside the window")
+if expect == "finite":
+    print(f"     {label}: flagged channels {sorted(flagged_channels) or 'none'}")
 for p in problems[:5]:
     print(f"FAIL {label}: {p}")
 if len(problems) > 5:

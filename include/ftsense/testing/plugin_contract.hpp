@@ -21,12 +21,14 @@
 //
 // What it checks: the parameters described load from JSON without errors and round-trip
 // (load(save(p)) == p as JSON); every parameter is documented; ports are well formed; reset and
-// step give finite outputs on nominal, tiny and seeded random inputs; reset then replay gives
+// step give finite outputs on nominal, tiny and seeded random inputs, and again 2 s after a burst
+// of NaN or Inf on any input; reset then replay gives
 // bit-identical outputs; step allocates nothing.
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <span>
 #include <string>
@@ -217,6 +219,36 @@ TYPED_TEST_P(PluginContract, RandomInputsAreFiniteAndResetReplaysExactly) {
       << "reset() must return the plugin to its initial state";
 }
 
+TYPED_TEST_P(PluginContract, RecoversFromNonFiniteInputs) {
+  // NaN means "no value" in ftsense and data can be hostile: a burst of NaN or Inf on any one
+  // input (or on all of them) must not crash (UBSan: no NaN-to-integer casts), and once the inputs
+  // are nominal again every output must be finite within 2 s of ticks: no state latches a NaN.
+  constexpr int kBadTicks = 20;
+  constexpr int kRecoveryTicks = 2000;
+  const double period = ContractSetup<TypeParam>::sample_period_s();
+  PluginHarness<TypeParam> h;
+  const std::size_t input_count = h.inputs().size();
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                           -std::numeric_limits<double>::infinity()}) {
+    for (std::size_t target = 0; target <= input_count; ++target) {  // input_count: all of them
+      const std::string what = (target == input_count ? std::string("all inputs")
+                                                       : "input '" + h.plugin().ports().inputs()[target].name + "'") +
+                               " = " + std::to_string(bad);
+      h.plugin().reset();
+      h.fill_nominal();
+      double t = 0.0;
+      for (int k = 0; k < 100; ++k, t += period) h.step(t);
+      for (std::size_t i = 0; i < input_count; ++i) {
+        if (i == target || target == input_count) std::fill(h.inputs()[i].begin(), h.inputs()[i].end(), bad);
+      }
+      for (int k = 0; k < kBadTicks; ++k, t += period) h.step(t);
+      h.fill_nominal();
+      for (int k = 0; k < kRecoveryTicks; ++k, t += period) h.step(t);
+      EXPECT_EQ(h.first_non_finite_output(), "") << "2 s after " << kBadTicks << " ticks of " << what;
+    }
+  }
+}
+
 TYPED_TEST_P(PluginContract, StepDoesNotAllocate) {
   PluginHarness<TypeParam> h;
   h.plugin().reset();
@@ -232,6 +264,6 @@ REGISTER_TYPED_TEST_SUITE_P(PluginContract, ParametersLoadAndConstruct,
                             ParametersRoundTripThroughJson, EveryParameterIsDocumented,
                             PortsAreWellFormed, NominalInputsGiveFiniteOutputs,
                             TinyInputsGiveFiniteOutputs, RandomInputsAreFiniteAndResetReplaysExactly,
-                            StepDoesNotAllocate);
+                            RecoversFromNonFiniteInputs, StepDoesNotAllocate);
 
 }  // namespace ftsense::testing
