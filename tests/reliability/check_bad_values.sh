@@ -12,7 +12,8 @@
 #               kinematics puts in the air carries 0 N, so only loaded pads are checked.)
 #   quiet       no channel is flagged anywhere
 #   finite      the pipeline runs through (flags allowed: the input really is wrong)
-# and every row: exit 0 and no NaN or Inf in any recovered signal, ever.
+# and every row: exit 0 and no NaN or Inf in any recovered signal, ever. Before the table, each
+# pipeline runs the clean log twice: the outputs must be byte-identical (determinism).
 set -u
 ftsense=$1
 root=$2
@@ -39,6 +40,16 @@ robot_lifted          l_foot/p1/force_N+l_foot/p2/force_N+l_foot/p3/force_N+l_fo
 
 passes=0
 failures=0
+# Determinism first: the same log and config give byte-identical output, for both pipelines.
+for config in suralp suralp_robust; do
+  "$ftsense" run --config "$root/configs/$config.json" --input "$work/clean.csv" --output "$work/a.csv" > /dev/null 2>&1
+  "$ftsense" run --config "$root/configs/$config.json" --input "$work/clean.csv" --output "$work/b.csv" > /dev/null 2>&1
+  if [ -s "$work/a.csv" ] && cmp -s "$work/a.csv" "$work/b.csv"; then
+    echo "ok   deterministic/$config"; passes=$((passes + 1))
+  else
+    echo "FAIL deterministic/$config: two runs of the same log differ (or wrote nothing)"; failures=$((failures + 1))
+  fi
+done
 while read -r name column from to value expect; do
   awk -F, -v OFS=, -v name="$column" -v t0="$from" -v t1="$to" -v val="$value" \
       'NR == 1 { n = split(name, want, "+"); for (i = 1; i <= NF; i++) for (k = 1; k <= n; k++) if ($i == want[k]) cols[++found] = i
