@@ -30,6 +30,15 @@ set -e
 [ "$status" -eq 2 ] || { echo "bad faults file: exit $status, expected 2"; exit 1; }
 grep -q "bad_faults.json:/sed: unknown key; did you mean 'seed'" "$work/bad.err" || { cat "$work/bad.err"; exit 1; }
 grep -q "bad_faults.json:/faults/0/channel" "$work/bad.err" || { cat "$work/bad.err"; exit 1; }
+# A config naming a URDF that is not there is a config error too, with the parameter's pointer.
+sed 's#"../data/icub_walking/model.urdf"#"../data/icub_walking/missing.urdf"#' "$config" > "$work/icub_missing_urdf.json"
+set +e
+"$ftsense" check --config "$work/icub_missing_urdf.json" 2> "$work/missing_urdf.err"
+status=$?
+set -e
+[ "$status" -eq 2 ] || { echo "missing URDF: exit $status, expected 2"; exit 1; }
+grep -q "icub_missing_urdf.json:/stages/0/params/urdf: cannot read URDF .*missing.urdf': no such file" "$work/missing_urdf.err" \
+  || { cat "$work/missing_urdf.err"; exit 1; }
 /usr/bin/python3 - "$work" <<'PY'
 import json, sys
 work = sys.argv[1]

@@ -78,7 +78,9 @@ class KinematicTree {
     [[nodiscard]] RigidPose transform(double q) const noexcept;
   };
 
-  // Throws UrdfError naming the file and urdfdom's first complaint.
+  // Throws UrdfError naming the file and urdfdom's first complaint. While parsing, urdfdom's
+  // console_bridge output handler (process-global) is replaced to capture that complaint: do not
+  // parse URDFs on two threads at once.
   [[nodiscard]] static KinematicTree from_urdf_file(const std::filesystem::path& path);
   [[nodiscard]] static KinematicTree from_urdf_text(const std::string& xml, std::string_view source_name);
 
