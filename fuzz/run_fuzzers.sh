@@ -27,7 +27,7 @@ jobs="${JOBS:-2}"
 # --- and the libraries ftsense builds against.
 need=""
 have_pkg() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
-for p in clang libclang-rt-14-dev llvm cmake ninja-build libeigen3-dev libceres-dev libboost-dev \
+for p in clang libclang-rt-14-dev llvm cmake ninja-build libeigen3-dev libceres-dev libboost-dev liburdfdom-dev \
          nlohmann-json3-dev; do
   have_pkg "$p" || need="$need $p"
 done
