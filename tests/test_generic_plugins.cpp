@@ -165,6 +165,32 @@ TEST(ThresholdDetector, PerChannelThresholds) {
 }
 
 
+TEST(ThresholdDetector, CentredBandJudgesBothSignsAgainstTheSameMargin) {
+  // Fault-free band [20, 80] of channel 0: centre 50, half-width 30. A fault of -40 (s = 10) and
+  // one of +40 (s = 90) both leave it; with the plain |s| > 60 only the positive one would.
+  generic::ThresholdDetector::Params params;
+  params.thresholds = {30.0, 60.0};
+  params.centers = {50.0, 0.0};
+  generic::ThresholdDetector detector(params, StageContext(1e-3, "d", {{"signal", 2}}));
+  detector.reset();
+  std::vector<double> s{0.0, 0.0};
+  std::vector<double> fault{0.0, 0.0};
+  std::vector<double> type{0.0, 0.0};
+  const std::span<const double> ins[] = {s};
+  const std::span<double> outs[] = {fault, type};
+  const double signal[] = {50.0, 79.0, 21.0, 10.0, 90.0, 81.0, 19.0};
+  const double expected[] = {0, 0, 0, 1, 1, 1, 1};
+  for (std::size_t k = 0; k < std::size(signal); ++k) {
+    s = {signal[k], signal[k]};
+    detector.step(StepIO{k * 1e-3, ins, outs});
+    EXPECT_EQ(fault[0], expected[k]) << "centred channel, s = " << signal[k];
+    EXPECT_EQ(fault[1], std::abs(signal[k]) > 60.0 ? 1.0 : 0.0) << "plain channel, s = " << signal[k];
+  }
+
+  params.centers = {1.0, 2.0, 3.0};  // neither one nor one per channel
+  EXPECT_THROW(generic::ThresholdDetector(params, StageContext(1e-3, "d", {{"signal", 2}})), ConfigError);
+}
+
 // A single-channel harness for the fault filter.
 struct FaultFilterRig {
   explicit FaultFilterRig(const generic::RandomWalkFaultFilter::Params& p)

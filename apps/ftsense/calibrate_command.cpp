@@ -1,6 +1,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <limits>
 
 #include "cli.hpp"
 #include "log_runner.hpp"
@@ -12,13 +13,19 @@ int calibrate_command(const std::vector<std::string>& args) {
       {"config", true, true, "pipeline config (JSON) with threshold_detector stage(s)"},
       {"input", true, true, "a fault-free log (CSV)"},
       {"output", true, true, "where to write the thresholds (JSON), for 'ftsense run --thresholds'"},
-      {"margin", true, false, "threshold = margin x the largest |signal| seen (default 1.25)"}};
+      {"margin", true, false, "threshold = margin x the largest |signal| seen (default 1.25)"},
+      {"band", false, false,
+       "centre each channel's band: centre = (min + max) / 2 and threshold = margin x (max - min) / 2 "
+       "of the signal seen, instead of margin x max |signal|"}};
   const auto options = parse_options("calibrate", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("calibrate",
                             "Runs the pipeline over a fault-free log and sets each threshold_detector's\n"
                             "per-channel threshold to margin x max |signal| seen after the detector's\n"
-                            "warm-up (the paper's section III: thresholds from a fault-free run).",
+                            "warm-up (the paper's section III: thresholds from a fault-free run). With\n"
+                            "--band it also writes each channel's centre, the middle of the range the\n"
+                            "signal covered, and sets the threshold to margin x half that range: a virtual\n"
+                            "sensor's systematic bias then no longer hides faults of the other sign.",
                             specs);
     return kExitOk;
   }
@@ -38,13 +45,17 @@ int calibrate_command(const std::vector<std::string>& args) {
     SignalRef signal;
     double warmup_s = 0.0;
     std::vector<double> max_abs;
+    std::vector<double> min_seen;
+    std::vector<double> max_seen;
   };
   std::vector<Detector> detectors;
   for (std::size_t i = 0; i < pipeline.stage_count(); ++i) {
     if (pipeline.stage(i).plugin_name() != "threshold_detector") continue;
     const Json params = pipeline.stage(i).params_json();
-    Detector d{std::string(pipeline.stage_name(i)), pipeline.stage_input(i, 0), params.value("warmup_s", 0.0), {}};
+    Detector d{std::string(pipeline.stage_name(i)), pipeline.stage_input(i, 0), params.value("warmup_s", 0.0), {}, {}, {}};
     d.max_abs.assign(d.signal.dim, 0.0);
+    d.min_seen.assign(d.signal.dim, std::numeric_limits<double>::infinity());
+    d.max_seen.assign(d.signal.dim, -std::numeric_limits<double>::infinity());
     detectors.push_back(std::move(d));
   }
   if (detectors.empty()) {
@@ -71,7 +82,10 @@ int calibrate_command(const std::vector<std::string>& args) {
         if (t - start < d.warmup_s) continue;
         const auto s = pipeline.values(d.signal);
         for (std::size_t j = 0; j < s.size(); ++j) {
-          if (std::isfinite(s[j])) d.max_abs[j] = std::max(d.max_abs[j], std::abs(s[j]));
+          if (!std::isfinite(s[j])) continue;
+          d.max_abs[j] = std::max(d.max_abs[j], std::abs(s[j]));
+          d.min_seen[j] = std::min(d.min_seen[j], s[j]);
+          d.max_seen[j] = std::max(d.max_seen[j], s[j]);
         }
       }
     });
@@ -82,18 +96,41 @@ int calibrate_command(const std::vector<std::string>& args) {
 
   std::cerr << clock_warnings(options.at("input"), summary, pipeline.sample_period_s(), clock);
 
-  Json out = {{"description", "thresholds = margin x max |detector input| over a fault-free run, after warm-up"},
+  const bool band = options.count("band") > 0;
+  Json out = {{"description", band ? "centres = (min + max) / 2 and thresholds = margin x (max - min) / 2 of the "
+                                     "detector input over a fault-free run, after warm-up"
+                                   : "thresholds = margin x max |detector input| over a fault-free run, after warm-up"},
               {"config", config_path},
               {"input", options.at("input")},
               {"margin", margin},
+              {"band", band},
               {"ticks", summary.ticks},
               {"stages", Json::object()}};
   for (const auto& d : detectors) {
     std::vector<double> thresholds;
-    for (double m : d.max_abs) thresholds.push_back(std::max(margin * m, 1e-9));  // a threshold must be > 0
-    out["stages"][d.name] = {{"warmup_s", d.warmup_s}, {"max_abs_signal", d.max_abs}, {"thresholds", thresholds}};
+    std::vector<double> centers;
+    for (std::size_t j = 0; j < d.max_abs.size(); ++j) {
+      const bool seen = d.min_seen[j] <= d.max_seen[j];  // a channel that was never finite has no range
+      if (band) {
+        centers.push_back(seen ? 0.5 * (d.min_seen[j] + d.max_seen[j]) : 0.0);
+        thresholds.push_back(std::max(seen ? margin * 0.5 * (d.max_seen[j] - d.min_seen[j]) : 0.0, 1e-9));
+      } else {
+        thresholds.push_back(std::max(margin * d.max_abs[j], 1e-9));  // a threshold must be > 0
+      }
+    }
+    Json entry = {{"warmup_s", d.warmup_s}, {"max_abs_signal", d.max_abs}, {"thresholds", thresholds}};
+    if (band) {
+      entry["min_signal"] = d.min_seen;
+      entry["max_signal"] = d.max_seen;
+      entry["centers"] = centers;
+    }
+    out["stages"][d.name] = entry;
     std::cout << "ftsense calibrate: " << d.name << ": thresholds";
     for (double t : thresholds) std::cout << ' ' << std::round(t * 10.0) / 10.0;
+    if (band) {
+      std::cout << "; centres";
+      for (double c : centers) std::cout << ' ' << std::round(c * 10.0) / 10.0;
+    }
     std::cout << '\n';
   }
   std::ofstream file(options.at("output"));

@@ -188,6 +188,12 @@ void apply_thresholds(Json& config, const Json& thresholds, const std::string& t
       for (auto& stage : config["stages"]) {
         if (stage.is_object() && stage.value("name", "") == name) {
           stage["params"]["thresholds"] = entry["thresholds"];
+          // A band calibration also sets each channel's centre; a plain one resets it to 0.
+          if (entry.contains("centers")) {
+            stage["params"]["centers"] = entry["centers"];
+          } else if (stage["params"].contains("centers")) {
+            stage["params"].erase("centers");
+          }
           found = true;
         }
       }

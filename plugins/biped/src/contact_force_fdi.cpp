@@ -80,6 +80,21 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
       .unit("s").at_least(0.0);
   schema.add("hold_s", &Params::hold_s, "a raised flag stays at least this long; spikes keep it this long after the last")
       .unit("s").at_least(0.0);
+  schema.add("gain_window_s", &Params::gain_window_s,
+             "window of the stance regression of the sum residual on each channel (gain test)")
+      .unit("s").greater_than(0.0).at_most(60.0);
+  schema.add("gain_threshold", &Params::gain_threshold,
+             "|1 - 1/k| of a channel reading k times its force that is a gain fault")
+      .greater_than(0.0).less_than(1.0);
+  schema.add("gain_explained", &Params::gain_explained,
+             "share of the sum residual's power a channel's gain fit must explain to be blamed")
+      .greater_than(0.0).less_than(1.0);
+  schema.add("gain_isolation_margin", &Params::gain_isolation_margin,
+             "share of the residual's power by which the blamed channel's fit must beat every other channel's")
+      .greater_than(0.0).less_than(1.0);
+  schema.add("gain_min_load_N", &Params::gain_min_load_N,
+             "RMS load a channel must carry over the gain window to be judged by the gain test")
+      .unit("N").greater_than(0.0);
 }
 
 void ContactForceFdi::LineFit::add(double t, double b, double weight) noexcept {
@@ -152,6 +167,10 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   ports_.add_output({"sum_residual", 1, "N", "low-passed sum of recovered forces - F_z"});
   ports_.add_output({"unisolated", 1, "1", "1 while the sum residual is off with no channel to blame (virtual sensor fault)"});
   ports_.add_output({"virtual_ready", 1, "1", "1 while the total force F_z is finite (0: virtual sensor not ready)"});
+  gain_window_ticks_ = window_ticks(params.gain_window_s, context.sample_period_s(), 10, "gain_window_s");
+  gain_forgetting_ = std::exp(-1.0 / gain_window_ticks_);
+  gain_xx_.assign(n, 0.0);
+  gain_xr_.assign(n, 0.0);
   channels_.resize(n);
   for (auto& c : channels_) c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
   residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
@@ -172,6 +191,10 @@ void ContactForceFdi::reset() noexcept {
   group_pending_ = false;
   last_touchdown_s_ = {-1e9, -1e9};
   foot_airborne_ = {false, false};
+  std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
+  std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
+  gain_rr_ = gain_weight_ = 0.0;
+  gain_ticks_ = 0;
 }
 
 void ContactForceFdi::raise(Channel& c, int type, double t) noexcept {
@@ -477,6 +500,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   // The corrected sum residual: what no channel explains.
   const double residual = fz_ok ? total - fz : 0.0;
+  bool all_finite_readings = true;
+  for (std::size_t j = 0; j < channels_.size(); ++j) all_finite_readings = all_finite_readings && std::isfinite(measured[j]);
+  gain_regression(recovered, residual, fz_ok && all_finite_readings && !touching_down && !substituting_loaded, t);
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
   // Without F_z the residual is unknown, not zero: hold the filter rather than pull it to zero.
   if (fz_ok || !started_) sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
@@ -486,6 +512,63 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   io.out(kUnisolated)[0] = (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any)) ? 1.0 : 0.0;
   io.out(kVirtualReady)[0] = fz_ok ? 1.0 : 0.0;
   started_ = true;
+}
+
+void ContactForceFdi::gain_regression(std::span<const double> recovered, double residual, bool usable,
+                                      double t) noexcept {
+  if (!usable) return;  // the window keeps what it has; impacts and substitutions add nothing
+  const double f = gain_forgetting_;
+  for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
+    gain_xx_[j] = f * gain_xx_[j] + recovered[j] * recovered[j];
+    gain_xr_[j] = f * gain_xr_[j] + recovered[j] * residual;
+  }
+  gain_rr_ = f * gain_rr_ + residual * residual;
+  gain_weight_ = f * gain_weight_ + 1.0;
+  ++gain_ticks_;
+  // Judge once per 10 ms, and only over a full window.
+  if (gain_ticks_ < gain_window_ticks_ || gain_ticks_ % 10 != 0 || !(gain_rr_ > 0.0)) return;
+
+  // The channel whose one-regressor fit r ~ beta_j N^_j explains the most of the residual.
+  const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * gain_weight_;
+  std::size_t best = gain_xx_.size();
+  double best_explained = 0.0;
+  double second_explained = 0.0;  // of any other channel, flagged or not: isolation needs a clear winner
+  for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
+    const Channel& c = channels_[j];
+    if (!(gain_xx_[j] >= min_power)) continue;  // hardly loaded: nothing to see
+    const double explained = gain_xr_[j] * gain_xr_[j] / (gain_xx_[j] * gain_rr_);
+    const bool judged = c.type == 0 || c.type == code(FaultType::gain);  // others: by their own evidence
+    if (judged && explained > best_explained) {
+      second_explained = std::max(second_explained, best_explained);
+      best = j;
+      best_explained = explained;
+    } else {
+      second_explained = std::max(second_explained, explained);
+    }
+  }
+  // The pads of one foot load together, so a gain fault on one is fitted almost as well by its
+  // neighbours (the sum residual cannot see moments): blame a channel only when its fit stands out.
+  if (best == gain_xx_.size() || best_explained < params_.gain_explained ||
+      best_explained - second_explained < params_.gain_isolation_margin) {
+    return;
+  }
+  Channel& c = channels_[best];
+  const double beta = gain_xr_[best] / gain_xx_[best];
+  const double threshold = c.type == 0 ? params_.gain_threshold : 0.5 * params_.gain_threshold;
+  if (std::abs(beta) <= threshold) return;
+  // recovered_new = recovered (1 - beta): k_new = k / (1 - beta).
+  const double gain = (c.type == code(FaultType::gain) ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
+  if (c.type == code(FaultType::gain) && std::abs(1.0 - 1.0 / gain) < 0.5 * params_.gain_threshold) {
+    clear(c);  // the reading is its force again
+  } else {
+    raise(c, code(FaultType::gain), t);
+    c.gain = gain;
+  }
+  // The window's residuals were computed with the old correction: start a new one.
+  std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
+  std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
+  gain_rr_ = gain_weight_ = 0.0;
+  gain_ticks_ = 0;
 }
 
 }  // namespace ftsense::biped

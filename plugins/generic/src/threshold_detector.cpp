@@ -12,6 +12,10 @@ void ThresholdDetector::Params::describe(ParamSchema<Params>& schema) {
            "threshold tr_j per channel, in the unit of the signal; one value applies to all")
       .greater_than(0.0)
       .count_at_least(1);
+  schema.add("centers", &Params::centers,
+             "centre c_j of channel j's fault-free band, in the unit of the signal (fault when "
+             "|s_j - c_j| > tr_j); one value applies to all")
+      .count_at_least(1);
   schema.add("on_delay_s", &Params::on_delay_s, "time |signal| must stay above tr_j to raise")
       .unit("s")
       .at_least(0.0);
@@ -40,6 +44,18 @@ ThresholdDetector::ThresholdDetector(const Params& params, const StageContext& c
   }
   thresholds_.assign(dim, params.thresholds.front());
   if (params.thresholds.size() == dim) thresholds_ = params.thresholds;
+  if (params.centers.size() != 1 && params.centers.size() != dim) {
+    throw ConfigError("/params/centers",
+                      "has " + std::to_string(params.centers.size()) + " entries but the signal has " +
+                          std::to_string(dim) + " channels; give one centre per channel or one for all");
+  }
+  for (std::size_t j = 0; j < params.centers.size(); ++j) {
+    if (!std::isfinite(params.centers[j])) {
+      throw ConfigError("/params/centers/" + std::to_string(j), "is not a finite number");
+    }
+  }
+  centers_.assign(dim, params.centers.front());
+  if (params.centers.size() == dim) centers_ = params.centers;
   ports_.add_input({"signal", dim, std::string(kAnyUnit), "the evaluated signal s (e.g. filtered fault estimate)"});
   if (check_measured_) {
     ports_.add_input({"measured", dim, std::string(kAnyUnit), "the monitored sensor, checked for NaN/Inf"});
@@ -79,7 +95,7 @@ void ThresholdDetector::step(const StepIO& io) noexcept {
       type[j] = static_cast<double>(FaultType::none);
       continue;
     }
-    if (std::abs(s[j]) > thresholds_[j]) {
+    if (std::abs(s[j] - centers_[j]) > thresholds_[j]) {
       above_for_s_[j] += sample_period_s_;
       below_for_s_[j] = 0.0;
       // Half a tick of slack so that a delay of k ticks raises on the k-th tick, not the k+1-th.

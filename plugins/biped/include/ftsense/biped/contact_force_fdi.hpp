@@ -33,6 +33,21 @@
 //             substituted from the total force (frozen, noise, ...), the sum carries its
 //             unmeasured changes, so confirmation then takes 3 x jump_confirm_N, and none is
 //             confirmed while that channel's foot rolls on or off.
+//   gain      (stance regression) the corrected sum residual r = sum_i N^_i - F_z fitted, channel
+//             by channel, by r ~ beta_j N^_j over an exponential window of gain_window_s
+//             (beta_j = <r, N^_j> / <N^_j, N^_j>). A channel reading k times its force makes
+//             r = (1 - 1/k) N^_j, an exact fit; a healthy walk leaves |beta_j| < 0.05 with under 15 %
+//             of r explained (the limb dynamics). The channel whose fit explains the largest share
+//             of r's power is raised as a gain fault when that share exceeds gain_explained and
+//             every other channel's by gain_isolation_margin (the pads of one foot load together,
+//             and the sum cannot see moments, so a fault on one is often fitted nearly as well by
+//             its neighbour: then nothing is blamed and the residual shows as `unisolated`) and
+//             |beta_j| > gain_threshold, with k = 1 / (1 - beta_j), and its RMS load over the
+//             window is above gain_min_load_N; the same test refines k on the corrected residual
+//             and re-admits the channel when k comes back within gain_threshold / 2 of 1. The
+//             window restarts after every decision, and takes no tick while a loaded channel is
+//             substituted from the total force (which absorbs the residual) or within
+//             touchdown_guard_s of a touchdown (impacts).
 // Type: invalid > frozen/saturation > noise > spikes > gain > drift > offset (a noise burst
 // also trips the spike test). A foot touches down when all its pads come below
 // touchdown_height_m. Offset and drift are
@@ -53,6 +68,7 @@
 // Channel order: the left foot's points, then the right foot's, each in the order of `points`.
 
 #include <array>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -89,6 +105,11 @@ class ContactForceFdi {
     double sum_threshold_N = 80.0;
     double clear_s = 0.05;
     double hold_s = 0.2;
+    double gain_window_s = 2.0;
+    double gain_threshold = 0.2;
+    double gain_explained = 0.5;
+    double gain_isolation_margin = 0.08;
+    double gain_min_load_N = 30.0;
     static void describe(ParamSchema<Params>& schema);
   };
 
@@ -140,6 +161,8 @@ class ContactForceFdi {
   };
 
   void raise(Channel& c, int type, double t) noexcept;
+  // The stance-regression gain test (see the header comment); runs after recovery.
+  void gain_regression(std::span<const double> recovered, double residual, bool usable, double t) noexcept;
   void clear(Channel& c) noexcept;
 
   Ports ports_;
@@ -162,6 +185,14 @@ class ContactForceFdi {
   int noise_window_ticks_;
   int jump_window_ticks_;
   int min_airborne_samples_ = 10;
+  // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.
+  std::vector<double> gain_xx_;
+  std::vector<double> gain_xr_;
+  double gain_rr_ = 0.0;
+  double gain_weight_ = 0.0;
+  double gain_forgetting_ = 1.0;
+  int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
+  int gain_window_ticks_ = 1;
 };
 
 }  // namespace ftsense::biped

@@ -1,10 +1,14 @@
 #pragma once
 // Per-channel threshold detector (paper eq. 33):
 //
-//   fault_j = 1  when |s_j| > tr_j has held for on_delay_s,
-//   fault_j = 0  again when |s_j| <= tr_j has held for off_delay_s.
+//   fault_j = 1  when |s_j - c_j| > tr_j has held for on_delay_s,
+//   fault_j = 0  again when |s_j - c_j| <= tr_j has held for off_delay_s.
 //
-// s is the evaluated signal (typically the low-passed fault estimate), tr_j > 0 in the unit of s.
+// s is the evaluated signal (typically the low-passed fault estimate), tr_j > 0 in the unit of s,
+// c_j the centre of channel j's fault-free band (default 0: the paper's |s_j| > tr_j). A virtual
+// sensor with a systematic per-channel bias leaves the fault-free s_j in a band [lo_j, hi_j] that
+// is not centred on 0; `ftsense calibrate --band` sets c_j = (lo_j + hi_j) / 2 and
+// tr_j = margin (hi_j - lo_j) / 2, so a fault of either sign is judged against the same margin.
 // The threshold cannot tell fault types apart, so a raised flag has type code 1 (unclassified);
 // a non-finite s_j raises the flag at once with type code 8 (invalid). During the first
 // `warmup_s` seconds after reset (the estimators' initialisation transient) no threshold flag is
@@ -29,6 +33,7 @@ class ThresholdDetector {
 
   struct Params {
     std::vector<double> thresholds{1.0};
+    std::vector<double> centers{0.0};
     double on_delay_s = 0.0;
     double off_delay_s = 0.0;
     double warmup_s = 0.0;
@@ -47,6 +52,7 @@ class ThresholdDetector {
  private:
   Ports ports_;
   std::vector<double> thresholds_;
+  std::vector<double> centers_;
   double sample_period_s_;
   double on_delay_s_;
   double off_delay_s_;
