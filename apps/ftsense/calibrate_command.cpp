@@ -11,7 +11,7 @@ namespace ftsense::cli {
 int calibrate_command(const std::vector<std::string>& args) {
   const std::vector<OptionSpec> specs{
       {"config", true, true, "pipeline config (JSON) with threshold_detector stage(s)"},
-      {"input", true, true, "a fault-free log (CSV)"},
+      {"input", true, true, "a fault-free log (CSV); several, comma-separated, to cover several gaits"},
       {"output", true, true, "where to write the thresholds (JSON), for 'ftsense run --thresholds'"},
       {"margin", true, false, "threshold = margin x the largest |signal| seen (default 1.25)"},
       {"band", false, false,
@@ -62,39 +62,55 @@ int calibrate_command(const std::vector<std::string>& args) {
     throw ConfigError(config_path + ":/stages", "has no threshold_detector stage; nothing to calibrate");
   }
 
-  std::optional<io::CsvLogReader> log;
-  try {
-    log.emplace(options.at("input"));
-  } catch (const io::LogError& e) {
-    throw UsageError{std::string("error: ") + e.what()};
+  // Every fault-free log in turn (the pipeline restarts for each, and so does the warm-up).
+  std::vector<std::string> inputs;
+  {
+    std::string list = options.at("input");
+    for (std::size_t from = 0;;) {
+      const std::size_t comma = list.find(',', from);
+      const std::string path = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+      if (path.empty()) throw UsageError{"ftsense calibrate: --input = '" + list + "' has an empty log path"};
+      inputs.push_back(path);
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
   }
-  const ColumnMap map = ColumnMap::make(pipeline, *log);
-  double start = std::nan("");
-  double last = std::nan("");
-  const ClockPolicy clock;
   RunSummary summary;
-  try {
-    summary = run_over_log(pipeline, *log, map, nullptr, [&](double t) {
-      // The runner resets the pipeline after a long gap: the warm-up starts again there.
-      if (std::isnan(start) || t - last > clock.gap_reset_periods * pipeline.sample_period_s()) start = t;
-      last = t;
-      for (auto& d : detectors) {
-        if (t - start < d.warmup_s) continue;
-        const auto s = pipeline.values(d.signal);
-        for (std::size_t j = 0; j < s.size(); ++j) {
-          if (!std::isfinite(s[j])) continue;
-          d.max_abs[j] = std::max(d.max_abs[j], std::abs(s[j]));
-          d.min_seen[j] = std::min(d.min_seen[j], s[j]);
-          d.max_seen[j] = std::max(d.max_seen[j], s[j]);
+  std::size_t ticks = 0;
+  for (const std::string& input : inputs) {
+    std::optional<io::CsvLogReader> log;
+    try {
+      log.emplace(input);
+    } catch (const io::LogError& e) {
+      throw UsageError{std::string("error: ") + e.what()};
+    }
+    const ColumnMap map = ColumnMap::make(pipeline, *log);
+    double start = std::nan("");
+    double last = std::nan("");
+    const ClockPolicy clock;
+    try {
+      summary = run_over_log(pipeline, *log, map, nullptr, [&](double t) {
+        // The runner resets the pipeline after a long gap: the warm-up starts again there.
+        if (std::isnan(start) || t - last > clock.gap_reset_periods * pipeline.sample_period_s()) start = t;
+        last = t;
+        for (auto& d : detectors) {
+          if (t - start < d.warmup_s) continue;
+          const auto s = pipeline.values(d.signal);
+          for (std::size_t j = 0; j < s.size(); ++j) {
+            if (!std::isfinite(s[j])) continue;
+            d.max_abs[j] = std::max(d.max_abs[j], std::abs(s[j]));
+            d.min_seen[j] = std::min(d.min_seen[j], s[j]);
+            d.max_seen[j] = std::max(d.max_seen[j], s[j]);
+          }
         }
-      }
-    });
-  } catch (const io::LogError& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kExitRuntime;
+      });
+    } catch (const io::LogError& e) {
+      std::cerr << "error: " << e.what() << '\n';
+      return kExitRuntime;
+    }
+    ticks += summary.ticks;
+    std::cerr << clock_warnings(input, summary, pipeline.sample_period_s(), clock);
   }
-
-  std::cerr << clock_warnings(options.at("input"), summary, pipeline.sample_period_s(), clock);
 
   const bool band = options.count("band") > 0;
   Json out = {{"description", band ? "centres = (min + max) / 2 and thresholds = margin x (max - min) / 2 of the "
@@ -104,7 +120,7 @@ int calibrate_command(const std::vector<std::string>& args) {
               {"input", options.at("input")},
               {"margin", margin},
               {"band", band},
-              {"ticks", summary.ticks},
+              {"ticks", ticks},
               {"stages", Json::object()}};
   for (const auto& d : detectors) {
     std::vector<double> thresholds;

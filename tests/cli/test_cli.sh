@@ -116,6 +116,27 @@ printf '{"stages": {"detekt": {"thresholds": [1.0]}}}\n' > "$work/thresholds.jso
 "$ftsense" run --config "$good" --thresholds "$work/thresholds.json" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
 check thresholds_do_not_fit 2 $? "thresholds.json:/stages/detekt/thresholds: the config has no stage named 'detekt'" "$work/err"
 
+# Calibration. A virtual sensor biased by +30 N on c1 (fault-free residual in [25, 35]): the
+# paper's |s| <= 1.25 max |s| (43.75) hides a -20 N fault; a centred band (calibrate --band, over
+# two fault-free logs) has centre 30 and half-width 1.25 x 5 and shows it.
+biased_log() {  # biased_log AMPLITUDE FAULT_N FILE: c1 reads model + 30 + AMPLITUDE sin(pi t), plus FAULT_N from t = 1 s
+  awk -v amp="$1" -v fault="$2" 'BEGIN { print "time_s,cell/c1/force_N,cell/c2/force_N,cell/c3/force_N,model/c1/force_N,model/c2/force_N,model/c3/force_N";
+    for (k = 0; k < 3000; k++) { t = k / 1000; l = 100;
+      printf "%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", t, l + 30 + amp * sin(3.14159265 * t) + (t >= 1 ? fault : 0), l, l, l, l, l } }' > "$3"
+}
+biased_log 5 0 "$work/clean_a.csv"; biased_log 3 0 "$work/clean_b.csv"; biased_log 0 -20 "$work/faulty.csv"
+"$ftsense" calibrate --config "$good" --input "$work/clean_a.csv" --output "$work/plain.json" > "$work/out" 2> "$work/err"
+check calibrate_plain 0 $? "detector|detect: thresholds 4[0-9]\.[0-9]" "$work/out"
+"$ftsense" calibrate --config "$good" --input "$work/clean_a.csv,$work/clean_b.csv" --output "$work/band.json" --band > "$work/out" 2> "$work/err"
+check calibrate_band_two_logs 0 $? "detect: thresholds [0-9.]+ .*; centres 30" "$work/out" '"ticks": 6000' "$work/band.json"
+"$ftsense" run --config "$good" --input "$work/faulty.csv" --output "$work/o.csv" --thresholds "$work/plain.json" > "$work/out" 2> "$work/err"
+status=$?; grep -q "fault first flagged" "$work/out" && status=99  # 99: a channel was flagged
+check plain_threshold_hides_the_negative_fault 0 $status "3000 ticks, 3 channels" "$work/out"
+"$ftsense" run --config "$good" --input "$work/faulty.csv" --output "$work/o.csv" --thresholds "$work/band.json" > "$work/out" 2> "$work/err"
+check band_shows_the_negative_fault 0 $? "c1: fault first flagged at t = 1\.[0-9]* s" "$work/out"
+"$ftsense" calibrate --config "$good" --input "$work/clean_a.csv," --output "$work/x.json" > "$work/out" 2> "$work/err"
+check calibrate_empty_log_path 2 $? "has an empty log path" "$work/err"
+
 # Determinism: the same log and config give byte-identical output.
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/d1.csv" > /dev/null 2>&1
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/d2.csv" > /dev/null 2>&1
