@@ -277,7 +277,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
       const bool landing = touching_down || foot_airborne_[std::min<std::size_t>(j / feet_points_, 1)];
       c.jump_pending = false;
-      if (std::abs(change) > params_.jump_threshold_N && !landing && !group_pending_) {
+      // A corrected channel may also jump back while its foot rolls (its fault ending): only an
+      // impact is excluded then, so that it is re-admitted without waiting for the next flight.
+      const bool may_jump = !landing || (corrects(c.type) && !touching_down);
+      if (std::abs(change) > params_.jump_threshold_N && may_jump && !group_pending_) {
         c.jump_pending = true;
         c.jump_size = change;
         c.candidate_load = c.previous;
@@ -286,6 +289,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
     }
     if (airborne) {
+      // A step in flight (a fault starting or ending in the air): the mean starts again there.
+      if (c.airborne_ticks > 0 && ticks_since_start > 0 && std::abs(x - c.previous) > params_.jump_threshold_N) {
+        c.airborne_ticks = 0;
+        c.airborne_sum = 0.0;
+        c.airborne_count = 0;
+      }
       ++c.airborne_ticks;
       if (c.airborne_ticks * period_s_ >= params_.airborne_settle_s) {
         c.airborne_sum += x;
@@ -377,8 +386,17 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
     // Frozen / saturation.
     if (c.stale_count >= params_.stale_ticks) {
+      // Saturation: stuck at the largest value the channel has shown, or stuck again at exactly
+      // the value of its previous stuck episode after moving in between (a clipped load comes
+      // back to the same ceiling; a frozen sensor does not leave and return).
       const bool at_max = x > 50.0 && x >= c.max_seen - params_.stale_tolerance_N;
-      raise(c, code(at_max ? FaultType::saturation : FaultType::frozen), t);
+      const bool same_ceiling = x > 50.0 && std::abs(x - c.last_stale_value) <= params_.stale_tolerance_N;
+      if (c.stale_count == params_.stale_ticks) {
+        c.stale_episodes = same_ceiling ? c.stale_episodes + 1 : 1;
+        c.last_stale_value = x;
+      }
+      raise(c, code(at_max || c.stale_episodes >= 2 ? FaultType::saturation : FaultType::frozen), t);
+      if (c.stale_episodes >= 2 && c.type == code(FaultType::frozen)) c.type = code(FaultType::saturation);
     } else if ((c.type == code(FaultType::frozen) || c.type == code(FaultType::saturation)) && c.stale_count == 0) {
       if (c.clear_since < 0) c.clear_since = t;
       if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
@@ -407,7 +425,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.fit_has_air = false;
       }
       if (c.type == code(FaultType::offset) || c.type == code(FaultType::drift)) {
-        if (!c.fit_has_air && std::abs(mean) < params_.airborne_clear_N && c.airborne_count >= 3 * min_airborne_samples) {
+        const bool reads_zero = std::abs(mean) < params_.airborne_clear_N;
+        const bool settled = c.airborne_count >= 3 * min_airborne_samples;
+        if (!c.fit_has_air && reads_zero && !settled) {
+          // Raised by a jump and near zero in the air so far: wait until the mean settles before
+          // fitting the air as an offset (which would hide a gain fault).
+        } else if (!c.fit_has_air && reads_zero) {
           // Raised by a jump, zero in the air: a gain fault if the pad was loaded, else over.
           if (c.jump_load_before > 50.0 && std::abs(c.offset) > 0.1 * c.jump_load_before) {
             c.type = code(FaultType::gain);

@@ -16,7 +16,9 @@
 // Tests, per channel j, each tick (thresholds are parameters):
 //   invalid   N_j not finite.
 //   frozen    N_j repeated exactly (within stale_tolerance_N) for stale_ticks ticks; saturation
-//             when that value is the largest the channel has shown.
+//             when that value is the largest the channel has shown, or when the channel sticks
+//             again at exactly the value of its previous stuck episode (a clipped load returns to
+//             the same ceiling).
 //   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree (not
 //             within touchdown_guard_s of a touchdown: a landing heel rings like a spike); the flag
 //             stays spike_hold_s after the last spike.
@@ -136,6 +138,8 @@ class ContactForceFdi {
     // evidence
     double previous = 0.0, previous2 = 0.0;
     int stale_count = 0;
+    double last_stale_value = -1e300;  // the value of the last stuck episode
+    int stale_episodes = 0;            // consecutive stuck episodes at that same value
     double max_seen = 0.0;
     double last_spike_s = -1e9;
     std::vector<double> second_diff;  // ring, noise test
