@@ -12,7 +12,7 @@ int run_command(const std::vector<std::string>& args) {
   const std::vector<OptionSpec> specs{
       {"config", true, true, "pipeline config (JSON); see docs/config_reference.md"},
       {"input", true, true, "input log (CSV, first column time_s)"},
-      {"output", true, true, "where to write the monitored channels (CSV)"},
+      {"output", true, false, "where to write the monitored channels (CSV); without it only the summary is printed"},
       {"thresholds", true, false, "thresholds from 'ftsense calibrate' (JSON), applied to the config"},
       {"record", true, false, "further signals to write, comma-separated \"<stage>.<port>\" or \"input.<name>\""},
       {"gap-reset", true, false, "a time step longer than this many sample periods resets the pipeline (default 10)"}};
@@ -28,7 +28,8 @@ int run_command(const std::vector<std::string>& args) {
   }
   const std::string& config_path = options.at("config");
   const std::string& input_path = options.at("input");
-  const std::string& output_path = options.at("output");
+  const bool write_output = options.count("output") > 0;
+  const std::string output_path = write_output ? options.at("output") : std::string();
 
   ClockPolicy clock;
   if (const auto g = options.find("gap-reset"); g != options.end()) {
@@ -95,23 +96,25 @@ int run_command(const std::vector<std::string>& args) {
     }
   }
   std::optional<io::CsvLogWriter> out;
-  try {
-    out.emplace(output_path, columns);
-  } catch (const io::LogError& e) {
-    throw UsageError{std::string("error: ") + e.what()};
+  if (write_output) {
+    try {
+      out.emplace(output_path, columns);
+    } catch (const io::LogError& e) {
+      throw UsageError{std::string("error: ") + e.what()};
+    }
   }
 
   // 3. Every row.
   RunSummary summary;
   try {
-    summary = run_over_log(pipeline, *log, map, &*out, {}, recorded, clock);
+    summary = run_over_log(pipeline, *log, map, out ? &*out : nullptr, {}, recorded, clock);
   } catch (const io::LogError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitRuntime;
   }
   std::cerr << clock_warnings(input_path, summary, pipeline.sample_period_s(), clock);
   std::cout << "ftsense run: " << summary.ticks << " ticks, " << pipeline.monitor().channels.size()
-            << " channels -> " << output_path << '\n';
+            << " channels -> " << (write_output ? output_path : std::string("(no --output: nothing written)")) << '\n';
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {
     if (!std::isnan(summary.first_fault_time_s[c])) {
       std::cout << "  " << pipeline.monitor().channels[c] << ": fault first flagged at t = "

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <filesystem>
 #include <sstream>
 
@@ -155,9 +156,9 @@ TEST_P(Walking, ThirtySecondsWithoutFallingWithCleanContactsAndForces) {
   EXPECT_EQ(r.sum.ik_unreachable_ticks, 0);
   // Walked forward as planned.
   EXPECT_NEAR(t["truth/com_x_m"].back(), plan.footprints().back().x(), 0.01);
-#ifdef NDEBUG
-  EXPECT_LT(r.sum.cpu_s, 5.0 * sc.duration_s / 30.0);
-#endif
+  // CPU time is reported, never asserted (a loaded machine must not fail a test); sim/README.md
+  // tabulates it from `ftsense simulate`.
+  std::cout << "simulated " << sc.duration_s << " s of walking in " << r.sum.cpu_s << " s of CPU\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(PaperGaits, Walking, ::testing::Values(Gait{0.15, 1.0}, Gait{0.20, 0.8}));

@@ -1,5 +1,7 @@
 #include "ftsense/biped/lipm_com_estimator.hpp"
 
+#include <Eigen/Cholesky>
+
 #include <cmath>
 
 #include "ftsense/biped/frames.hpp"
@@ -59,6 +61,8 @@ LipmComEstimator::LipmComEstimator(const Params& params, const StageContext& con
   ports_.add_output({"com_velocity", 2, "m/s", "CoM velocity (x, y)"});
   ports_.add_output({"com_acceleration", 2, "m/s^2", "CoM acceleration (x, y)"});
   ports_.add_output({"com_variance", 2, "m^2", "posterior variance of the CoM position (x, y)"});
+  ports_.add_output({"covariance_resets", 2, "1",
+                     "restarts of each axis (x, y) since reset: non-finite state or covariance not positive definite"});
   reset();
 }
 
@@ -67,18 +71,26 @@ void LipmComEstimator::reset() noexcept {
     a.s.setZero();
     a.P = initial_covariance();
     a.previous_zmp = 0.0;
+    a.last_good_com = 0.0;
+    a.restarted = false;
+    a.gated_zmp_ticks = 0;
+    a.resets = 0.0;
   }
   initialised_ = false;
 }
 
-void LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept {
+bool LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept {
   const Eigen::Vector3d ph = axis.P * h.transpose();
   const double s = h.dot(ph) + variance;
-  if (!(s > 0.0) || !std::isfinite(z)) return;
+  if (!(s > 0.0) || !std::isfinite(z)) return true;
+  const double innovation = z - h.dot(axis.s);
+  // Gate: an innovation beyond 100 standard deviations is a broken reading, not information.
+  if (!(innovation * innovation <= kGateSigma2 * s)) return false;
   const Eigen::Vector3d k = ph / s;
-  axis.s += k * (z - h.dot(axis.s));
+  axis.s += k * innovation;
   axis.P -= k * ph.transpose();
   axis.P = 0.5 * (axis.P + axis.P.transpose());
+  return true;
 }
 
 void LipmComEstimator::step(const StepIO& io) noexcept {
@@ -94,6 +106,7 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
     for (int i = 0; i < 2; ++i) {
       axes_[i].s = Eigen::Vector3d(zmp[i], 0.0, 0.0);
       axes_[i].previous_zmp = zmp[i];
+      axes_[i].last_good_com = zmp[i];
     }
     initialised_ = true;
   }
@@ -103,14 +116,37 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
   for (int i = 0; i < 2; ++i) {
     Axis& a = axes_[i];
     // Predict with the ZMP rate of the last tick (zero when the ZMP is unavailable).
-    const double p = std::isfinite(zmp[i]) ? zmp[i] : a.previous_zmp;
+    // The ZMP, gated against the current state: a reading beyond 100 standard deviations is
+    // broken and treated as missing (it must not drive the prediction's ZMP rate either).
+    bool zmp_ok = std::isfinite(zmp[i]);
+    if (zmp_ok) {
+      const double zmp_variance = params_.zmp_noise_m * params_.zmp_noise_m;
+      const double innovation = zmp[i] - h_zmp.dot(a.s);
+      if (innovation * innovation <= kGateSigma2 * (h_zmp.dot(a.P * h_zmp.transpose()) + zmp_variance)) {
+        a.gated_zmp_ticks = 0;
+      } else if (++a.gated_zmp_ticks >= kGatedTicksBeforeRestart) {
+        // The ZMP has disagreed absurdly for a while: the filter, not the ZMP, is lost.
+        a.s = Eigen::Vector3d(zmp[i], 0.0, 0.0);
+        a.P = initial_covariance();
+        a.previous_zmp = zmp[i];
+        a.gated_zmp_ticks = 0;
+        a.resets += 1.0;
+      } else {
+        zmp_ok = false;
+      }
+    }
+    const double p = zmp_ok ? zmp[i] : a.previous_zmp;
+    if (a.restarted) {
+      a.previous_zmp = p;  // after a restart the rate starts again from this tick's ZMP
+      a.restarted = false;
+    }
     const double zmp_rate = (p - a.previous_zmp) / period_s_;
     a.s = transition_ * a.s;
     a.s(2) -= period_s_ * omega2_ * zmp_rate;
     a.P = transition_ * a.P * transition_.transpose() + process_noise_;
     a.previous_zmp = p;
     update(a, h_acc, acc[i], params_.acc_noise_m_s2 * params_.acc_noise_m_s2);
-    update(a, h_zmp, zmp[i], params_.zmp_noise_m * params_.zmp_noise_m);
+    if (zmp_ok) update(a, h_zmp, p, params_.zmp_noise_m * params_.zmp_noise_m);
     if (params_.use_kinematic_com) {
       update(a, h_com, io.in(kKinematicCom)[i], params_.kinematic_com_noise_m * params_.kinematic_com_noise_m);
     }
@@ -121,16 +157,21 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
   const auto variance = io.out(kComVariance);
   for (int i = 0; i < 2; ++i) {
     Axis& a = axes_[i];
-    if (!(a.s.allFinite() && a.P.allFinite() && (a.P.diagonal().array() > 0.0).all())) {
-      // Hostile data overflowed the filter: restart this axis where it was last known to be.
-      const double c = std::isfinite(a.s(0)) ? a.s(0) : a.previous_zmp;
-      a.s = Eigen::Vector3d(std::isfinite(c) ? c : 0.0, 0.0, 0.0);
+    const bool healthy = a.s.allFinite() && a.P.allFinite() && Eigen::LLT<Eigen::Matrix3d>(a.P).info() == Eigen::Success;
+    if (!healthy) {
+      // Hostile data overflowed the filter: restart this axis at its last good CoM, with the
+      // initial covariance, and take the ZMP rate afresh on the next tick.
+      a.s = Eigen::Vector3d(a.last_good_com, 0.0, 0.0);
       a.P = initial_covariance();
+      a.restarted = true;
+      a.resets += 1.0;
     }
+    a.last_good_com = a.s(0);
     com[i] = a.s(0);
     vel[i] = a.s(1);
     accel[i] = a.s(2);
     variance[i] = a.P(0, 0);
+    io.out(kCovarianceResets)[i] = a.resets;
   }
   com[2] = params_.com_height_m;
 }

@@ -154,6 +154,39 @@ TEST(LipmComEstimator, ConvergesOnASyntheticLipmTrajectoryWithKnownZmp) {
   EXPECT_LT(noisy, 0.004);
 }
 
+TEST(LipmComEstimator, BrokenReadingsAreGatedAndALostFilterRestartsAndSaysSo) {
+  PluginHarness<LipmComEstimator> h;
+  h.plugin().reset();
+  const auto resets = LipmComEstimator::kCovarianceResets;
+  const auto com = LipmComEstimator::kCom;
+  auto step = [&](double t, double zmp_x, double acc_x = 0.0) {
+    h.inputs()[0] = {acc_x, 0.0, 9.806};
+    h.inputs()[1] = {0.0, 0.0, 0.0};
+    h.inputs()[2] = {zmp_x, -0.02};
+    h.step(t);
+  };
+  for (int k = 0; k < 1000; ++k) step(k * 1e-3, 0.01);
+  EXPECT_EQ(h.outputs()[resets], (std::vector<double>{0.0, 0.0}));
+  // Absurd readings (a ZMP of +-1e308 m, an acceleration of 1e308 m/s^2) for 50 ticks: dropped by
+  // the 100-sigma gate; the CoM stays put, every output finite, nothing restarts.
+  for (int k = 0; k < 50; ++k) {
+    step(1.0 + k * 1e-3, k % 2 ? 1e308 : -1e308, 1e308);
+    for (const auto& out : h.outputs()) {
+      for (double v : out) ASSERT_TRUE(std::isfinite(v)) << "tick " << k;
+    }
+  }
+  EXPECT_NEAR(h.outputs()[com][0], 0.01, 1e-3);
+  EXPECT_EQ(h.outputs()[resets], (std::vector<double>{0.0, 0.0}));
+  // A ZMP that jumps 50 m and stays there: gated at first, then after 200 ticks the filter is
+  // judged lost and the x axis restarts on the ZMP (counted once), the y axis untouched.
+  for (int k = 0; k < 1000; ++k) step(2.0 + k * 1e-3, 50.0);
+  EXPECT_EQ(h.outputs()[resets], (std::vector<double>{1.0, 0.0}));
+  EXPECT_NEAR(h.outputs()[com][0], 50.0, 1e-3);
+  h.plugin().reset();
+  step(10.0, 0.01);
+  EXPECT_EQ(h.outputs()[resets], (std::vector<double>{0.0, 0.0}));
+}
+
 TEST(LipmComEstimator, MeasuredZmpSourceRenamesTheInput) {
   LipmComEstimator::Params p;
   p.com_height_m = 0.8;

@@ -21,10 +21,15 @@
 //
 // Outputs: com = [c_x, c_y, z_c] in the world frame [m] (z_c above the ground plane z = 0),
 // com_velocity [m/s], com_acceleration [m/s^2], com_variance = [P_x(0,0), P_y(0,0)] [m^2] (the
-// posterior variance of c per axis, for health monitoring). The state starts at c = p (first ZMP),
-// c' = c'' = 0. A non-finite measurement skips its update; the prediction always runs. P stays
-// symmetric (symmetrised after each update); should it stop being finite and positive on its
-// diagonal (hostile data), the axis restarts from its initial covariance. Allocation-free.
+// posterior variance of c per axis, for health monitoring), covariance_resets = how many times each
+// axis restarted since reset. The state starts at c = p (first ZMP), c' = c'' = 0. A non-finite
+// measurement skips its update; the prediction always runs. P stays symmetric (symmetrised after
+// each update); should the state stop being finite or P stop being positive definite (a Cholesky
+// factorisation fails; hostile data), the axis restarts from its initial covariance and the restart
+// is counted; it restarts at the last healthy CoM and takes the ZMP rate afresh. A measurement
+// whose innovation exceeds 100 standard deviations (sqrt of H P H^T + R) is dropped as broken (a
+// ZMP so dropped is treated as missing, in the prediction too); 200 consecutive dropped ZMP
+// readings mean the filter is lost, and the axis restarts on the ZMP (counted too). Allocation-free.
 
 #include <array>
 #include <string_view>
@@ -56,7 +61,7 @@ class LipmComEstimator {
   };
 
   enum Input : std::size_t { kImuAcc, kBaseRpy, kZmp, kKinematicCom };
-  enum Output : std::size_t { kCom, kComVelocity, kComAcceleration, kComVariance };
+  enum Output : std::size_t { kCom, kComVelocity, kComAcceleration, kComVariance, kCovarianceResets };
 
   LipmComEstimator(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
@@ -68,8 +73,15 @@ class LipmComEstimator {
     Eigen::Vector3d s = Eigen::Vector3d::Zero();
     Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
     double previous_zmp = 0.0;
+    double last_good_com = 0.0;  // the CoM of the last healthy tick, where a restart begins
+    bool restarted = false;
+    int gated_zmp_ticks = 0;  // consecutive ZMP readings rejected by the gate
+    double resets = 0.0;  // restarts after a non-finite state or a covariance that is not positive definite
   };
-  void update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept;
+  // One scalar Kalman update; false when the innovation fails the 100-sigma gate (reading dropped).
+  bool update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept;
+  static constexpr double kGateSigma2 = 1e4;
+  static constexpr int kGatedTicksBeforeRestart = 200;
 
   Ports ports_;
   Params params_;
