@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <limits>
 #include <sstream>
 
@@ -73,6 +77,93 @@ std::deque<std::vector<double>> read_ahead_and_check_rate(io::CsvLogReader& log,
   return rows;
 }
 
+
+// Parses the rest of a log on a second thread, a block of rows ahead, so that parsing overlaps
+// the pipeline and the output writing (a replay is about half parsing). Rows come out in order
+// with their line numbers; an error of the reader (a malformed row) comes out where it happened,
+// after every row before it. Only this object touches the reader once it has started.
+class RowPrefetcher {
+ public:
+  explicit RowPrefetcher(io::CsvLogReader& log) : log_(log), worker_([this] { produce(); }) {}
+  RowPrefetcher(const RowPrefetcher&) = delete;
+  RowPrefetcher& operator=(const RowPrefetcher&) = delete;
+  ~RowPrefetcher() {
+    {
+      const std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    space_.notify_all();
+    worker_.join();
+  }
+
+  // The next row and its line number; false at the end of the log. Rethrows the reader's error.
+  bool next(std::vector<double>& row, std::size_t& line) {
+    if (taken_ == current_.rows.size()) {
+      if (current_.error) std::rethrow_exception(current_.error);
+      if (current_.last) return false;
+      std::unique_lock lock(mutex_);
+      ready_.wait(lock, [this] { return !blocks_.empty(); });
+      std::swap(current_, blocks_.front());
+      blocks_.pop_front();
+      lock.unlock();
+      space_.notify_one();
+      taken_ = 0;
+      return next(row, line);
+    }
+    row.swap(current_.rows[taken_]);
+    line = current_.lines[taken_];
+    ++taken_;
+    return true;
+  }
+
+ private:
+  struct Block {
+    std::vector<std::vector<double>> rows;
+    std::vector<std::size_t> lines;
+    std::exception_ptr error;
+    bool last = false;
+  };
+  static constexpr std::size_t kBlockRows = 256;
+  static constexpr std::size_t kMaxBlocks = 8;
+
+  void produce() {
+    bool done = false;
+    while (!done) {
+      Block block;
+      try {
+        std::vector<double> row;
+        while (block.rows.size() < kBlockRows) {
+          if (!log_.next(row)) {
+            block.last = true;
+            break;
+          }
+          block.rows.push_back(row);
+          block.lines.push_back(log_.line());
+        }
+      } catch (...) {
+        block.error = std::current_exception();
+      }
+      done = block.last || block.error != nullptr;
+      std::unique_lock lock(mutex_);
+      space_.wait(lock, [this] { return stop_ || blocks_.size() < kMaxBlocks; });
+      if (stop_) return;
+      blocks_.push_back(std::move(block));
+      lock.unlock();
+      ready_.notify_one();
+    }
+  }
+
+  io::CsvLogReader& log_;
+  std::mutex mutex_;
+  std::condition_variable ready_;
+  std::condition_variable space_;
+  std::deque<Block> blocks_;
+  bool stop_ = false;
+  Block current_;
+  std::size_t taken_ = 0;
+  std::thread worker_;  // last: starts after every other member exists
+};
+
 }  // namespace
 
 RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnMap& map,
@@ -92,14 +183,13 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
   pipeline.reset();
   std::deque<std::vector<double>> ahead = read_ahead_and_check_rate(log, period, clock.rate_check_rows);
   std::size_t line = 1;  // of the row being stepped (the header is line 1)
+  RowPrefetcher rest(log);  // the rows after the read-ahead, parsed on a second thread
   while (true) {
     if (!ahead.empty()) {
       row = std::move(ahead.front());
       ahead.pop_front();
       ++line;
-    } else if (log.next(row)) {
-      line = log.line();
-    } else {
+    } else if (!rest.next(row, line)) {
       break;
     }
     const double t = row[0];
