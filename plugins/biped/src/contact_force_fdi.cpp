@@ -275,11 +275,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       c.second_diff[c.second_diff_next] = std::abs(x - 2.0 * c.previous + c.previous2);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
-      const bool landing = touching_down || foot_airborne_[std::min<std::size_t>(j / feet_points_, 1)];
       c.jump_pending = false;
-      // A corrected channel may also jump back while its foot rolls (its fault ending): only an
-      // impact is excluded then, so that it is re-admitted without waiting for the next flight.
-      const bool may_jump = !landing || (corrects(c.type) && !touching_down);
+      // Any time but a landing: a rolling foot's pads change a few newtons per tick, far below
+      // jump_threshold_N, and the sum-residual confirmation rejects what is not a sensor step.
+      const bool may_jump = !touching_down;
       if (std::abs(change) > params_.jump_threshold_N && may_jump && !group_pending_) {
         c.jump_pending = true;
         c.jump_size = change;

@@ -26,9 +26,9 @@
 //             noise_factor * noise_std_N * sqrt(6) (their healthy standard deviation).
 //   airborne  while the pad has been airborne for airborne_settle_s, |mean N_j| > airborne_threshold_N:
 //             offset, drift or frozen-at-load; the mean measures the fault directly.
-//   jump      |N_j,k - N_j,k-1| > jump_threshold_N, on a foot standing flat (none of its pads
-//             airborne) and with no foot touching down within touchdown_guard_s (a landing impact
-//             jumps pads and, unseen by the trunk IMU, the sum residual); confirmed when the sum
+//   jump      |N_j,k - N_j,k-1| > jump_threshold_N, with no foot touching down within
+//             touchdown_guard_s (a landing impact jumps pads and, unseen by the trunk IMU, the
+//             sum residual; a rolling foot's pads change only a few N per tick); confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
 //             each other): an abrupt fault, isolated at once. While a loaded channel is
