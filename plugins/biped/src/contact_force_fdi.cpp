@@ -195,6 +195,7 @@ void ContactForceFdi::reset() noexcept {
   std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
   gain_rr_ = gain_weight_ = 0.0;
   gain_ticks_ = 0;
+  gain_unisolated_ = false;
 }
 
 void ContactForceFdi::raise(Channel& c, int type, double t) noexcept {
@@ -531,7 +532,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   io.out(kSumResidual)[0] = sum_filtered_;
   bool any = false;
   for (const auto& c : channels_) any = any || c.type != 0;
-  io.out(kUnisolated)[0] = (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any)) ? 1.0 : 0.0;
+  io.out(kUnisolated)[0] =
+      (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any) || gain_unisolated_) ? 1.0 : 0.0;
   io.out(kVirtualReady)[0] = fz_ok ? 1.0 : 0.0;
   started_ = true;
 }
@@ -570,14 +572,21 @@ void ContactForceFdi::gain_regression(std::span<const double> recovered, double 
   }
   // The pads of one foot load together, so a gain fault on one is fitted almost as well by its
   // neighbours (the sum residual cannot see moments): blame a channel only when its fit stands out.
-  if (best == gain_xx_.size() || best_explained < params_.gain_explained ||
-      best_explained - second_explained < params_.gain_isolation_margin) {
+  // A strong fit that does not stand out is a fault that cannot be isolated: reported as such
+  // (`unisolated`) until a window shows no strong fit or an isolated one.
+  if (best == gain_xx_.size() || best_explained < params_.gain_explained) {
+    gain_unisolated_ = false;
     return;
   }
   Channel& c = channels_[best];
   const double beta = gain_xr_[best] / gain_xx_[best];
   const double threshold = c.type == 0 ? params_.gain_threshold : 0.5 * params_.gain_threshold;
-  if (std::abs(beta) <= threshold) return;
+  if (std::abs(beta) <= threshold) {
+    gain_unisolated_ = false;
+    return;
+  }
+  gain_unisolated_ = best_explained - second_explained < params_.gain_isolation_margin;
+  if (gain_unisolated_) return;
   // recovered_new = recovered (1 - beta): k_new = k / (1 - beta).
   const double gain = (c.type == code(FaultType::gain) ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
   if (c.type == code(FaultType::gain) && std::abs(1.0 - 1.0 / gain) < 0.5 * params_.gain_threshold) {

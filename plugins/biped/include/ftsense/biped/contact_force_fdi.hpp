@@ -43,7 +43,7 @@
 //             of r's power is raised as a gain fault when that share exceeds gain_explained and
 //             every other channel's by gain_isolation_margin (the pads of one foot load together,
 //             and the sum cannot see moments, so a fault on one is often fitted nearly as well by
-//             its neighbour: then nothing is blamed and the residual shows as `unisolated`) and
+//             its neighbour: then nothing is blamed and `unisolated` is raised instead) and
 //             |beta_j| > gain_threshold, with k = 1 / (1 - beta_j), and its RMS load over the
 //             window is above gain_min_load_N; the same test refines k on the corrected residual
 //             and re-admits the channel when k comes back within gain_threshold / 2 of 1. The
@@ -65,8 +65,9 @@
 // values; NaN while F_z is not finite, the virtual sensor not ready), virtual_ready (1 while F_z
 // is finite; while it is not, the sum residual holds and no channel is judged on it).
 // `unisolated` is 1 while the low-passed sum residual exceeds sum_threshold_N with no
-// channel flagged: a fault of the virtual sensor's own inputs (IMU) or one that cannot be
-// isolated, reported as such rather than blamed on a force sensor.
+// channel flagged, or while the gain test's fit is strong but no channel stands out in it: a
+// fault of the virtual sensor's own inputs (IMU) or one that cannot be isolated, reported as such
+// rather than blamed on a force sensor.
 // Channel order: the left foot's points, then the right foot's, each in the order of `points`.
 
 #include <array>
@@ -196,6 +197,7 @@ class ContactForceFdi {
   double gain_weight_ = 0.0;
   double gain_forgetting_ = 1.0;
   int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
+  bool gain_unisolated_ = false;  // a strong gain fit that no single channel stands out in
   int gain_window_ticks_ = 1;
 };
 
