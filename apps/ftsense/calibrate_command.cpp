@@ -63,19 +63,10 @@ int calibrate_command(const std::vector<std::string>& args) {
   }
 
   // Every fault-free log in turn (the pipeline restarts for each, and so does the warm-up).
-  std::vector<std::string> inputs;
-  {
-    std::string list = options.at("input");
-    for (std::size_t from = 0;;) {
-      const std::size_t comma = list.find(',', from);
-      const std::string path = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
-      if (path.empty()) throw UsageError{"ftsense calibrate: --input = '" + list + "' has an empty log path"};
-      inputs.push_back(path);
-      if (comma == std::string::npos) break;
-      from = comma + 1;
-    }
+  const std::vector<std::string> inputs = split_list(options.at("input"));
+  for (const std::string& input : inputs) {
+    if (input.empty()) throw UsageError{"ftsense calibrate: --input = '" + options.at("input") + "' has an empty log path"};
   }
-  RunSummary summary;
   std::size_t ticks = 0;
   for (const std::string& input : inputs) {
     std::optional<io::CsvLogReader> log;
@@ -88,6 +79,7 @@ int calibrate_command(const std::vector<std::string>& args) {
     double start = std::nan("");
     double last = std::nan("");
     const ClockPolicy clock;
+    RunSummary summary;
     try {
       summary = run_over_log(pipeline, *log, map, nullptr, [&](double t) {
         // The runner resets the pipeline after a long gap: the warm-up starts again there.

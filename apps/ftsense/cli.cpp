@@ -1,11 +1,22 @@
 #include "cli.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
 #include "ftsense/diagnostics.hpp"
 
 namespace ftsense::cli {
+
+std::vector<std::string> split_list(std::string_view list) {
+  std::vector<std::string> items;
+  for (std::size_t start = 0; start <= list.size();) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    items.emplace_back(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return items;
+}
 
 std::map<std::string, std::string> parse_options(std::string_view verb, const std::vector<std::string>& args,
                                                  const std::vector<OptionSpec>& specs) {

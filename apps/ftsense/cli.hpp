@@ -37,6 +37,10 @@ std::map<std::string, std::string> parse_options(std::string_view verb, const st
 std::string usage_text(std::string_view verb, std::string_view summary,
                        const std::vector<OptionSpec>& specs);
 
+// The comma-separated items of an option's value, in order; empty items are kept (the caller
+// says what an empty one means).
+std::vector<std::string> split_list(std::string_view list);
+
 // Reads a whole text file; throws UsageError when it cannot.
 std::string read_text_file(const std::string& path, std::string_view what);
 

@@ -18,16 +18,12 @@ int plugins_command(const std::vector<std::string>& args) {
   }
   const PluginRegistry registry = reference_plugins::registry();
   if (options.count("markdown") && options.count("only")) {
-    std::string names = options.at("only");
     bool first = true;
-    for (std::size_t start = 0; start <= names.size();) {
-      const std::size_t comma = std::min(names.find(',', start), names.size());
-      const std::string name = names.substr(start, comma - start);
+    for (const std::string& name : split_list(options.at("only"))) {
       const PluginInfo* info = registry.find(name);
       if (info == nullptr) throw UsageError{"ftsense plugins: unknown plugin '" + name + "'; " + suggest(name, registry.names())};
       std::cout << (first ? "" : "\n") << plugin_reference_markdown(*info);
       first = false;
-      start = comma + 1;
     }
     return kExitOk;
   }

@@ -72,10 +72,7 @@ int run_command(const std::vector<std::string>& args) {
   if (const auto r = options.find("record"); r != options.end()) {
     std::vector<std::pair<std::string, std::string>> units;
     for (const auto& [name, unit] : pipeline.signal_names()) units.emplace_back(name, unit);
-    for (std::size_t start = 0; start <= r->second.size();) {
-      const std::size_t comma = std::min(r->second.find(',', start), r->second.size());
-      const std::string name = r->second.substr(start, comma - start);
-      start = comma + 1;
+    for (const std::string& name : split_list(r->second)) {
       SignalRef ref;
       try {
         ref = pipeline.signal(name);

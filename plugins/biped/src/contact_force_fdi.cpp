@@ -252,11 +252,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   int jump_candidates = 0;
   double jump_sum = 0.0;
   double raw_sum = 0.0;
+  bool all_finite_readings = true;  // the gain test takes only ticks where every channel has a value
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
     const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
     if (!std::isfinite(x)) {
+      all_finite_readings = false;
       raise(c, code(FaultType::invalid), t);
       c.stale_count = 0;
       c.airborne_ticks = c.airborne_count = 0;
@@ -523,8 +525,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   // The corrected sum residual: what no channel explains.
   const double residual = fz_ok ? total - fz : 0.0;
-  bool all_finite_readings = true;
-  for (std::size_t j = 0; j < channels_.size(); ++j) all_finite_readings = all_finite_readings && std::isfinite(measured[j]);
   gain_regression(recovered, residual, fz_ok && all_finite_readings && !touching_down && !substituting_loaded, t);
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
   // Without F_z the residual is unknown, not zero: hold the filter rather than pull it to zero.

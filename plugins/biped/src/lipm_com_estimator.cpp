@@ -79,18 +79,17 @@ void LipmComEstimator::reset() noexcept {
   initialised_ = false;
 }
 
-bool LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept {
+void LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept {
   const Eigen::Vector3d ph = axis.P * h.transpose();
   const double s = h.dot(ph) + variance;
-  if (!(s > 0.0) || !std::isfinite(z)) return true;
+  if (!(s > 0.0) || !std::isfinite(z)) return;
   const double innovation = z - h.dot(axis.s);
   // Gate: an innovation beyond 100 standard deviations is a broken reading, not information.
-  if (!(innovation * innovation <= kGateSigma2 * s)) return false;
+  if (!(innovation * innovation <= kGateSigma2 * s)) return;
   const Eigen::Vector3d k = ph / s;
   axis.s += k * innovation;
   axis.P -= k * ph.transpose();
   axis.P = 0.5 * (axis.P + axis.P.transpose());
-  return true;
 }
 
 void LipmComEstimator::step(const StepIO& io) noexcept {

@@ -78,8 +78,8 @@ class LipmComEstimator {
     int gated_zmp_ticks = 0;  // consecutive ZMP readings rejected by the gate
     double resets = 0.0;  // restarts after a non-finite state or a covariance that is not positive definite
   };
-  // One scalar Kalman update; false when the innovation fails the 100-sigma gate (reading dropped).
-  bool update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept;
+  // One scalar Kalman update; skipped when z is not finite or its innovation fails the 100-sigma gate.
+  void update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept;
   static constexpr double kGateSigma2 = 1e4;
   static constexpr int kGatedTicksBeforeRestart = 200;
 
