@@ -234,7 +234,7 @@ int run_ticks(std::size_t ticks) {
   for (std::size_t i = 0, k = 0; i < ticks; ++i) {
     write_inputs(p, w.inputs[k]);
     p.step(w.time[k]);
-    sink += p.values(p.monitor().recovered)[0];
+    sink += p.values(p.monitor()[ftsense::MonitorColumn::recovered])[0];
     if (++k == w.time.size()) k = 0;
   }
   std::printf("ran %zu ticks (checksum %.6g)\n", ticks, sink);

@@ -88,7 +88,7 @@ void step_a_few(Pipeline& p, FuzzedDataProvider& fdp) {
     const std::string name = std::string(p.stage_name(s)) + ".recovered";
     watched.push_back({"fault_recovery output " + name, p.signal(name), false});
   }
-  if (p.has_monitor()) watched.push_back({"monitor recovered", p.monitor().recovered, true});
+  if (p.has_monitor()) watched.push_back({"monitor recovered", p.monitor()[ftsense::MonitorColumn::recovered], true});
 
   const bool hostile = fdp.remaining_bytes() != 0 && fdp.ConsumeBool();
   const std::size_t ticks =

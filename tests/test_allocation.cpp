@@ -42,7 +42,7 @@ TEST(Allocation, PipelineTicksAllocateNothing) {
   const std::size_t allocations_while_stepping = scope.allocations();
   // The run did real work: the late +30 N offset on "measured" is flagged on every channel.
   ASSERT_EQ(pipeline.inputs()[1].name, "measured");
-  for (double f : pipeline.values(pipeline.monitor().fault)) EXPECT_EQ(f, 1.0);
+  for (double f : pipeline.values(pipeline.monitor()[MonitorColumn::fault])) EXPECT_EQ(f, 1.0);
   pipeline.reset();
   EXPECT_EQ(allocations_while_stepping, 0u);
   EXPECT_EQ(scope.allocations(), 0u) << "reset() allocated";

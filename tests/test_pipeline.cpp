@@ -31,12 +31,12 @@ TEST(Pipeline, BuildsAndStepsTheBaseConfig) {
   EXPECT_EQ(residual[1], -5.0);
   // The low-pass starts at the first sample; |-5| > 5 is false, so no flag yet.
   EXPECT_EQ(p.values(p.signal("smooth.filtered"))[1], -5.0);
-  EXPECT_EQ(p.values(p.monitor().fault)[1], 0.0);
+  EXPECT_EQ(p.values(p.monitor()[MonitorColumn::fault])[1], 0.0);
   set_inputs(p, {10, 10, 30}, {10, 25, 30});
   for (int k = 1; k < 2000; ++k) p.step(k * 1e-3);
-  EXPECT_EQ(p.values(p.monitor().fault)[1], 1.0);
-  EXPECT_EQ(p.values(p.monitor().fault_type)[1], 1.0);  // unclassified
-  EXPECT_EQ(p.values(p.monitor().fault)[0], 0.0);
+  EXPECT_EQ(p.values(p.monitor()[MonitorColumn::fault])[1], 1.0);
+  EXPECT_EQ(p.values(p.monitor()[MonitorColumn::fault_type])[1], 1.0);  // unclassified
+  EXPECT_EQ(p.values(p.monitor()[MonitorColumn::fault])[0], 0.0);
 }
 
 TEST(Pipeline, RunOrderFollowsDependenciesNotListing) {
@@ -178,8 +178,8 @@ TEST(Pipeline, MonitorGathersConcatenatedSignals) {
   ASSERT_EQ(p.inputs()[0].name, "extra");  // inputs are in name order
   p.input_values(0)[0] = 7.0;
   p.step(0.0);
-  EXPECT_EQ(p.values(p.monitor().measured).size(), 4u);
-  EXPECT_EQ(p.values(p.monitor().measured)[3], 7.0);
+  EXPECT_EQ(p.values(p.monitor()[MonitorColumn::measured]).size(), 4u);
+  EXPECT_EQ(p.values(p.monitor()[MonitorColumn::measured])[3], 7.0);
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ TEST(ShippedConfigs, SuralpTicksAllocateNothing) {
   testing::AllocationScope scope;
   for (int k = 1; k <= 10000; ++k) tick(k);
   EXPECT_EQ(scope.allocations(), 0u);
-  for (double v : p.values(p.monitor().recovered)) EXPECT_TRUE(std::isfinite(v));
+  for (double v : p.values(p.monitor()[MonitorColumn::recovered])) EXPECT_TRUE(std::isfinite(v));
 }
 
 }  // namespace

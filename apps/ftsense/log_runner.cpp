@@ -1,6 +1,7 @@
 #include "log_runner.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <condition_variable>
 #include <deque>
@@ -36,15 +37,9 @@ ColumnMap ColumnMap::make(const Pipeline& pipeline, const io::CsvLogReader& log)
 
 std::vector<std::string> monitor_columns(const Monitor& monitor) {
   std::vector<std::string> columns{"time_s"};
-  const std::string unit = "_" + monitor.unit;
   for (const auto& ch : monitor.channels) {
-    columns.push_back(ch + "/measured" + unit);
-    columns.push_back(ch + "/virtual" + unit);
-    columns.push_back(ch + "/fault_estimate" + unit);
-    columns.push_back(ch + "/recovered" + unit);
-    columns.push_back(ch + "/fault");
-    columns.push_back(ch + "/fault_type");
-    for (const auto& e : monitor.extra) columns.push_back(ch + "/" + e.name + (e.unit == "1" ? "" : "_" + e.unit));
+    for (const MonitorColumnInfo& column : kMonitorColumns) columns.push_back(monitor_column_name(ch, column, monitor.unit));
+    for (const auto& e : monitor.extra) columns.push_back(extra_column_name(ch, e.name, e.unit));
   }
   return columns;
 }
@@ -174,7 +169,7 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
   RunSummary summary;
   summary.first_fault_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> row;
-  const std::size_t per_channel = 6 + m.extra.size();
+  const std::size_t per_channel = kMonitorColumnCount + m.extra.size();
   std::size_t recorded_values = 0;
   for (const SignalRef& r : recorded) recorded_values += r.dim;
   std::vector<double> out_row(1 + per_channel * channels + recorded_values);
@@ -212,22 +207,14 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
       for (double& v : pipeline.input_values(i)) v = row[map.log_column[k++]];
     }
     pipeline.step(t);
-    const auto measured = pipeline.values(m.measured);
-    const auto estimate = pipeline.values(m.virtual_value);
-    const auto fault_estimate = pipeline.values(m.fault_estimate);
-    const auto recovered = pipeline.values(m.recovered);
-    const auto fault = pipeline.values(m.fault);
-    const auto fault_type = pipeline.values(m.fault_type);
+    std::array<std::span<const double>, kMonitorColumnCount> columns;
+    for (std::size_t i = 0; i < kMonitorColumnCount; ++i) columns[i] = pipeline.values(m.columns[i]);
+    const auto fault = pipeline.values(m[MonitorColumn::fault]);
     out_row[0] = t;
     for (std::size_t c = 0; c < channels; ++c) {
       double* o = &out_row[1 + per_channel * c];
-      o[0] = measured[c];
-      o[1] = estimate[c];
-      o[2] = fault_estimate[c];
-      o[3] = recovered[c];
-      o[4] = fault[c];
-      o[5] = fault_type[c];
-      for (std::size_t e = 0; e < m.extra.size(); ++e) o[6 + e] = pipeline.values(m.extra[e].signal)[c];
+      for (std::size_t i = 0; i < kMonitorColumnCount; ++i) o[i] = columns[i][c];
+      for (std::size_t e = 0; e < m.extra.size(); ++e) o[kMonitorColumnCount + e] = pipeline.values(m.extra[e].signal)[c];
       if (fault[c] != 0.0 && std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
     }
     std::size_t at = 1 + per_channel * channels;

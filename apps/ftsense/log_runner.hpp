@@ -18,8 +18,8 @@ struct ColumnMap {
   static ColumnMap make(const Pipeline& pipeline, const io::CsvLogReader& log);
 };
 
-// The output header of `ftsense run` (design.md): time_s, then per channel
-// measured/virtual/fault_estimate/recovered (with the unit suffix), fault, fault_type.
+// The output header of `ftsense run` (design.md): time_s, then per channel the columns of
+// kMonitorColumns (monitor_columns.hpp) and the monitor's extra signals.
 std::vector<std::string> monitor_columns(const Monitor& monitor);
 
 struct RunSummary {

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
         measured[c] = load + noise(rng) + ((c == 1 && t >= 1.0) ? 20.0 : 0.0);
       }
       pipeline.step(t);
-      const auto fault = pipeline.values(monitor.fault);
+      const auto fault = pipeline.values(monitor[ftsense::MonitorColumn::fault]);
       for (std::size_t c = 0; c < fault.size(); ++c) {
         if (fault[c] != 0.0 && first_alarm[c] < 0.0) first_alarm[c] = t;
       }

@@ -1,7 +1,7 @@
 #pragma once
 // A pipeline of stages built from a JSON config, checked once, then stepped every tick.
 //
-// Config (docs/config_reference.md has every key):
+// Config (pipeline_document.hpp describes it; docs/config_reference.md has every key):
 //   {
 //     "sample_period_s": 0.001,
 //     "inputs": { "forces": { "columns": ["r_foot/p1/force_N", ...], "unit": "N" }, ... },
@@ -25,6 +25,7 @@
 // step() runs the stages in dependency order over one preallocated buffer: no allocation, no
 // exception, no string lookup.
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <memory>
@@ -34,6 +35,8 @@
 #include <vector>
 
 #include "ftsense/diagnostics.hpp"
+#include "ftsense/json_text.hpp"
+#include "ftsense/monitor_columns.hpp"
 #include "ftsense/params.hpp"
 #include "ftsense/plugin.hpp"
 #include "ftsense/plugin_registry.hpp"
@@ -54,16 +57,12 @@ struct PipelineInput {
   SignalRef values;
 };
 
-// What the `run` program writes per monitored channel.
+// What the `run` program writes per monitored channel: one signal per row of kMonitorColumns
+// (monitor_columns.hpp), each with one value per channel.
 struct Monitor {
   std::vector<std::string> channels;
   std::string unit;  // unit of the measured signal
-  SignalRef measured;
-  SignalRef virtual_value;
-  SignalRef fault_estimate;
-  SignalRef recovered;
-  SignalRef fault;
-  SignalRef fault_type;
+  std::array<SignalRef, kMonitorColumnCount> columns;
   // Optional further per-channel signals, written as <channel>/<name>[_<unit>].
   struct Extra {
     std::string name;
@@ -71,13 +70,11 @@ struct Monitor {
     SignalRef signal;
   };
   std::vector<Extra> extra;
-};
 
-// Parses JSON text strictly: syntax errors, numbers beyond the range of a double and nesting
-// deeper than kMaxJsonDepth give "source:line:column", and duplicate object keys (which JSON
-// parsers silently collapse) are errors with their JSON Pointer.
-inline constexpr std::size_t kMaxJsonDepth = 100;
-[[nodiscard]] Json parse_json_text(std::string_view text, std::string_view source_name);
+  [[nodiscard]] SignalRef operator[](MonitorColumn column) const noexcept {
+    return columns[static_cast<std::size_t>(column)];
+  }
+};
 
 class Pipeline {
  public:

@@ -40,6 +40,7 @@ namespace {
 
 using ftsense::Pipeline;
 using ftsense::SignalRef;
+using ftsense::MonitorColumn;
 
 long resident_kib() {
   std::ifstream status("/proc/self/status");
@@ -156,14 +157,14 @@ class SoakSink : public std::streambuf {
       }
       const auto& m = s.pipeline.monitor();
       bool finite = true;
-      for (double v : s.pipeline.values(m.recovered)) finite = finite && std::isfinite(v);
-      for (double v : s.pipeline.values(m.fault_estimate)) {
+      for (double v : s.pipeline.values(m[MonitorColumn::recovered])) finite = finite && std::isfinite(v);
+      for (double v : s.pipeline.values(m[MonitorColumn::fault_estimate])) {
         finite = finite && std::isfinite(v);
         if (std::isfinite(v)) s.max_abs_fault_estimate = std::max(s.max_abs_fault_estimate, std::abs(v));
       }
       if (!finite && s.nonfinite_ticks++ == 0) s.first_nonfinite_s = t;
       bool flagged = false;
-      for (double v : s.pipeline.values(m.fault)) flagged = flagged || v != 0.0;
+      for (double v : s.pipeline.values(m[MonitorColumn::fault])) flagged = flagged || v != 0.0;
       s.flagged_ticks += flagged ? 1 : 0;
       for (auto& w : s.variances) {
         for (double v : s.pipeline.values(w.ref)) {

@@ -251,9 +251,9 @@ int run_command(const std::string& config_path, const std::string& data_path) {
   // 1. As recorded: the virtual sensor's error on held-out healthy data, and alarms (all false).
   std::vector<double> previous(n, 0.0);
   run_pipeline(pipeline, log, {}, input_columns, [&](std::size_t k, const ftsense::Pipeline& p) {
-    const auto measured = p.values(monitor.measured);
-    const auto virtual_value = p.values(monitor.virtual_value);
-    const auto fault = p.values(monitor.fault);
+    const auto measured = p.values(monitor[ftsense::MonitorColumn::measured]);
+    const auto virtual_value = p.values(monitor[ftsense::MonitorColumn::virtual_value]);
+    const auto fault = p.values(monitor[ftsense::MonitorColumn::fault]);
     for (std::size_t c = 0; c < n; ++c) {
       if (fault[c] != 0.0) {
         stats[c].healthy_alarm_s += dt;
@@ -282,7 +282,7 @@ int run_command(const std::string& config_path, const std::string& data_path) {
   std::fill(previous.begin(), previous.end(), 0.0);
   run_pipeline(pipeline, log, kSchedule, input_columns, [&](std::size_t k, const ftsense::Pipeline& p) {
     const double t = log.time_s[k];
-    const auto fault = p.values(monitor.fault);
+    const auto fault = p.values(monitor[ftsense::MonitorColumn::fault]);
     bool any_fault_active = false;
     for (const auto& f : kSchedule) any_fault_active = any_fault_active || (t >= f.start_s && t < f.end_s + kClearGraceS);
     for (std::size_t c = 0; c < n; ++c) {

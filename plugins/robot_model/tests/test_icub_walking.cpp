@@ -74,8 +74,8 @@ IcubRun run_icub() {
       }
       run.fk_error_m[f].push_back(std::sqrt(squared));
       if (pipeline.values(contact)[static_cast<std::size_t>(f)] > 0.5) {
-        run.stance_error_N[f].push_back(pipeline.values(m.virtual_value)[static_cast<std::size_t>(f)] -
-                                        pipeline.values(m.measured)[static_cast<std::size_t>(f)]);
+        run.stance_error_N[f].push_back(pipeline.values(m[MonitorColumn::virtual_value])[static_cast<std::size_t>(f)] -
+                                        pipeline.values(m[MonitorColumn::measured])[static_cast<std::size_t>(f)]);
       }
     }
   }

@@ -1,0 +1,123 @@
+#pragma once
+// The pipeline config document, described once.
+//
+// Its sections and keys live in one table (pipeline_document_sections()); the reader below
+// checks a document against it (unknown keys, missing required keys, types) and the config
+// reference (docs/config_reference.md) is generated from it, like plugin parameters from their
+// `describe`. The monitor's wires are the rows of kMonitorColumns (monitor_columns.hpp).
+//
+//   {
+//     "sample_period_s": 0.001,                                   tick period T [s]
+//     "inputs": { "<name>": { "columns": [...], "unit": "N", "derived_from": [...] }, ... },
+//     "stages": [ { "name": "...", "plugin": "...", "params": {...},
+//                   "inputs": { "<port>": "<wire>", ... } }, ... ],
+//     "monitor": { "channels": [...], "<monitor column key>": "<wire>", ..., "extra": {...} },
+//     "allow_dependent_virtual_sensor": false
+//   }
+//
+// A wire is "input.<name>" or "<stage>.<port>", or a non-empty array of them concatenated in
+// order. Reading resolves every name the document itself defines (inputs, stages); what only
+// the plugins know (ports, dimensions, units, parameters) is the builder's to check.
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ftsense/diagnostics.hpp"
+#include "ftsense/monitor_columns.hpp"
+#include "ftsense/params.hpp"
+
+namespace ftsense {
+
+// The JSON type a key takes.
+enum class DocumentValue { number, boolean, text, object, array, text_list, wire };
+// As users read it: "number", "array of strings", "wire", ...
+[[nodiscard]] std::string_view to_string(DocumentValue value) noexcept;
+// Whether `value` has the JSON type (a wire: a string or a non-empty array of strings).
+[[nodiscard]] bool has_type(const Json& value, DocumentValue type) noexcept;
+
+// One key of a document section, as users read it.
+struct DocumentKey {
+  std::string key;
+  DocumentValue type;
+  bool required;
+  std::string default_value;  // JSON text of the default of an optional key; empty: none
+  std::string rule;           // beyond the type: "> 0", "non-empty", "unique identifier", ...
+  std::string meaning;        // what it is; also the hint of "missing required key (...)"
+};
+
+struct DocumentSection {
+  std::string path;   // "", "inputs/<name>", "stages/<i>", "monitor"
+  std::string what;   // "the pipeline config", "an input", ... (in messages)
+  std::string intro;  // a sentence for the reference; may be empty
+  std::vector<DocumentKey> keys;
+
+  [[nodiscard]] const DocumentKey& at(std::string_view key) const;  // a described key
+  [[nodiscard]] std::vector<std::string> key_names() const;
+};
+
+enum class DocumentSectionId : std::size_t { pipeline, input, stage, monitor };
+// Every section of the document, in DocumentSectionId order.
+[[nodiscard]] const std::vector<DocumentSection>& pipeline_document_sections();
+[[nodiscard]] const DocumentSection& document_section(DocumentSectionId id);
+
+// One element of a wire: "input.<name>" or "<stage>.<port>".
+struct WireEnd {
+  std::string text;          // as written
+  std::string node;          // "input" or a stage name
+  std::string port;          // input name or output port name
+  std::string path;          // its JSON Pointer
+  bool from_input = false;
+  std::size_t producer = 0;  // index into PipelineDocument::stages when !from_input
+};
+
+struct WireDecl {
+  std::string port;  // the consuming port (stage input, monitor column key or extra name)
+  std::string path;  // JSON Pointer of the wire
+  std::vector<WireEnd> ends;
+};
+
+struct InputDecl {
+  std::string name;
+  std::vector<std::string> columns;       // log column names, one per value
+  std::string unit;
+  std::vector<std::string> derived_from;  // other inputs this one is computed from
+};
+
+struct StageDecl {
+  std::string name;
+  std::string path;            // "/stages/<i>"
+  std::string plugin;          // empty when missing or not a string (reported)
+  Json params = Json::object();
+  std::vector<WireDecl> wires;
+  bool ok = true;              // false: reported, not to be built
+  std::vector<std::size_t> upstream;  // stages its wires read, sorted, unique
+};
+
+struct MonitorDecl {
+  std::vector<std::string> channels;
+  std::array<std::optional<WireDecl>, kMonitorColumnCount> columns;  // empty: missing or bad (reported)
+  std::vector<WireDecl> extra;
+  bool ok = true;  // false: some part is reported; the monitor is not built
+};
+
+struct PipelineDocument {
+  std::optional<double> sample_period_s;  // empty: missing or invalid (reported)
+  bool allow_dependent_virtual_sensor = false;
+  std::vector<InputDecl> inputs;  // the well-declared ones (a broken one is reported, not here)
+  std::vector<StageDecl> stages;
+  std::optional<MonitorDecl> monitor;
+};
+
+// Reads `config` against the document's table: every problem goes to `diag` with its JSON
+// Pointer; what is readable is returned, so the builder can report further problems at once.
+[[nodiscard]] PipelineDocument read_pipeline_document(const Json& config, Diagnostics& diag);
+
+// True for names made of letters, digits and '_' that do not start with a digit.
+[[nodiscard]] bool is_identifier(std::string_view s) noexcept;
+
+}  // namespace ftsense

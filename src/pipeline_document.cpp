@@ -1,0 +1,466 @@
+#include "ftsense/pipeline_document.hpp"
+
+#include <algorithm>
+
+namespace ftsense {
+
+// ---------------------------------------------------------------------------------------------
+// The table
+
+std::string_view to_string(DocumentValue value) noexcept {
+  switch (value) {
+    case DocumentValue::number: return "number";
+    case DocumentValue::boolean: return "boolean";
+    case DocumentValue::text: return "string";
+    case DocumentValue::object: return "object";
+    case DocumentValue::array: return "array";
+    case DocumentValue::text_list: return "array of strings";
+    case DocumentValue::wire: return "wire";
+  }
+  return "?";
+}
+
+bool has_type(const Json& value, DocumentValue type) noexcept {
+  switch (type) {
+    case DocumentValue::number: return value.is_number();
+    case DocumentValue::boolean: return value.is_boolean();
+    case DocumentValue::text: return value.is_string();
+    case DocumentValue::object: return value.is_object();
+    case DocumentValue::array: return value.is_array();
+    case DocumentValue::text_list:
+      return value.is_array() && std::all_of(value.begin(), value.end(), [](const Json& v) { return v.is_string(); });
+    case DocumentValue::wire:
+      return value.is_string() ||
+             (value.is_array() && !value.empty() &&
+              std::all_of(value.begin(), value.end(), [](const Json& v) { return v.is_string(); }));
+  }
+  return false;
+}
+
+const DocumentKey& DocumentSection::at(std::string_view key) const {
+  for (const DocumentKey& k : keys) {
+    if (k.key == key) return k;
+  }
+  FTSENSE_DEMAND(false, "key not described in section '" + path + "': " + std::string(key));
+}
+
+std::vector<std::string> DocumentSection::key_names() const {
+  std::vector<std::string> names;
+  for (const DocumentKey& k : keys) names.push_back(k.key);
+  return names;
+}
+
+namespace {
+
+std::vector<DocumentSection> make_sections() {
+  using V = DocumentValue;
+  const DocumentKey description{"description", V::text, false, "", "", "free text"};
+  std::vector<DocumentSection> sections;
+  sections.push_back(
+      {"", "the pipeline config", "",
+       {{"sample_period_s", V::number, true, "", "> 0", "tick period T of the pipeline, s"},
+        {"inputs", V::object, true, "", "non-empty", "the signals the pipeline reads each tick, by name"},
+        {"stages", V::array, true, "", "", "the processing stages, run in dependency order"},
+        {"monitor", V::object, false, "", "", "the monitored channels written by `ftsense run`"},
+        {"allow_dependent_virtual_sensor", V::boolean, false, "false", "",
+         "accept a virtual sensor computed from the sensor it judges (a warning instead of an error)"},
+        description}});
+  sections.push_back(
+      {"inputs/<name>", "an input",
+       "`<name>` is an identifier (letters, digits, `_`). Stages refer to it as `input.<name>`.",
+       {{"columns", V::text_list, true, "", "non-empty", "log column names, one per value"},
+        {"unit", V::text, true, "", "non-empty", "SI unit of the values, \"1\" if dimensionless"},
+        {"derived_from", V::text_list, false, "", "input names",
+         "inputs this one is computed from (for the independence rule, e.g. a logged ZMP computed from "
+         "the force sensors)"},
+        description}});
+  sections.push_back(
+      {"stages/<i>", "a stage", "",
+       {{"name", V::text, true, "", "unique identifier, not `input`", "the stage's unique name"},
+        {"plugin", V::text, true, "", "", "the plugin that runs the stage; `ftsense plugins` lists them"},
+        {"params", V::object, false, "{}", "", "the plugin's parameters"},
+        {"inputs", V::object, false, "", "one wire per input port of the plugin",
+         "input port to wire: `\"input.<name>\"`, `\"<stage>.<port>\"`, or an array of them (concatenated)"},
+        description}});
+  DocumentSection monitor{"monitor", "the monitor",
+                          "Every monitored channel `<channel>` gets one output column per wire below; "
+                          "`<unit>` is the unit of the measured signal.",
+                          {{"channels", V::text_list, true, "", "non-empty, unique",
+                            "names of the monitored channels, used as column prefixes"}}};
+  for (const MonitorColumnInfo& column : kMonitorColumns) {
+    monitor.keys.push_back({std::string(column.key), V::wire, true, "", "one value per channel",
+                            std::string(column.meaning) + ", written as `" +
+                                monitor_column_name("<channel>", column, "<unit>") + "`"});
+  }
+  monitor.keys.push_back({"extra", V::object, false, "", "",
+                          "name to wire of further per-channel signals, written as `" +
+                              extra_column_name("<channel>", "<name>", "<unit>") +
+                              "` (no suffix when dimensionless)"});
+  sections.push_back(std::move(monitor));
+  return sections;
+}
+
+}  // namespace
+
+const std::vector<DocumentSection>& pipeline_document_sections() {
+  static const std::vector<DocumentSection> sections = make_sections();
+  return sections;
+}
+
+const DocumentSection& document_section(DocumentSectionId id) {
+  return pipeline_document_sections()[static_cast<std::size_t>(id)];
+}
+
+bool is_identifier(std::string_view s) noexcept {
+  if (s.empty()) return false;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    const bool letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+    const bool digit = c >= '0' && c <= '9';
+    if (!(letter || (digit && i > 0))) return false;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The reader
+
+namespace {
+
+void type_error(const Json& value, const std::string& path, std::string_view expected, std::string_view what,
+                Diagnostics& diag) {
+  diag.error(path, " = " + detail::abbreviated_dump(value) + " has type " + value.type_name() + ", expected " +
+                       std::string(expected) + " (" + std::string(what) + ")");
+}
+
+class DocumentReader {
+ public:
+  DocumentReader(const Json& config, Diagnostics& diag) : cfg_(config), diag_(diag) {}
+
+  PipelineDocument read() {
+    if (!cfg_.is_object()) {
+      type_error(cfg_, "", "object", "a pipeline config", diag_);
+      return std::move(doc_);
+    }
+    const DocumentSection& section = document_section(DocumentSectionId::pipeline);
+    check_keys(cfg_, "", section);
+    if (const Json* t = field(cfg_, "", section, "sample_period_s")) {
+      if (!(t->get<double>() > 0.0)) {
+        diag_.error("/sample_period_s", " = " + t->dump() + " violates > 0 (tick period T, s)");
+      } else {
+        doc_.sample_period_s = t->get<double>();
+      }
+    }
+    if (const Json* a = field(cfg_, "", section, "allow_dependent_virtual_sensor")) {
+      doc_.allow_dependent_virtual_sensor = a->get<bool>();
+    }
+    (void)field(cfg_, "", section, "description");
+    if (const Json* inputs = field(cfg_, "", section, "inputs")) read_inputs(*inputs);
+    if (const Json* stages = field(cfg_, "", section, "stages")) read_stages(*stages);
+    if (const Json* monitor = field(cfg_, "", section, "monitor")) read_monitor(*monitor);
+    return std::move(doc_);
+  }
+
+ private:
+  // Reports keys of `object` that `section` does not describe.
+  void check_keys(const Json& object, const std::string& path, const DocumentSection& section) {
+    const std::vector<std::string> known = section.key_names();
+    for (const auto& [key, value] : object.items()) {
+      if (std::find(known.begin(), known.end(), key) == known.end()) {
+        diag_.error(json_pointer_append(path, key), "unknown key in " + section.what + "; " + suggest(key, known));
+      }
+    }
+  }
+
+  // The value of described key `key` in `object` when it is present with its type; reports a
+  // missing required key and a wrong type.
+  const Json* field(const Json& object, const std::string& path, const DocumentSection& section,
+                    std::string_view key) {
+    const DocumentKey& k = section.at(key);
+    const std::string key_path = json_pointer_append(path, k.key);
+    const auto it = object.find(k.key);
+    if (it == object.end()) {
+      if (k.required) diag_.error(key_path, "missing required key (" + k.meaning + ")");
+      return nullptr;
+    }
+    if (k.type == DocumentValue::text_list && it->is_array()) {
+      // Name the element that is not a string.
+      for (std::size_t i = 0; i < it->size(); ++i) {
+        if (!(*it)[i].is_string()) {
+          type_error((*it)[i], json_pointer_append(key_path, i), "string", k.meaning, diag_);
+          return nullptr;
+        }
+      }
+    }
+    if (!has_type(*it, k.type)) {
+      type_error(*it, key_path, to_string(k.type), k.meaning, diag_);
+      return nullptr;
+    }
+    return &*it;
+  }
+
+  void read_inputs(const Json& inputs) {
+    if (inputs.empty()) {
+      diag_.error("/inputs", "is empty; declare at least one input signal");
+      return;
+    }
+    const DocumentSection& section = document_section(DocumentSectionId::input);
+    for (const auto& [name, spec] : inputs.items()) {
+      const std::string path = json_pointer_append("/inputs", name);
+      if (!is_identifier(name)) {
+        diag_.error(path, "input name '" + name + "' must be an identifier (letters, digits, _)");
+        continue;
+      }
+      declared_inputs_.push_back(name);  // wires may name it even when its declaration is broken
+      if (!spec.is_object()) {
+        type_error(spec, path, "object", "an input signal", diag_);
+        continue;
+      }
+      check_keys(spec, path, section);
+      InputDecl input;
+      input.name = name;
+      bool ok = true;
+      if (const Json* columns = field(spec, path, section, "columns")) {
+        if (columns->empty()) {
+          diag_.error(path + "/columns", "is empty; list at least one log column");
+          ok = false;
+        }
+        for (std::size_t i = 0; i < columns->size(); ++i) {
+          const std::string& c = (*columns)[i].get_ref<const std::string&>();
+          if (c.empty()) {
+            diag_.error(json_pointer_append(path + "/columns", i), "is empty; name the log column");
+            ok = false;
+          }
+          input.columns.push_back(c);
+        }
+      } else {
+        ok = false;
+      }
+      if (const Json* unit = field(spec, path, section, "unit")) {
+        input.unit = unit->get<std::string>();
+        if (input.unit.empty()) {
+          diag_.error(path + "/unit", "is empty; give the SI unit of the values, \"1\" if dimensionless");
+          ok = false;
+        }
+      } else {
+        ok = false;
+      }
+      if (const Json* from = field(spec, path, section, "derived_from")) {
+        for (const Json& f : *from) input.derived_from.push_back(f.get<std::string>());
+      }
+      (void)field(spec, path, section, "description");
+      if (ok) doc_.inputs.push_back(std::move(input));
+    }
+    std::vector<std::string> names;
+    for (const auto& in : doc_.inputs) names.push_back(in.name);
+    for (const auto& in : doc_.inputs) {
+      for (std::size_t i = 0; i < in.derived_from.size(); ++i) {
+        const std::string& f = in.derived_from[i];
+        if (std::find(names.begin(), names.end(), f) == names.end()) {
+          diag_.error(json_pointer_append(json_pointer_append("/inputs", in.name) + "/derived_from", i),
+                      "unknown input '" + f + "'; " + suggest(f, names));
+        }
+      }
+    }
+  }
+
+  void read_stages(const Json& stages) {
+    // Names first, so that wires may name stages declared later.
+    for (std::size_t i = 0; i < stages.size(); ++i) {
+      StageDecl d;
+      d.path = json_pointer_append("/stages", i);
+      const Json& s = stages[i];
+      if (s.is_object()) {
+        if (const auto n = s.find("name"); n != s.end() && n->is_string()) d.name = n->get<std::string>();
+      }
+      stage_names_.push_back(d.name);
+      doc_.stages.push_back(std::move(d));
+    }
+    for (std::size_t i = 0; i < stages.size(); ++i) read_stage(stages[i], i);
+  }
+
+  void read_stage(const Json& s, std::size_t index) {
+    StageDecl& d = doc_.stages[index];
+    if (!s.is_object()) {
+      type_error(s, d.path, "object", "a stage", diag_);
+      d.ok = false;
+      return;
+    }
+    const DocumentSection& section = document_section(DocumentSectionId::stage);
+    check_keys(s, d.path, section);
+    if (const Json* name = field(s, d.path, section, "name")) {
+      if (!is_identifier(d.name) || d.name == "input") {
+        diag_.error(d.path + "/name", " = " + name->dump() + " violates identifier (letters, digits, _; not 'input')");
+        d.ok = false;
+      }
+      for (std::size_t j = 0; j < index; ++j) {
+        if (doc_.stages[j].name == d.name) {
+          diag_.error(d.path + "/name", "duplicate stage name '" + d.name + "' (also " + doc_.stages[j].path +
+                                            "); stage names must be unique");
+          d.ok = false;
+        }
+      }
+    } else {
+      d.ok = false;
+    }
+    if (const Json* plugin = field(s, d.path, section, "plugin")) {
+      d.plugin = plugin->get<std::string>();
+    } else {
+      d.ok = false;
+    }
+    // A params value of the wrong type is the plugin's to report (it names the plugin).
+    if (const auto p = s.find("params"); p != s.end()) d.params = *p;
+    (void)field(s, d.path, section, "description");
+    const Json* inputs = field(s, d.path, section, "inputs");
+    if (inputs == nullptr) {
+      if (s.contains("inputs")) d.ok = false;
+      return;
+    }
+    for (const auto& [port, value] : inputs->items()) {
+      WireDecl w;
+      w.port = port;
+      w.path = json_pointer_append(d.path + "/inputs", port);
+      if (!read_wire(value, w)) {
+        d.ok = false;
+        continue;
+      }
+      for (const auto& e : w.ends) {
+        if (!e.from_input) d.upstream.push_back(e.producer);
+      }
+      d.wires.push_back(std::move(w));
+    }
+    std::sort(d.upstream.begin(), d.upstream.end());
+    d.upstream.erase(std::unique(d.upstream.begin(), d.upstream.end()), d.upstream.end());
+  }
+
+  // Parses a wire value, "node.port" or an array of them, and resolves its names.
+  bool read_wire(const Json& value, WireDecl& w) {
+    std::vector<std::pair<std::string, std::string>> texts;  // text, path
+    if (value.is_string()) {
+      texts.emplace_back(value.get<std::string>(), w.path);
+    } else if (value.is_array() && !value.empty()) {
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        if (!value[i].is_string()) {
+          type_error(value[i], json_pointer_append(w.path, i), "string", "\"input.<name>\" or \"<stage>.<port>\"",
+                     diag_);
+          return false;
+        }
+        texts.emplace_back(value[i].get<std::string>(), json_pointer_append(w.path, i));
+      }
+    } else {
+      type_error(value, w.path, "string or non-empty array of strings", "\"input.<name>\" or \"<stage>.<port>\"",
+                 diag_);
+      return false;
+    }
+    bool ok = true;
+    for (auto& [text, path] : texts) {
+      WireEnd e;
+      e.text = text;
+      e.path = path;
+      const auto dot = text.find('.');
+      if (dot == std::string::npos) {
+        diag_.error(path, " = \"" + text + "\" violates the wire form \"input.<name>\" or \"<stage>.<port>\"");
+        ok = false;
+        continue;
+      }
+      e.node = text.substr(0, dot);
+      e.port = text.substr(dot + 1);
+      if (e.node == "input") {
+        e.from_input = true;
+        if (std::find(declared_inputs_.begin(), declared_inputs_.end(), e.port) == declared_inputs_.end()) {
+          diag_.error(path, "no input named '" + e.port + "'; " + suggest(e.port, declared_inputs_));
+          ok = false;
+          continue;
+        }
+      } else {
+        const auto found = std::find(stage_names_.begin(), stage_names_.end(), e.node);
+        if (found == stage_names_.end()) {
+          diag_.error(path, "no stage named '" + e.node + "' (wire \"" + text + "\"); " + suggest(e.node, stage_names_));
+          ok = false;
+          continue;
+        }
+        e.producer = static_cast<std::size_t>(found - stage_names_.begin());
+      }
+      w.ends.push_back(std::move(e));
+    }
+    return ok;
+  }
+
+  void read_monitor(const Json& monitor) {
+    const std::string path = "/monitor";
+    const DocumentSection& section = document_section(DocumentSectionId::monitor);
+    check_keys(monitor, path, section);
+    MonitorDecl& m = doc_.monitor.emplace();
+    if (const Json* channels = field(monitor, path, section, "channels")) {
+      if (channels->empty()) {
+        diag_.error(path + "/channels", "is empty; name at least one channel");
+        m.ok = false;
+      }
+      for (std::size_t i = 0; i < channels->size(); ++i) {
+        const std::string& c = (*channels)[i].get_ref<const std::string&>();
+        const std::string item = json_pointer_append(path + "/channels", i);
+        if (c.empty()) {
+          diag_.error(item, "is empty; name the channel (it prefixes its output columns)");
+          m.ok = false;
+        } else if (std::find(m.channels.begin(), m.channels.end(), c) != m.channels.end()) {
+          diag_.error(item, "duplicate channel name " + (*channels)[i].dump());
+          m.ok = false;
+        } else {
+          m.channels.push_back(c);
+        }
+      }
+    } else {
+      m.ok = false;
+    }
+    for (const MonitorColumnInfo& column : kMonitorColumns) {
+      WireDecl w;
+      w.port = std::string(column.key);
+      w.path = path + "/" + w.port;
+      const auto value = monitor.find(w.port);
+      if (value == monitor.end()) {
+        diag_.error(w.path, "missing required key (the signal written as " +
+                                monitor_column_name("<channel>", column, "<unit>") + ")");
+        m.ok = false;
+        continue;
+      }
+      if (!read_wire(*value, w)) {
+        m.ok = false;
+        continue;
+      }
+      m.columns[static_cast<std::size_t>(column.column)] = std::move(w);
+    }
+    if (const Json* extra = field(monitor, path, section, "extra")) {
+      for (const auto& [name, value] : extra->items()) {
+        WireDecl w;
+        w.port = name;
+        w.path = json_pointer_append(path + "/extra", name);
+        if (!is_identifier(name)) {
+          diag_.error(w.path, "extra signal name '" + name + "' must be an identifier (letters, digits, _)");
+          m.ok = false;
+          continue;
+        }
+        if (!read_wire(value, w)) {
+          m.ok = false;
+          continue;
+        }
+        m.extra.push_back(std::move(w));
+      }
+    } else if (monitor.contains("extra")) {
+      m.ok = false;
+    }
+  }
+
+  const Json& cfg_;
+  Diagnostics& diag_;
+  PipelineDocument doc_;
+  std::vector<std::string> declared_inputs_;
+  std::vector<std::string> stage_names_;
+};
+
+}  // namespace
+
+PipelineDocument read_pipeline_document(const Json& config, Diagnostics& diag) {
+  return DocumentReader(config, diag).read();
+}
+
+}  // namespace ftsense
