@@ -148,8 +148,8 @@ std::vector<std::string> log_columns() {
     for (int p = 1; p <= 4; ++p) c.push_back(std::string("truth/") + s + "_foot/p" + std::to_string(p) + "/force_N");
   for (auto a : {"x", "y", "z"}) c.push_back(std::string("truth/com_") + a + "_m");
   for (auto a : {"x", "y"}) c.push_back(std::string("truth/zmp_") + a + "_m");
-  c.push_back("truth/contact_l");
-  c.push_back("truth/contact_r");
+  c.push_back("truth/l_foot/contact");
+  c.push_back("truth/r_foot/contact");
   c.push_back("truth/torso_height_m");
   c.push_back("truth/torso_tilt_rad");
   for (auto s : kSide)

@@ -124,8 +124,8 @@ TEST_P(Walking, ThirtySecondsWithoutFallingWithCleanContactsAndForces) {
   for (const char* side : {"l", "r"}) {
     const auto plan_lift = edges(t, std::string("plan/contact_") + side, 1.0);
     const auto plan_land = edges(t, std::string("plan/contact_") + side, 0.0);
-    const auto lift = edges(t, std::string("truth/contact_") + side, 1.0);
-    const auto land = edges(t, std::string("truth/contact_") + side, 0.0);
+    const auto lift = edges(t, std::string("truth/") + side + "_foot/contact", 1.0);
+    const auto land = edges(t, std::string("truth/") + side + "_foot/contact", 0.0);
     ASSERT_EQ(lift.size(), plan_lift.size()) << side;
     ASSERT_EQ(land.size(), plan_land.size()) << side;
     for (std::size_t i = 0; i < lift.size(); ++i) {
@@ -135,8 +135,8 @@ TEST_P(Walking, ThirtySecondsWithoutFallingWithCleanContactsAndForces) {
     }
   }
   // Total true pad force within 0.85..1.2 m g outside touchdown instants (+-30 ms).
-  std::vector<double> td = edges(t, "truth/contact_l", 0.0);
-  for (double x : edges(t, "truth/contact_r", 0.0)) td.push_back(x);
+  std::vector<double> td = edges(t, "truth/l_foot/contact", 0.0);
+  for (double x : edges(t, "truth/r_foot/contact", 0.0)) td.push_back(x);
   const double mg = r.sum.total_mass_kg * r.sum.gravity_m_s2;
   const auto l = foot_sum(t, "truth/", 'l'), rr = foot_sum(t, "truth/", 'r');
   double lo = 10, hi = 0;

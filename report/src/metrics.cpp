@@ -1,0 +1,164 @@
+#include "ftsense/report/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace ftsense::report {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A code as written in a fault column; codes that name no type read as unclassified.
+FaultType type_of_code(double code) {
+  for (FaultType t : all_fault_types()) {
+    if (static_cast<double>(static_cast<int>(t)) == code) return t;
+  }
+  return FaultType::unclassified;
+}
+}  // namespace
+
+double rms(std::span<const double> values) {
+  if (values.empty()) return kNaN;
+  double s = 0.0;
+  for (double x : values) s += x * x;
+  return std::sqrt(s / static_cast<double>(values.size()));
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return kNaN;
+  const double last = static_cast<double>(values.size() - 1);
+  const auto k = static_cast<std::size_t>(std::clamp(p * last, 0.0, last));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
+std::optional<FaultWindow> fault_window(std::span<const double> true_fault) {
+  std::optional<FaultWindow> window;
+  for (std::size_t k = 0; k < true_fault.size(); ++k) {
+    if (true_fault[k] == 0.0) continue;
+    if (!window) window = FaultWindow{k, k, type_of_code(true_fault[k])};
+    window->end = k;
+  }
+  return window;
+}
+
+std::optional<Detection> first_detection(std::span<const double> time, std::span<const double> flag,
+                                         std::span<const double> flag_type, const FaultWindow& window) {
+  for (std::size_t k = window.onset; k < time.size(); ++k) {
+    if (flag[k] != 0.0) return Detection{time[k] - time[window.onset], type_of_code(flag_type[k])};
+  }
+  return std::nullopt;
+}
+
+FaultType shown_type(std::span<const double> flag, std::span<const double> flag_type, const FaultWindow& window) {
+  std::map<int, int> shown;  // code -> samples; ordered, so a tie goes to the lower code
+  for (std::size_t k = window.onset; k <= window.end && k < flag.size(); ++k) {
+    if (flag[k] != 0.0 && std::isfinite(flag_type[k])) ++shown[static_cast<int>(flag_type[k])];
+  }
+  int best = 0;
+  FaultType type = FaultType::none;
+  for (const auto& [code, count] : shown) {
+    if (count > best) {
+      best = count;
+      type = type_of_code(code);
+    }
+  }
+  return type;
+}
+
+double readmission_s(std::span<const double> time, std::span<const double> flag, const FaultWindow& window) {
+  for (std::size_t k = window.end + 1; k < time.size(); ++k) {
+    if (flag[k] == 0.0) return time[k] - time[window.end];
+  }
+  return kNaN;
+}
+
+FalseAlarms false_alarms(std::span<const double> time, std::span<const double> flag,
+                         const std::optional<FaultWindow>& window, const MetricOptions& options) {
+  FalseAlarms out;
+  if (time.empty()) return out;
+  const double t0 = time.front();
+  const double dt = time.size() > 1 ? (time.back() - t0) / static_cast<double>(time.size() - 1) : 1e-3;
+  // The window reaches readmit_s past the end of a fault that ends before the log does.
+  std::size_t grace_end = window ? window->end : 0;
+  if (window && window->end + 1 < time.size()) {
+    while (grace_end + 1 < time.size() && time[grace_end + 1] - time[window->end] <= options.readmit_s) ++grace_end;
+  }
+  bool previous = false;
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    const bool in_window = window && k >= window->onset && k <= grace_end;
+    const bool raised = flag[k] != 0.0 && time[k] - t0 >= options.warmup_s && !in_window;
+    if (raised && !previous) ++out.count;
+    if (raised) out.time_s += dt;
+    previous = raised;
+  }
+  return out;
+}
+
+bool ChannelMetrics::detected() const noexcept { return faulty() && std::isfinite(detection_delay_s); }
+
+ChannelMetrics channel_metrics(std::string channel, std::span<const double> time, const ChannelSeries& s,
+                               const MetricOptions& options) {
+  ChannelMetrics m;
+  m.channel = std::move(channel);
+  const std::optional<FaultWindow> window = s.true_fault.empty() ? std::nullopt : fault_window(s.true_fault);
+  m.onset_s = m.end_s = m.detection_delay_s = m.readmission_s = kNaN;
+  if (window) {
+    m.injected_type = window->injected;
+    m.onset_s = time[window->onset];
+    m.end_s = time[window->end];
+    if (const auto d = first_detection(time, s.fault, s.fault_type, *window)) {
+      m.detection_delay_s = d->delay_s;
+      m.detected_type = d->type;
+    }
+    m.shown_type = shown_type(s.fault, s.fault_type, *window);
+    m.readmission_s = readmission_s(time, s.fault, *window);
+  }
+  const FalseAlarms alarms = false_alarms(time, s.fault, window, options);
+  m.false_alarms = alarms.count;
+  m.false_alarm_time_s = alarms.time_s;
+
+  std::vector<double> estimate_error, recovered_error, measured_error, vfs_error;
+  if (!s.true_force.empty()) {
+    const double t0 = time.empty() ? 0.0 : time.front();
+    for (std::size_t k = 0; k < time.size(); ++k) {
+      const double truth = s.true_force[k];
+      if (!std::isfinite(truth)) continue;
+      const bool after_warmup = time[k] - t0 >= options.warmup_s;
+      if (window && k >= window->onset && k <= window->end) {
+        if (time[k] - time[window->onset] >= options.settle_s && std::isfinite(s.measured[k])) {
+          estimate_error.push_back(s.fault_estimate[k] - (s.measured[k] - truth));
+        }
+        recovered_error.push_back(s.recovered[k] - truth);
+        if (std::isfinite(s.measured[k])) measured_error.push_back(s.measured[k] - truth);
+      } else if (!window && after_warmup) {
+        recovered_error.push_back(s.recovered[k] - truth);
+        if (std::isfinite(s.measured[k])) measured_error.push_back(s.measured[k] - truth);
+      }
+      if (after_warmup && (s.contact.empty() || s.contact[k] > 0.5)) {
+        vfs_error.push_back(std::abs(s.virtual_value[k] - truth));
+      }
+    }
+  }
+  m.fault_estimate_rmse = rms(estimate_error);
+  m.recovered_rmse = rms(recovered_error);
+  m.measured_rmse = rms(measured_error);
+  m.vfs_rmse = rms(vfs_error);
+  m.vfs_p95 = percentile(vfs_error, 0.95);
+  return m;
+}
+
+RunTotals totals(const std::vector<ChannelMetrics>& channels) {
+  RunTotals t;
+  for (const ChannelMetrics& m : channels) {
+    t.faulty_channels += m.faulty();
+    t.detected += m.detected();
+    t.types_correct += m.type_correct();
+    t.false_alarms += m.false_alarms;
+  }
+  return t;
+}
+
+}  // namespace ftsense::report
