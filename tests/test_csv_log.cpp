@@ -28,7 +28,7 @@ TEST(CsvLog, WriteThenReadRoundTripsExactly) {
     CsvLogWriter w(path, {"time_s", "a/x_N", "b/y_m", "c"});
     w.write_row(row1);
     w.write_row(row2);
-    w.flush();
+    w.commit();
   }
   CsvLogReader r(path);
   EXPECT_EQ(r.columns(), (std::vector<std::string>{"time_s", "a/x_N", "b/y_m", "c"}));

@@ -1,9 +1,10 @@
 #include <cmath>
-#include <fstream>
+#include <optional>
 #include <iostream>
 #include <limits>
 
 #include "cli.hpp"
+#include "ftsense/io/output_file.hpp"
 #include "log_runner.hpp"
 
 namespace ftsense::cli {
@@ -64,6 +65,14 @@ int calibrate_command(const std::vector<std::string>& args) {
 
   // Every fault-free log in turn (the pipeline restarts for each, and so does the warm-up).
   const std::vector<std::string> inputs = split_list(options.at("input"));
+  // Refused before the logs are read: the thresholds file must not replace a log or the config.
+  std::vector<std::string> read_files = inputs;
+  read_files.push_back(config_path);
+  try {
+    io::check_output_path(options.at("output"), read_files, "--output");
+  } catch (const io::OutputError& e) {
+    throw UsageError{std::string("error: ") + e.what()};
+  }
   for (const std::string& input : inputs) {
     if (input.empty()) throw UsageError{"ftsense calibrate: --input = '" + options.at("input") + "' has an empty log path"};
   }
@@ -141,9 +150,14 @@ int calibrate_command(const std::vector<std::string>& args) {
     }
     std::cout << '\n';
   }
-  std::ofstream file(options.at("output"));
-  if (!file) throw UsageError{"error: " + options.at("output") + ": cannot create the thresholds file"};
-  file << out.dump(2) << '\n';
+  std::optional<io::OutputFile> file;
+  try {
+    file.emplace(options.at("output"), read_files, "thresholds");
+  } catch (const io::OutputError& e) {
+    throw UsageError{std::string("error: ") + e.what()};
+  }
+  file->stream() << out.dump(2) << '\n';
+  file->commit();
   return kExitOk;
 }
 

@@ -108,7 +108,13 @@ int inject_command(const std::vector<std::string>& args) {
     out_columns.push_back("truth/" + ch + "/force_N");
     out_columns.push_back("truth/" + ch + "/fault");
   }
-  io::CsvLogWriter out(options.at("output"), out_columns);
+  std::optional<io::CsvLogWriter> out_file;
+  try {
+    out_file.emplace(options.at("output"), out_columns, std::vector<std::string>{options.at("input"), options.at("faults")});
+  } catch (const io::OutputError& e) {
+    throw UsageError{std::string("error: ") + e.what()};
+  }
+  io::CsvLogWriter& out = *out_file;
   // One fault state per fault, each with its own stream as in the simulator.
   std::vector<sim::FaultState> states;
   for (std::size_t f = 0; f < plan.faults.size(); ++f) {
@@ -145,7 +151,7 @@ int inject_command(const std::vector<std::string>& args) {
     out.write_row(out_row);
     ++rows;
   }
-  out.flush();
+  out.commit();
   std::cout << "ftsense inject: " << rows << " rows, " << plan.faults.size() << " fault(s)";
   for (std::size_t c = 0; c < plan.channels.size(); ++c) {
     std::cout << "; " << plan.channels[c] << " (" << plan.columns[c] << ") faulty on " << faulty_rows[c] << " rows";

@@ -95,8 +95,10 @@ int run_command(const std::vector<std::string>& args) {
   std::optional<io::CsvLogWriter> out;
   if (write_output) {
     try {
-      out.emplace(output_path, columns);
-    } catch (const io::LogError& e) {
+      std::vector<std::string> inputs{input_path, config_path};
+      if (options.count("thresholds")) inputs.push_back(options.at("thresholds"));
+      out.emplace(output_path, columns, inputs);
+    } catch (const io::OutputError& e) {
       throw UsageError{std::string("error: ") + e.what()};
     }
   }
@@ -109,6 +111,7 @@ int run_command(const std::vector<std::string>& args) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitRuntime;
   }
+  if (out) out->commit();  // only now does output_path change
   std::cerr << clock_warnings(input_path, summary, pipeline.sample_period_s(), clock);
   std::cout << "ftsense run: " << summary.ticks << " ticks, " << pipeline.monitor().channels.size()
             << " channels -> " << (write_output ? output_path : std::string("(no --output: nothing written)")) << '\n';

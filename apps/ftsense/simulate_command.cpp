@@ -1,9 +1,10 @@
 #include <charconv>
 #include <cstdio>
-#include <fstream>
+#include <optional>
 #include <iostream>
 
 #include "cli.hpp"
+#include "ftsense/io/output_file.hpp"
 #include "ftsense/sim/simulator.hpp"
 
 namespace ftsense::cli {
@@ -38,8 +39,13 @@ int simulate_command(const std::vector<std::string>& args) {
       throw UsageError{"ftsense simulate: --seed = '" + s->second + "' is not a non-negative integer"};
     }
   }
-  std::ofstream out(options.at("out"), std::ios::binary);
-  if (!out) throw UsageError{"error: " + options.at("out") + ": cannot create the log file; check that its folder exists"};
+  std::optional<io::OutputFile> out_file;
+  try {
+    out_file.emplace(options.at("out"), std::vector<std::string>{options.at("scenario")}, "log");
+  } catch (const io::OutputError& e) {
+    throw UsageError{std::string("error: ") + e.what()};
+  }
+  std::ostream& out = out_file->stream();
   sim::SimulationOptions sim_options;
   if (!options.count("quiet")) {
     sim_options.progress = [](double t, double duration) {
@@ -48,10 +54,11 @@ int simulate_command(const std::vector<std::string>& args) {
     };
   }
   const sim::SimulationSummary summary = sim::simulate(scenario, seed, out, sim_options);
-  out.flush();
   if (!options.count("quiet")) std::fprintf(stderr, "\n");
-  if (!out) {
-    std::cerr << "error: " << options.at("out") << ": writing failed (disk full?)\n";
+  try {
+    out_file->commit();
+  } catch (const io::OutputError& e) {
+    std::cerr << "error: " << e.what() << '\n';
     return kExitRuntime;
   }
   std::cout << "ftsense simulate: " << summary.message << " (seed " << seed << ", " << summary.ticks

@@ -129,14 +129,11 @@ bool CsvLogReader::next(std::vector<double>& values) {
   return true;
 }
 
-CsvLogWriter::CsvLogWriter(const std::string& path, const std::vector<std::string>& columns)
-    : path_(path), file_(path), column_count_(columns.size()) {
-  if (!file_) {
-    throw LogError(LogError::Kind::cannot_open,
-                   path + ": cannot create the output file; check that its folder exists and is writable");
-  }
-  for (std::size_t i = 0; i < columns.size(); ++i) file_ << (i ? "," : "") << columns[i];
-  file_ << '\n';
+CsvLogWriter::CsvLogWriter(const std::string& path, const std::vector<std::string>& columns,
+                           const std::vector<std::string>& inputs)
+    : file_(path, inputs), column_count_(columns.size()) {
+  for (std::size_t i = 0; i < columns.size(); ++i) file_.stream() << (i ? "," : "") << columns[i];
+  file_.stream() << '\n';
   row_.reserve(columns.size() * 24);
 }
 
@@ -154,12 +151,14 @@ void CsvLogWriter::write_row(std::span<const double> values) {
     }
   }
   row_ += '\n';
-  file_.write(row_.data(), static_cast<std::streamsize>(row_.size()));
+  file_.stream().write(row_.data(), static_cast<std::streamsize>(row_.size()));
 }
 
 void CsvLogWriter::flush() {
-  file_.flush();
-  if (!file_) throw LogError(LogError::Kind::cannot_open, path_ + ": writing failed (disk full?)");
+  file_.stream().flush();
+  if (!file_.stream()) throw OutputError(file_.target().string() + ": writing failed (disk full?)");
 }
+
+void CsvLogWriter::commit() { file_.commit(); }
 
 }  // namespace ftsense::io

@@ -77,12 +77,11 @@ sed '101s/^\([^,]*\),[^,]*/\1,abc/' "$work/log.csv" > "$work/badrow.csv"
 "$ftsense" run --config "$good" --input "$work/badrow.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
 check malformed_row 1 $? "badrow.csv:101: column 'cell/c1/force_N' \(field 2\) = 'abc' is not a number" "$work/err"
 # The same far into the log (rows after the first 50 are parsed on a second thread, in blocks):
-# the error names its line, and every row before it was run and written.
+# the error names its line, and no partial output is left that could pass for a whole one.
 sed '2901s/^\([^,]*\),[^,]*/\1,abc/' "$work/log.csv" > "$work/badrow_late.csv"
 "$ftsense" run --config "$good" --input "$work/badrow_late.csv" --output "$work/late.csv" > "$work/out" 2> "$work/err"
 status=$?
-rows_written=$(($(wc -l < "$work/late.csv") - 1))
-[ "$rows_written" -eq 2899 ] || { echo "rows written before the bad line: $rows_written, expected 2899"; status=99; }
+[ ! -e "$work/late.csv" ] || { echo "a partial late.csv was left: $(wc -l < "$work/late.csv") lines"; status=99; }
 check malformed_row_late 1 $status "badrow_late.csv:2901: column 'cell/c1/force_N' \(field 2\) = 'abc' is not a number" "$work/err"
 
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/no/such/dir/o.csv" > "$work/out" 2> "$work/err"

@@ -16,6 +16,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ftsense/io/output_file.hpp"
+
 namespace ftsense::io {
 
 class LogError : public std::runtime_error {
@@ -62,17 +64,21 @@ class CsvLogReader {
   std::optional<double> last_time_;
 };
 
-// Writes a CSV log with shortest round-trip number formatting (std::to_chars).
+// Writes a CSV log with shortest round-trip number formatting (std::to_chars). The file is whole
+// or absent (output_file.hpp): rows go to a temporary file that commit() renames onto `path`.
 class CsvLogWriter {
  public:
-  // Throws LogError when the file cannot be created.
-  CsvLogWriter(const std::string& path, const std::vector<std::string>& columns);
+  // Throws OutputError when the file cannot be created or is one of `inputs` (or links to it).
+  CsvLogWriter(const std::string& path, const std::vector<std::string>& columns,
+               const std::vector<std::string>& inputs = {});
   void write_row(std::span<const double> values);
+  // Throws OutputError when a write failed (disk full).
   void flush();
+  // Flushes and puts the file under its name; without it the destructor removes what was written.
+  void commit();
 
  private:
-  std::string path_;
-  std::ofstream file_;
+  OutputFile file_;
   std::size_t column_count_;
   std::string row_;
 };
