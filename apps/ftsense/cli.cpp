@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "ftsense/diagnostics.hpp"
+#include "ftsense/text_file.hpp"
 
 namespace ftsense::cli {
 
@@ -87,11 +88,11 @@ std::string usage_text(std::string_view verb, std::string_view summary,
 }
 
 std::string read_text_file(const std::string& path, std::string_view what) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw UsageError{path + ": cannot open the " + std::string(what) + "; check the path"};
-  std::ostringstream os;
-  os << file.rdbuf();
-  return os.str();
+  try {
+    return ftsense::read_text_file(std::filesystem::path(path), what);
+  } catch (const TextFileError& e) {
+    throw UsageError{e.what()};
+  }
 }
 
 }  // namespace ftsense::cli

@@ -1,5 +1,9 @@
 #include "ftsense/io/csv_log.hpp"
 
+#include <cerrno>
+#include <filesystem>
+#include <system_error>
+
 #include <cmath>
 #include <limits>
 #include <set>
@@ -39,7 +43,23 @@ bool parse_cell(std::string_view cell, double& out) {
 
 }  // namespace
 
-CsvLogReader::CsvLogReader(const std::string& path) : path_(path), file_(path) {
+CsvLogReader::CsvLogReader(const std::string& path) : path_(path) {
+  // A log is a file or a pipe (a logger streaming into ftsense); a directory or a device
+  // (/dev/zero) is refused before reading.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) {
+    throw LogError(LogError::Kind::cannot_open, path + ": is a directory, not a log file; give the file inside it");
+  }
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_fifo(status)) {
+    throw LogError(LogError::Kind::cannot_open,
+                   path + ": is not a regular file or a pipe (a device or socket); give the log as a file");
+  }
+  if (ec.value() == ELOOP) {
+    throw LogError(LogError::Kind::cannot_open, path + ": is a loop of symbolic links; point the link at the log");
+  }
+  file_.open(path);
   if (!file_) {
     throw LogError(LogError::Kind::cannot_open,
                    path + ": cannot open the log file; check the path and read permission");

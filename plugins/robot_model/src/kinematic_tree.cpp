@@ -9,6 +9,8 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "ftsense/text_file.hpp"
+
 namespace ftsense::robot_model {
 namespace {
 
@@ -75,15 +77,13 @@ RigidPose KinematicTree::Joint::transform(double q) const noexcept {
 }
 
 KinematicTree KinematicTree::from_urdf_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) {
-    std::error_code ec;
-    const bool exists = std::filesystem::exists(path, ec);
-    throw UrdfError("cannot read URDF '" + path.string() + "'" + (exists ? "" : ": no such file"));
+  std::string text;
+  try {
+    text = read_text_file(path, "URDF");
+  } catch (const TextFileError& e) {
+    throw UrdfError(e.what());
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return from_urdf_text(text.str(), path.string());
+  return from_urdf_text(text, path.string());
 }
 
 KinematicTree KinematicTree::from_urdf_text(const std::string& xml, std::string_view source_name) {

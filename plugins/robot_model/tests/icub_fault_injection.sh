@@ -37,7 +37,7 @@ set +e
 status=$?
 set -e
 [ "$status" -eq 2 ] || { echo "missing URDF: exit $status, expected 2"; exit 1; }
-grep -q "icub_missing_urdf.json:/stages/0/params/urdf: cannot read URDF .*missing.urdf': no such file" "$work/missing_urdf.err" \
+grep -q "icub_missing_urdf.json:/stages/0/params/urdf: .*missing.urdf: cannot open the URDF: no such file" "$work/missing_urdf.err" \
   || { cat "$work/missing_urdf.err"; exit 1; }
 /usr/bin/python3 - "$work" <<'PY'
 import json, sys
