@@ -31,6 +31,19 @@ std::string extra_column_name(std::string_view channel, std::string_view name, s
   return out;
 }
 
+std::string column_name_problem(std::string_view name) {
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == ',') return "contains a comma, which splits a CSV column";
+    if (c == '"') return "contains a quote, which CSV readers take as quoting";
+    if (u < 0x20 || u == 0x7f) return "contains a control character (a newline, tab or NUL byte)";
+  }
+  if (!name.empty() && (name.front() == ' ' || name.back() == ' ')) {
+    return "starts or ends with a space, which CSV readers trim";
+  }
+  return {};
+}
+
 std::optional<ParsedMonitorColumn> parse_monitor_column(std::string_view name, std::string_view unit) {
   for (const MonitorColumnInfo& column : kMonitorColumns) {
     std::string tail = "/";

@@ -402,6 +402,10 @@ class DocumentReader {
         if (c.empty()) {
           diag_.error(item, "is empty; name the channel (it prefixes its output columns)");
           m.ok = false;
+        } else if (const std::string problem = column_name_problem(c); !problem.empty()) {
+          diag_.error(item, " = " + (*channels)[i].dump() + " " + problem +
+                                "; the channel prefixes its output columns, so use letters, digits, _, / or -");
+          m.ok = false;
         } else if (std::find(m.channels.begin(), m.channels.end(), c) != m.channels.end()) {
           diag_.error(item, "duplicate channel name " + (*channels)[i].dump());
           m.ok = false;

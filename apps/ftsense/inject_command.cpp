@@ -93,6 +93,27 @@ int inject_command(const std::vector<std::string>& args) {
   std::vector<std::size_t> column;
   std::vector<Diagnostic> problems;
   for (std::size_t c = 0; c < plan.columns.size(); ++c) {
+    const std::string where = options.at("faults") + ":" + json_pointer_append("/channels", plan.channels[c]);
+    // The time stamps and the truth are what faults are measured against, never faulty themselves.
+    if (plan.columns[c] == "time_s" || plan.columns[c].rfind("truth/", 0) == 0) {
+      problems.push_back({where, "column '" + plan.columns[c] + "' is the log's " +
+                                     (plan.columns[c] == "time_s" ? "time" : "ground truth") +
+                                     ", not a sensor; inject faults into a sensor's column"});
+      continue;
+    }
+    for (std::size_t other = 0; other < c; ++other) {
+      if (plan.columns[other] == plan.columns[c]) {
+        problems.push_back({where, "column '" + plan.columns[c] + "' is also channel '" + plan.channels[other] +
+                                       "'; give each column one channel (and put both faults on it)"});
+      }
+    }
+    for (const char* truth : {"/force_N", "/fault"}) {
+      const std::string name = "truth/" + plan.channels[c] + truth;
+      if (log.find_column(name)) {
+        problems.push_back({where, "the log already has a column '" + name + "' (a simulator log?); name the "
+                                       "channel differently so that the output's truth columns are unique"});
+      }
+    }
     if (const auto index = log.find_column(plan.columns[c])) {
       column.push_back(*index);
     } else {
@@ -151,6 +172,15 @@ int inject_command(const std::vector<std::string>& args) {
     out.write_row(out_row);
     ++rows;
   }
+  // A fault that starts after the last row would be silently absent from the output.
+  for (std::size_t f = 0; f < plan.faults.size(); ++f) {
+    if (!(plan.faults[f].start_s <= last_time)) {
+      problems.push_back({options.at("faults") + ":" + json_pointer_append("/faults", f) + "/start_s",
+                          " = " + format_number(plan.faults[f].start_s) + " is after the log's last row (t = " +
+                              format_number(last_time) + " s); start the fault within the log"});
+    }
+  }
+  if (!problems.empty()) throw ConfigError(std::move(problems));  // nothing written
   out.commit();
   std::cout << "ftsense inject: " << rows << " rows, " << plan.faults.size() << " fault(s)";
   for (std::size_t c = 0; c < plan.channels.size(); ++c) {

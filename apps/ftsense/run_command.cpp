@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -90,6 +91,15 @@ int run_command(const std::vector<std::string>& args) {
         columns.push_back(column);
       }
       recorded.push_back(ref);
+    }
+  }
+  // Every column once: a name written twice (--record a,a; a recorded signal named like a
+  // monitor column) would make a header that no CSV reader, ftsense's own included, accepts.
+  for (std::size_t i = 1; i < columns.size(); ++i) {
+    if (std::find(columns.begin(), columns.begin() + static_cast<std::ptrdiff_t>(i), columns[i]) !=
+        columns.begin() + static_cast<std::ptrdiff_t>(i)) {
+      throw UsageError{"ftsense run: the output would have the column '" + columns[i] +
+                       "' twice; record each signal once (--record)"};
     }
   }
   std::optional<io::CsvLogWriter> out;

@@ -53,6 +53,10 @@ inline constexpr std::size_t kMonitorColumnCount = kMonitorColumns.size();
 [[nodiscard]] std::string extra_column_name(std::string_view channel, std::string_view name,
                                             std::string_view unit);
 
+// Why `name` cannot prefix CSV column names (a comma, a quote, a control character such as a
+// newline or NUL, or spaces at either end, which CSV readers trim), or empty when it can.
+[[nodiscard]] std::string column_name_problem(std::string_view name);
+
 // Reads a column name back: the channel and the monitor column it names, when `name` is
 // "<channel>/<key>" (with "_<unit>" for the columns in the signal's unit); nullopt otherwise.
 struct ParsedMonitorColumn {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Nothing lost (docs/reliability.md, issue 15 findings 3-5): an output that is, or links to, an
+# Nothing lost, nothing broken (docs/reliability.md, issue 15 findings 3-5 and 10): an output that is, or links to, an
 # input is refused before anything is written and the input stays intact; a run that fails
 # (before its first tick, or at a bad row mid-file) keeps the previous result of the same name;
 # an interrupted run (SIGTERM, SIGINT) leaves no file under the final name and no temporary file.
@@ -68,6 +68,28 @@ row run_success_replaces_previous 0 - "$work/log.csv" \
     "$ftsense" run --config "$cfg" --input "$work/log.csv" --output "$work/previous.csv"
 grep -q "c1/measured_N" "$work/previous.csv" && { passes=$((passes + 1)); echo "ok   run_success_wrote_the_result"; } \
   || { failures=$((failures + 1)); echo "FAIL run_success_wrote_the_result"; }
+
+# Broken outputs (finding 10): nothing is written that ftsense's own reader would refuse.
+for bad in 'c,1' 'c\\n1' 'c\\u00001' ' c1'; do
+  sed "s#\"channels\": \[\"c1\"#\"channels\": [\"$bad\"#" "$cfg" > "$work/bad_channel.json"
+  row "monitor_channel_$(printf '%s' "$bad" | tr -c 'a-z0-9' '_')" 2 "/monitor/channels/0 = .*(comma|control character|space)" \
+      "$work/log.csv" "$ftsense" check --config "$work/bad_channel.json"
+done
+row record_twice 2 "column 'detect.fault/0' twice" "$work/new.csv" \
+    "$ftsense" run --config "$cfg" --input "$work/log.csv" --output "$work/new.csv" --record detect.fault,detect.fault
+printf '{"channels": {"t": "time_s"}, "faults": [{"channel": "t", "type": "offset", "start_s": 1.0, "offset_N": 1}]}\n' > "$work/faults_time.json"
+row inject_into_time 2 "is the log's time, not a sensor" "$work/new.csv" \
+    "$ftsense" inject --input "$work/log.csv" --faults "$work/faults_time.json" --output "$work/new.csv"
+sed '1s#$#,truth/c1/force_N#; 2,$s#$#,100#' "$work/log.csv" > "$work/sim_like.csv"
+printf '{"channels": {"c1": "cell/c1/force_N"}, "faults": [{"channel": "c1", "type": "offset", "start_s": 1.0, "offset_N": 1}]}\n' > "$work/faults_c1.json"
+row inject_truth_column_exists 2 "already has a column 'truth/c1/force_N'" "$work/new.csv" \
+    "$ftsense" inject --input "$work/sim_like.csv" --faults "$work/faults_c1.json" --output "$work/new.csv"
+printf '{"channels": {"x": "truth/c1/force_N"}, "faults": [{"channel": "x", "type": "offset", "start_s": 1.0, "offset_N": 1}]}\n' > "$work/faults_truth.json"
+row inject_into_truth 2 "is the log's ground truth" "$work/new.csv" \
+    "$ftsense" inject --input "$work/sim_like.csv" --faults "$work/faults_truth.json" --output "$work/new.csv"
+printf '{"channels": {"c1": "cell/c1/force_N"}, "faults": [{"channel": "c1", "type": "offset", "start_s": 50.0, "offset_N": 1}]}\n' > "$work/faults_late.json"
+row inject_fault_after_the_end 2 "/faults/0/start_s = 50 is after the log's last row \(t = 1.999 s\)" "$work/new.csv" \
+    "$ftsense" inject --input "$work/log.csv" --faults "$work/faults_late.json" --output "$work/new.csv"
 
 # Interrupted mid-run: the log arrives through a pipe that stays open, so the run is surely still
 # reading when the signal comes; afterwards nothing is under the final name and no temporary file
