@@ -127,15 +127,22 @@ void ContactForceFdi::LineFit::solve(double& a, double& s) const noexcept {
 namespace {
 // Window lengths in ticks, checked before anything is allocated: a window is at most 100,000
 // ticks (e.g. 1 s at 100 kHz), so a tiny tick period cannot ask for gigabytes.
+constexpr double kMaxWindowTicks = 100000.0;
 int window_ticks(double window_s, double period_s, int minimum, const char* key) {
   const double ticks = window_s / period_s;
-  if (!(ticks <= 100000.0)) {
+  if (!(ticks <= kMaxWindowTicks)) {
     throw ConfigError(std::string("/params/") + key,
                       " = " + format_number(window_s) + " violates at most 100000 ticks of the pipeline's " +
                           format_number(period_s) + " s (a window this long is a configuration error)");
   }
   return std::max(minimum, static_cast<int>(std::lround(ticks)));
 }
+
+// The airborne test judges the mean of the readings taken after airborne_settle_s over at least
+// this long (and at least 10 readings): a healthy sensor's noise (noise_std_N = 2 N) averages to
+// about 0.5 N over 20 readings at 1 kHz, far below airborne_threshold_N. A length of its own, not
+// the settling time: one waits out the lift-off, the other averages the noise.
+constexpr double kAirborneMeanWindow_s = 0.02;
 }  // namespace
 
 ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& context)
@@ -144,7 +151,12 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
       feet_points_(params.points.size()),
       noise_window_ticks_(window_ticks(params.noise_window_s, context.sample_period_s(), 4, "noise_window_s")),
       jump_window_ticks_(window_ticks(params.jump_window_s, context.sample_period_s(), 2, "jump_window_s")) {
-  min_airborne_samples_ = window_ticks(0.02, context.sample_period_s(), 10, "airborne_settle_s");
+  if (!(kAirborneMeanWindow_s / context.sample_period_s() <= kMaxWindowTicks)) {
+    throw ConfigError("", "the pipeline's sample period " + format_number(context.sample_period_s()) +
+                              " s is too short for contact_force_fdi: its airborne mean of " +
+                              format_number(kAirborneMeanWindow_s) + " s would be more than 100000 ticks");
+  }
+  min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
   if (params.airborne_clear_N >= params.airborne_threshold_N) {
     throw ConfigError("/params/airborne_clear_N", " = " + format_number(params.airborne_clear_N) + " violates < " +
                                                       format_number(params.airborne_threshold_N) +

@@ -24,7 +24,8 @@
 //             stays spike_hold_s after the last spike.
 //   noise     over noise_window_s, more than half of the second differences exceed
 //             noise_factor * noise_std_N * sqrt(6) (their healthy standard deviation).
-//   airborne  while the pad has been airborne for airborne_settle_s, |mean N_j| > airborne_threshold_N:
+//   airborne  |mean N_j| > airborne_threshold_N, the mean of the readings taken once the pad has
+//             been airborne for airborne_settle_s, over at least 0.02 s and 10 readings:
 //             offset, drift or frozen-at-load; the mean measures the fault directly.
 //   jump      |N_j,k - N_j,k-1| > jump_threshold_N, with no foot touching down within
 //             touchdown_guard_s (a landing impact jumps pads and, unseen by the trunk IMU, the
