@@ -81,7 +81,8 @@ Json faulty_type_correct(const ChannelMetrics& m) {
 }
 
 std::string type_name(int code) {
-  return code == 0 ? "-" : std::string(to_string(static_cast<FaultType>(code)));
+  const auto type = fault_type_from_code(code);
+  return type == FaultType::none ? "-" : type ? std::string(to_string(*type)) : "unknown";
 }
 
 // Writes `columns` (time first) as a whitespace data file, decimated to at most ~4000 rows.

@@ -76,6 +76,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ftsense/fault_type.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::biped {
@@ -156,7 +157,7 @@ class ContactForceFdi {
     double candidate_load = 0.0;
     double jump_load_before = 0.0;
     // state
-    int type = 0;  // FaultType code, 0 healthy
+    FaultType type = FaultType::none;
     double flagged_since = 0.0;
     double clear_since = -1.0;
     double offset = 0.0, slope = 0.0, gain = 1.0;
@@ -166,7 +167,7 @@ class ContactForceFdi {
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
   };
 
-  void raise(Channel& c, int type, double t) noexcept;
+  void raise(Channel& c, FaultType type, double t) noexcept;
   // The stance-regression gain test (see the header comment); runs after recovery.
   void gain_regression(std::span<const double> recovered, double residual, bool usable, double t) noexcept;
   void clear(Channel& c) noexcept;
