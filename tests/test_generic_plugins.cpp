@@ -366,6 +366,7 @@ TEST(FaultRecovery, ACodeOutsideTheTableCountsAsInvalid) {
   EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 1e300), 90.0);
   EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, -3.0), 90.0);
   EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 2.5), 90.0);
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 42.0), 90.0);  // an integer, but no fault type's code
 }
 
 TEST(FaultRecovery, UnknownSubstituteTypeIsAConfigError) {

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "ftsense/fault_type.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/sim/scenario.hpp"
 
@@ -21,6 +22,12 @@ struct InjectionPlan {
   std::vector<std::string> columns;   // the log column each channel's faults go into
   std::vector<sim::FaultSpec> faults;
 };
+
+std::string sensor_fault_type_list() {
+  std::string list;
+  for (const FaultType t : sensor_fault_types()) list += (list.empty() ? "" : ", ") + std::string(to_string(t));
+  return list;
+}
 
 InjectionPlan load_plan(const std::string& path) {
   const Json doc = parse_json_text(read_text_file(path, "faults file"), path);
@@ -80,11 +87,11 @@ int inject_command(const std::vector<std::string>& args) {
   const auto options = parse_options("inject", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("inject",
-                            "Applies the simulator's sensor fault models (offset, drift, frozen, gain,\n"
-                            "noise, spikes, invalid, saturation; sim/README.md) to named columns of a\n"
-                            "recorded log, at the log's own time stamps, and writes the log with the\n"
-                            "faulty columns plus truth/<channel>/force_N (the recorded value) and\n"
-                            "truth/<channel>/fault (the fault type code) for 'ftsense report --truth'.",
+                            "Applies the simulator's sensor fault models (sim/README.md) to named\n"
+                            "columns of a recorded log, at the log's own time stamps, and writes the\n"
+                            "log with the faulty columns plus truth/<channel>/force_N (the recorded\n"
+                            "value) and truth/<channel>/fault (the fault type code) for\n"
+                            "'ftsense report --truth'.\nFault types: " + sensor_fault_type_list() + ".",
                             specs);
     return kExitOk;
   }
@@ -155,7 +162,7 @@ int inject_command(const std::vector<std::string>& args) {
     for (std::size_t c = 0; c < plan.channels.size(); ++c) {
       const double recorded = row[column[c]];
       double y = recorded;
-      auto code = sim::FaultType::none;
+      auto code = FaultType::none;
       for (std::size_t f = 0; f < plan.faults.size(); ++f) {
         const sim::FaultSpec& spec = plan.faults[f];
         if (static_cast<std::size_t>(spec.channel) != c || t < spec.start_s || (spec.end_s && t >= *spec.end_s)) continue;
@@ -166,8 +173,8 @@ int inject_command(const std::vector<std::string>& args) {
       previous[c] = y;
       out_row[column[c]] = y;
       out_row[row.size() + 2 * c] = recorded;
-      out_row[row.size() + 2 * c + 1] = static_cast<double>(static_cast<int>(code));
-      if (code != sim::FaultType::none) ++faulty_rows[c];
+      out_row[row.size() + 2 * c + 1] = fault_code(code);
+      if (code != FaultType::none) ++faulty_rows[c];
     }
     out.write_row(out_row);
     ++rows;

@@ -25,7 +25,8 @@ constexpr const char* kHelp =
     "  check     check a pipeline config and list every problem\n"
     "  calibrate thresholds from a fault-free log\n"
     "  report    metrics against the truth, figures and a Markdown report\n"
-    "  plugins   list the plugins this program knows (--markdown: the config reference)\n"
+    "  plugins   list the plugins this program knows (--markdown: the config reference;\n"
+    "            --fault-types: the fault type table)\n"
     "\n"
     "'ftsense <verb> --help' describes a verb. Exit status: 0 success, 2 usage or\n"
     "configuration error, 1 runtime failure.\n";

@@ -3,6 +3,7 @@
 
 #include "cli.hpp"
 #include "ftsense/config_reference.hpp"
+#include "ftsense/fault_type.hpp"
 #include "ftsense/reference_plugins.hpp"
 
 namespace ftsense::cli {
@@ -10,10 +11,15 @@ namespace ftsense::cli {
 int plugins_command(const std::vector<std::string>& args) {
   const std::vector<OptionSpec> specs{
       {"markdown", false, false, "print the full configuration reference (docs/config_reference.md)"},
-      {"only", true, false, "with --markdown: only these plugins' sections (comma-separated names)"}};
+      {"only", true, false, "with --markdown: only these plugins' sections (comma-separated names)"},
+      {"fault-types", false, false, "print the fault type table: code, name, model (docs/architecture.md)"}};
   const auto options = parse_options("plugins", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("plugins", "Lists the plugins compiled into this program.", specs);
+    return kExitOk;
+  }
+  if (options.count("fault-types")) {
+    std::cout << fault_type_table_markdown();
     return kExitOk;
   }
   const PluginRegistry registry = reference_plugins::registry();

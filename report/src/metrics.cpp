@@ -11,12 +11,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A code as written in a fault column; codes that name no type read as unclassified.
-FaultType type_of_code(double code) {
-  for (FaultType t : all_fault_types()) {
-    if (static_cast<double>(static_cast<int>(t)) == code) return t;
-  }
-  return FaultType::unclassified;
-}
+FaultType type_of_code(double code) { return fault_type_from_code(code).value_or(FaultType::unclassified); }
 }  // namespace
 
 double rms(std::span<const double> values) {

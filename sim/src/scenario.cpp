@@ -246,6 +246,13 @@ void read_sensors(const json& j, const std::string& path, SensorParams& s, std::
   r.finish();
 }
 
+// The fault types a scenario may inject, by name, in code order.
+std::vector<std::string_view> sensor_fault_type_names() {
+  std::vector<std::string_view> names;
+  for (const FaultType t : sensor_fault_types()) names.push_back(to_string(t));
+  return names;
+}
+
 std::optional<FaultSpec> read_fault(const json& j, const std::string& path, double duration,
                                     const std::vector<std::string_view>& channels, std::vector<std::string>& e) {
   if (!j.is_object()) {
@@ -257,7 +264,7 @@ std::optional<FaultSpec> read_fault(const json& j, const std::string& path, doub
   FaultSpec f;
   if (auto ch = r.choice("channel", channels))
     f.channel = static_cast<int>(std::find(channels.begin(), channels.end(), *ch) - channels.begin());
-  const auto type = r.choice("type", fault_type_names());
+  const auto type = r.choice("type", sensor_fault_type_names());
   if (type) f.type = *fault_type_from_string(*type);
   r.number("start_s", f.start_s, true, closed(0.0, duration));
   r.number("end_s", f.end_s, Range{0.0, duration, true, false});
@@ -288,7 +295,8 @@ std::optional<FaultSpec> read_fault(const json& j, const std::string& path, doub
         }
         break;
       }
-      case FaultType::none: break;
+      case FaultType::none:
+      case FaultType::unclassified: break;  // not among the choices
     }
     r.finish();  // only when the type is known: otherwise every type-specific key would be flagged
   }

@@ -33,43 +33,6 @@ double Rng::normal() {
   return rad * std::cos(ang);
 }
 
-namespace {
-struct NameCode {
-  std::string_view name;
-  FaultType type;
-};
-constexpr std::array<NameCode, 8> kFaultNames = {{{"offset", FaultType::offset},
-                                                  {"drift", FaultType::drift},
-                                                  {"frozen", FaultType::frozen},
-                                                  {"gain", FaultType::gain},
-                                                  {"noise", FaultType::noise},
-                                                  {"spikes", FaultType::spikes},
-                                                  {"invalid", FaultType::invalid},
-                                                  {"saturation", FaultType::saturation}}};
-}  // namespace
-
-std::string_view to_string(FaultType t) {
-  if (t == FaultType::none) return "none";
-  for (const auto& nc : kFaultNames)
-    if (nc.type == t) return nc.name;
-  return "unknown";
-}
-
-std::optional<FaultType> fault_type_from_string(std::string_view s) {
-  for (const auto& nc : kFaultNames)
-    if (nc.name == s) return nc.type;
-  return std::nullopt;
-}
-
-const std::vector<std::string_view>& fault_type_names() {
-  static const std::vector<std::string_view> names = [] {
-    std::vector<std::string_view> v;
-    for (const auto& nc : kFaultNames) v.push_back(nc.name);
-    return v;
-  }();
-  return names;
-}
-
 ForceChannelModel::ForceChannelModel(int channel, double noise_std, std::vector<FaultSpec> faults,
                                      double dt, std::uint64_t seed)
     : noise_std_(noise_std), dt_(dt), rng_(seed, 100 + static_cast<std::uint64_t>(channel)) {
@@ -102,7 +65,8 @@ double apply_fault(const FaultSpec& f, double elapsed_s, double tick_s, double y
       return y;
     case FaultType::invalid: return std::numeric_limits<double>::quiet_NaN();
     case FaultType::saturation: return std::clamp(y, f.min_N, f.max_N);
-    case FaultType::none: break;
+    case FaultType::none:
+    case FaultType::unclassified: break;  // not sensor models: no scenario names them
   }
   return y;
 }

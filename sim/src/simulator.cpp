@@ -403,7 +403,7 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
     row.num(contact[1] ? 1.0 : 0.0);
     row.num(height);
     row.num(tilt);
-    for (FaultType c : codes) row.num(static_cast<double>(static_cast<int>(c)));
+    for (FaultType c : codes) row.num(fault_code(c));
     row.flush(csv);
     ++sum.ticks;
     sum.simulated_s = t;

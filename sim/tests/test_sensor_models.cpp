@@ -8,6 +8,7 @@
 #include "ftsense/sim/sensor_models.hpp"
 
 using namespace ftsense::sim;
+using ftsense::FaultType;
 
 namespace {
 constexpr std::uint64_t kSeed = 42;
@@ -76,17 +77,6 @@ TEST(Rng, NormalHasUnitMomentsOverManySamples) {
   EXPECT_NEAR(s1 / n, 0.0, 0.01);
   EXPECT_NEAR(s2 / n, 1.0, 0.01);
   EXPECT_NEAR(s4 / n, 3.0, 0.05);
-}
-
-TEST(FaultTypes, NamesRoundTripAndCodes) {
-  for (auto name : fault_type_names()) {
-    const auto t = fault_type_from_string(name);
-    ASSERT_TRUE(t.has_value()) << name;
-    EXPECT_EQ(to_string(*t), name);
-  }
-  EXPECT_FALSE(fault_type_from_string("stuck").has_value());
-  EXPECT_EQ(static_cast<int>(FaultType::offset), 2);
-  EXPECT_EQ(static_cast<int>(FaultType::saturation), 9);
 }
 
 TEST(ForceChannel, NoiseOnlyWithoutFaults) {

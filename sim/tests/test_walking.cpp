@@ -13,6 +13,7 @@
 #include "ftsense/sim/simulator.hpp"
 
 using namespace ftsense::sim;
+using ftsense::FaultType;
 using ftsense::sim::testing::CsvTable;
 
 namespace {
@@ -201,7 +202,7 @@ TEST(Faults, EveryInjectedSignalMatchesItsDefinitionAgainstTruth) {
   ASSERT_FALSE(r.sum.fell);
   const CsvTable t = CsvTable::parse(r.csv);
   const auto& time = t["time_s"];
-  std::array<int, 10> seen{};
+  std::array<int, ftsense::kFaultTypes.size()> seen{};  // ticks per fault type code
   for (int ch = 0; ch < 8; ++ch) {
     const std::string name(kForceChannels[static_cast<std::size_t>(ch)]);
     const auto& m = t[name + "/force_N"];
@@ -248,7 +249,8 @@ TEST(Faults, EveryInjectedSignalMatchesItsDefinitionAgainstTruth) {
         }
         case FaultType::invalid: ASSERT_TRUE(std::isnan(m[i])); break;
         case FaultType::saturation: ASSERT_EQ(m[i], std::clamp(tr[i], active->min_N, active->max_N)); break;
-        case FaultType::none: break;
+        case FaultType::none:
+        case FaultType::unclassified: FAIL() << "not a sensor fault type: " << to_string(active->type);
       }
     }
     if (noise_n > 0) {
@@ -257,7 +259,10 @@ TEST(Faults, EveryInjectedSignalMatchesItsDefinitionAgainstTruth) {
       EXPECT_NEAR(sd, 40.0, 2.0);
     }
   }
-  for (int c : {2, 3, 4, 5, 6, 7, 8, 9}) EXPECT_GT(seen[static_cast<std::size_t>(c)], 0) << "code " << c;
+  for (const FaultType type : {FaultType::offset, FaultType::drift, FaultType::frozen, FaultType::gain,
+                                FaultType::noise, FaultType::spikes, FaultType::invalid, FaultType::saturation}) {
+    EXPECT_GT(seen[static_cast<std::size_t>(type)], 0) << "mixed.json injects no " << to_string(type) << " fault";
+  }
 }
 
 TEST(Faults, PaperScenarioOffsetsDriftAndFrozenZeroWithNoise) {

@@ -14,10 +14,14 @@ trap 'rm -rf "$work"' EXIT
 "$ftsense" run --config "$config" --input "$work/log.csv" --output "$work/run.csv" > /dev/null || { echo "FAIL: run"; exit 1; }
 "$ftsense" report --run "$work/run.csv" --truth "$work/log.csv" --out "$work/report" --no-figures > "$work/table" || { echo "FAIL: report"; exit 1; }
 cat "$work/table"
-/usr/bin/python3 - "$work/report/metrics.json" "$work/run.csv" "$work/log.csv" "$@" <<'PY'
-import csv, json, sys
+"$ftsense" plugins --fault-types > "$work/fault_types" || { echo "FAIL: plugins --fault-types"; exit 1; }
+/usr/bin/python3 - "$work/report/metrics.json" "$work/run.csv" "$work/log.csv" "$work/fault_types" "$@" <<'PY'
+import csv, json, re, sys
 metrics = json.load(open(sys.argv[1]))
-expect = {a.split(":")[0]: (a.split(":")[1], float(a.split(":")[2])) for a in sys.argv[4:]}
+expect = {a.split(":")[0]: (a.split(":")[1], float(a.split(":")[2])) for a in sys.argv[5:]}
+# Code -> name, from the fault type table (include/ftsense/fault_type.hpp).
+names = {int(m.group(1)): m.group(2) for m in re.finditer(r"^\| (\d+) \| `(\w+)` \|", open(sys.argv[4]).read(), re.M)}
+assert names.get(0) == "none", "no fault type table from ftsense plugins --fault-types"
 # The type shown most while the truth says the fault is active.
 run = csv.DictReader(open(sys.argv[2])); log = csv.DictReader(open(sys.argv[3]))
 counts = {}
@@ -26,7 +30,6 @@ for r, l in zip(run, log):
         if float(l[f"truth/{ch}/fault"]) != 0:
             counts.setdefault(ch, {}).setdefault(int(float(r[f"{ch}/fault_type"])), 0)
             counts[ch][int(float(r[f"{ch}/fault_type"]))] += 1
-names = {0: "none", 1: "unclassified", 2: "offset", 3: "drift", 4: "frozen", 5: "gain", 6: "noise", 7: "spikes", 8: "invalid", 9: "saturation"}
 passed = failed = 0
 for m in metrics["channels"]:
     ch = m["channel"]

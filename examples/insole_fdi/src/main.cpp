@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 
+#include "ftsense/fault_type.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/pipeline.hpp"
 #include "insole/insole_fit.hpp"
@@ -35,29 +36,20 @@ constexpr double kFitEndS = 40.0;
 // Alarms on a channel up to this long after its fault ends are the flag clearing, not false alarms.
 constexpr double kClearGraceS = 5.0;
 
-enum class FaultKind { offset, drift, frozen };
+using ftsense::FaultType;
 struct InjectedFault {
   std::string channel;  // monitor channel, e.g. "left/L3"; the log column is channel + "/force_N"
-  FaultKind kind;
+  FaultType type;       // offset, drift or frozen: the models run_pipeline applies
   double start_s;
   double end_s;
   double size;  // offset [N], drift rate [N/s]; unused for frozen (holds the value at start_s)
 };
 // The fault schedule (deterministic: no random numbers). One fault at a time, 5 s apart at least.
 const std::vector<InjectedFault> kSchedule = {
-    {"left/L3", FaultKind::offset, 50.0, 65.0, 80.0},
-    {"right/R6", FaultKind::drift, 70.0, 85.0, 8.0},
-    {"right/R2", FaultKind::frozen, 95.0, 110.0, 0.0},
+    {"left/L3", FaultType::offset, 50.0, 65.0, 80.0},
+    {"right/R6", FaultType::drift, 70.0, 85.0, 8.0},
+    {"right/R2", FaultType::frozen, 95.0, 110.0, 0.0},
 };
-
-const char* to_string(FaultKind kind) {
-  switch (kind) {
-    case FaultKind::offset: return "offset";
-    case FaultKind::drift: return "drift";
-    case FaultKind::frozen: return "frozen";
-  }
-  return "?";
-}
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -213,10 +205,11 @@ void run_pipeline(ftsense::Pipeline& pipeline, const Log& log, const std::vector
       const auto& f = faults[i];
       if (t < f.start_s || t >= f.end_s) continue;
       double& value = row[fault_columns[i]];
-      switch (f.kind) {
-        case FaultKind::offset: value += f.size; break;
-        case FaultKind::drift: value += f.size * (t - f.start_s); break;
-        case FaultKind::frozen: value = frozen_value.try_emplace(fault_columns[i], value).first->second; break;
+      switch (f.type) {
+        case FaultType::offset: value += f.size; break;
+        case FaultType::drift: value += f.size * (t - f.start_s); break;
+        case FaultType::frozen: value = frozen_value.try_emplace(fault_columns[i], value).first->second; break;
+        default: break;  // the schedule holds only the three types above
       }
     }
     for (std::size_t in = 0; in < input_columns.size(); ++in) {
@@ -314,10 +307,11 @@ int run_command(const std::string& config_path, const std::string& data_path) {
               kFitEndS, kFitEndS);
   std::printf("fault schedule (deterministic, no random numbers):\n");
   for (const auto& f : kSchedule) {
-    std::printf("  %-9s %-6s from %5.1f s to %5.1f s", f.channel.c_str(), to_string(f.kind), f.start_s, f.end_s);
-    if (f.kind == FaultKind::offset) std::printf(", %+.0f N", f.size);
-    if (f.kind == FaultKind::drift) std::printf(", %+.1f N/s", f.size);
-    if (f.kind == FaultKind::frozen) std::printf(", held at the value read at %.1f s", f.start_s);
+    const std::string type(to_string(f.type));
+    std::printf("  %-9s %-6s from %5.1f s to %5.1f s", f.channel.c_str(), type.c_str(), f.start_s, f.end_s);
+    if (f.type == FaultType::offset) std::printf(", %+.0f N", f.size);
+    if (f.type == FaultType::drift) std::printf(", %+.1f N/s", f.size);
+    if (f.type == FaultType::frozen) std::printf(", held at the value read at %.1f s", f.start_s);
     std::printf("\n");
   }
   std::printf("\n%-9s | %9s %9s | %14s | %-6s %9s | %14s | %14s\n", "channel", "rms err", "stance", "alarms",
@@ -332,10 +326,10 @@ int run_command(const std::string& config_path, const std::string& data_path) {
     const double rms = s.samples > 0 ? std::sqrt(s.sum_sq_error / static_cast<double>(s.samples)) : NAN;
     const double stance_rms =
         s.stance_samples > 0 ? std::sqrt(s.stance_sum_sq_error / static_cast<double>(s.stance_samples)) : NAN;
-    std::string kind = "-";
+    std::string type = "-";
     std::string delay = "-";
     if (fault_of[c]) {
-      kind = to_string(kSchedule[*fault_of[c]].kind);
+      type = to_string(kSchedule[*fault_of[c]].type);
       if (s.detection_delay_s) {
         char text[32];
         std::snprintf(text, sizeof text, "%.2f", *s.detection_delay_s);
@@ -349,7 +343,7 @@ int run_command(const std::string& config_path, const std::string& data_path) {
     cross_alarms += s.cross_alarms;
     std::printf("%-9s | %9.2f %9.2f | %6d %6.2f s | %-6s %9s | %6d %6.2f s | %6d %6.2f s\n",
                 monitor.channels[c].c_str(), rms, stance_rms, s.healthy_alarms, s.healthy_alarm_s,
-                kind.c_str(), delay.c_str(), s.false_alarms, s.false_alarm_s, s.cross_alarms,
+                type.c_str(), delay.c_str(), s.false_alarms, s.false_alarm_s, s.cross_alarms,
                 s.cross_alarm_s);
   }
   std::printf("\nmissed faults %d, false alarms %d (recorded walk, and injected walk outside the faults "

@@ -11,11 +11,9 @@ namespace ftsense::biped {
 
 namespace {
 
-constexpr int code(FaultType t) { return static_cast<int>(t); }
-
 // Which evidence wins when several tests fire on one channel.
-int priority(int type) {
-  switch (static_cast<FaultType>(type)) {
+int priority(FaultType type) {
+  switch (type) {
     case FaultType::invalid: return 6;
     case FaultType::frozen:
     case FaultType::saturation: return 5;
@@ -24,12 +22,14 @@ int priority(int type) {
     case FaultType::gain: return 2;
     case FaultType::drift:
     case FaultType::offset: return 1;
-    default: return 0;
+    case FaultType::none:
+    case FaultType::unclassified: return 0;  // never raised here
   }
+  return 0;
 }
 
-bool corrects(int type) {
-  return type == code(FaultType::offset) || type == code(FaultType::drift) || type == code(FaultType::gain);
+bool corrects(FaultType type) {
+  return type == FaultType::offset || type == FaultType::drift || type == FaultType::gain;
 }
 
 }  // namespace
@@ -127,15 +127,22 @@ void ContactForceFdi::LineFit::solve(double& a, double& s) const noexcept {
 namespace {
 // Window lengths in ticks, checked before anything is allocated: a window is at most 100,000
 // ticks (e.g. 1 s at 100 kHz), so a tiny tick period cannot ask for gigabytes.
+constexpr double kMaxWindowTicks = 100000.0;
 int window_ticks(double window_s, double period_s, int minimum, const char* key) {
   const double ticks = window_s / period_s;
-  if (!(ticks <= 100000.0)) {
+  if (!(ticks <= kMaxWindowTicks)) {
     throw ConfigError(std::string("/params/") + key,
                       " = " + format_number(window_s) + " violates at most 100000 ticks of the pipeline's " +
                           format_number(period_s) + " s (a window this long is a configuration error)");
   }
   return std::max(minimum, static_cast<int>(std::lround(ticks)));
 }
+
+// The airborne test judges the mean of the readings taken after airborne_settle_s over at least
+// this long (and at least 10 readings): a healthy sensor's noise (noise_std_N = 2 N) averages to
+// about 0.5 N over 20 readings at 1 kHz, far below airborne_threshold_N. A length of its own, not
+// the settling time: one waits out the lift-off, the other averages the noise.
+constexpr double kAirborneMeanWindow_s = 0.02;
 }  // namespace
 
 ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& context)
@@ -144,7 +151,12 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
       feet_points_(params.points.size()),
       noise_window_ticks_(window_ticks(params.noise_window_s, context.sample_period_s(), 4, "noise_window_s")),
       jump_window_ticks_(window_ticks(params.jump_window_s, context.sample_period_s(), 2, "jump_window_s")) {
-  min_airborne_samples_ = window_ticks(0.02, context.sample_period_s(), 10, "airborne_settle_s");
+  if (!(kAirborneMeanWindow_s / context.sample_period_s() <= kMaxWindowTicks)) {
+    throw ConfigError("", "the pipeline's sample period " + format_number(context.sample_period_s()) +
+                              " s is too short for contact_force_fdi: its airborne mean of " +
+                              format_number(kAirborneMeanWindow_s) + " s would be more than 100000 ticks");
+  }
+  min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
   if (params.airborne_clear_N >= params.airborne_threshold_N) {
     throw ConfigError("/params/airborne_clear_N", " = " + format_number(params.airborne_clear_N) + " violates < " +
                                                       format_number(params.airborne_threshold_N) +
@@ -198,8 +210,8 @@ void ContactForceFdi::reset() noexcept {
   gain_unisolated_ = false;
 }
 
-void ContactForceFdi::raise(Channel& c, int type, double t) noexcept {
-  if (c.type == 0) {
+void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
+  if (c.type == FaultType::none) {
     c.flagged_since = t;
     c.type = type;
   } else if (priority(type) > priority(c.type)) {
@@ -209,7 +221,7 @@ void ContactForceFdi::raise(Channel& c, int type, double t) noexcept {
 }
 
 void ContactForceFdi::clear(Channel& c) noexcept {
-  c.type = 0;
+  c.type = FaultType::none;
   c.offset = c.slope = 0.0;
   c.gain = 1.0;
   c.fit_has_air = false;
@@ -259,7 +271,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
     if (!std::isfinite(x)) {
       all_finite_readings = false;
-      raise(c, code(FaultType::invalid), t);
+      raise(c, FaultType::invalid, t);
       c.stale_count = 0;
       c.airborne_ticks = c.airborne_count = 0;
       c.airborne_sum = 0.0;
@@ -267,7 +279,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       continue;
     }
     raw_sum += x;
-    if (c.type == code(FaultType::invalid)) clear(c);  // a finite value re-admits at once
+    if (c.type == FaultType::invalid) clear(c);  // a finite value re-admits at once
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
       c.stale_count = std::abs(change) <= params_.stale_tolerance_N ? c.stale_count + 1 : 0;
@@ -332,7 +344,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   bool substituting_rolling = false;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
-    const bool substituted = channels_[j].type != 0 && !corrects(channels_[j].type) && !airborne;
+    const bool substituted = channels_[j].type != FaultType::none && !corrects(channels_[j].type) && !airborne;
     substituting_loaded = substituting_loaded || substituted;
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[std::min<std::size_t>(j / feet_points_, 1)]);
   }
@@ -372,12 +384,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         if (group_confirmed) {
           // The size of the fault now: for a gain fault (k - 1) N = (1 - 1/k) x, x the reading
           // before this jump.
-          const double estimate = c.type == code(FaultType::gain) ? (1.0 - 1.0 / c.gain) * c.jump_load_before
+          const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * c.jump_load_before
                                                                    : c.offset + c.slope * (t - c.fit.t0);
           if (corrects(c.type) && std::abs(c.jump_size + estimate) < 0.4 * std::abs(estimate) + 15.0) {
             clear(c);  // the fault ended with a jump back
-          } else if (c.type == 0) {
-            raise(c, code(FaultType::offset), t);
+          } else if (c.type == FaultType::none) {
+            raise(c, FaultType::offset, t);
             c.fit.clear(t);
             c.fit.add(t, c.jump_size, 1.0);
             c.offset = c.jump_size;
@@ -397,36 +409,36 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.stale_episodes = same_ceiling ? c.stale_episodes + 1 : 1;
         c.last_stale_value = x;
       }
-      raise(c, code(at_max || c.stale_episodes >= 2 ? FaultType::saturation : FaultType::frozen), t);
-      if (c.stale_episodes >= 2 && c.type == code(FaultType::frozen)) c.type = code(FaultType::saturation);
-    } else if ((c.type == code(FaultType::frozen) || c.type == code(FaultType::saturation)) && c.stale_count == 0) {
+      raise(c, at_max || c.stale_episodes >= 2 ? FaultType::saturation : FaultType::frozen, t);
+      if (c.stale_episodes >= 2 && c.type == FaultType::frozen) c.type = FaultType::saturation;
+    } else if ((c.type == FaultType::frozen || c.type == FaultType::saturation) && c.stale_count == 0) {
       if (c.clear_since < 0) c.clear_since = t;
       if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
     }
     // Spikes.
     if (t - c.last_spike_s < params_.spike_hold_s) {
-      raise(c, code(FaultType::spikes), t);
-    } else if (c.type == code(FaultType::spikes)) {
+      raise(c, FaultType::spikes, t);
+    } else if (c.type == FaultType::spikes) {
       clear(c);
     }
     // Noise burst: most second differences far above their healthy spread.
     int noisy = 0;
     for (double d : c.second_diff) noisy += d > tick_noise;
     if (noisy * 2 > noise_window_ticks_) {
-      raise(c, code(FaultType::noise), t);
-    } else if (c.type == code(FaultType::noise) && noisy * 4 < noise_window_ticks_) {
+      raise(c, FaultType::noise, t);
+    } else if (c.type == FaultType::noise && noisy * 4 < noise_window_ticks_) {
       if (c.clear_since < 0) c.clear_since = t;
       if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
     }
     // Airborne pad: its reading is the fault itself.
     if (c.airborne_count >= min_airborne_samples) {
       const double mean = c.airborne_sum / c.airborne_count;
-      if (c.type == 0 && std::abs(mean) > params_.airborne_threshold_N) {
-        raise(c, code(FaultType::offset), t);
+      if (c.type == FaultType::none && std::abs(mean) > params_.airborne_threshold_N) {
+        raise(c, FaultType::offset, t);
         c.fit.clear(t);
         c.fit_has_air = false;
       }
-      if (c.type == code(FaultType::offset) || c.type == code(FaultType::drift)) {
+      if (c.type == FaultType::offset || c.type == FaultType::drift) {
         const bool reads_zero = std::abs(mean) < params_.airborne_clear_N;
         const bool settled = c.airborne_count >= 3 * min_airborne_samples;
         if (!c.fit_has_air && reads_zero && !settled) {
@@ -435,7 +447,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         } else if (!c.fit_has_air && reads_zero) {
           // Raised by a jump, zero in the air: a gain fault if the pad was loaded, else over.
           if (c.jump_load_before > 50.0 && std::abs(c.offset) > 0.1 * c.jump_load_before) {
-            c.type = code(FaultType::gain);
+            c.type = FaultType::gain;
             c.gain = 1.0 + c.offset / c.jump_load_before;
           } else {
             clear(c);
@@ -450,7 +462,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           double a = c.offset, s = 0.0;
           c.fit.solve(a, s);
           const bool drifting = c.fit.span() >= 0.3 && std::abs(s) > 2.0;
-          c.type = drifting ? code(FaultType::drift) : code(FaultType::offset);
+          c.type = drifting ? FaultType::drift : FaultType::offset;
           c.offset = drifting ? a : c.fit.sb / c.fit.n;
           c.slope = drifting ? s : 0.0;
         }
@@ -472,17 +484,17 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
     double value = x;
     bool unknown = false;
-    if (c.type == code(FaultType::offset) || c.type == code(FaultType::drift)) {
+    if (c.type == FaultType::offset || c.type == FaultType::drift) {
       value = airborne ? 0.0 : x - (c.offset + c.slope * (t - c.fit.t0));
-    } else if (c.type == code(FaultType::gain)) {
+    } else if (c.type == FaultType::gain) {
       value = airborne ? 0.0 : x / c.gain;
-    } else if (c.type == code(FaultType::noise)) {
+    } else if (c.type == FaultType::noise) {
       value = airborne ? 0.0 : c.smoothed;
-    } else if (c.type == code(FaultType::spikes)) {
+    } else if (c.type == FaultType::spikes) {
       // Median of the last three readings: an isolated spike never wins.
       const double a = x, b = c.previous, d = c.previous2;
       value = airborne ? 0.0 : std::max(std::min(a, b), std::min(std::max(a, b), d));
-    } else if (c.type != 0) {
+    } else if (c.type != FaultType::none) {
       value = 0.0;
       unknown = !airborne;
     }
@@ -499,8 +511,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
-    const bool own_estimate = corrects(c.type) || c.type == code(FaultType::noise) || c.type == code(FaultType::spikes);
-    if (c.type != 0 && !own_estimate && !airborne) {
+    const bool own_estimate = corrects(c.type) || c.type == FaultType::noise || c.type == FaultType::spikes;
+    if (c.type != FaultType::none && !own_estimate && !airborne) {
       recovered[j] = fz_ok ? share : c.recovered;
       total += recovered[j];
     }
@@ -511,8 +523,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     virtual_force[j] = airborne ? 0.0
                        : fz_ok  ? std::max(0.0, fz - (total - recovered[j]))
                                 : std::numeric_limits<double>::quiet_NaN();
-    fault[j] = c.type != 0 ? 1.0 : 0.0;
-    type[j] = static_cast<double>(c.type);
+    fault[j] = c.type != FaultType::none ? 1.0 : 0.0;
+    type[j] = fault_code(c.type);
     const double x = measured[j];
     fault_estimate[j] = std::isfinite(x) ? x - recovered[j] : 0.0;
     c.recovered = recovered[j];
@@ -531,7 +543,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   if (fz_ok || !started_) sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
   io.out(kSumResidual)[0] = sum_filtered_;
   bool any = false;
-  for (const auto& c : channels_) any = any || c.type != 0;
+  for (const auto& c : channels_) any = any || c.type != FaultType::none;
   io.out(kUnisolated)[0] =
       (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any) || gain_unisolated_) ? 1.0 : 0.0;
   io.out(kVirtualReady)[0] = fz_ok ? 1.0 : 0.0;
@@ -561,7 +573,7 @@ void ContactForceFdi::gain_regression(std::span<const double> recovered, double 
     const Channel& c = channels_[j];
     if (!(gain_xx_[j] >= min_power)) continue;  // hardly loaded: nothing to see
     const double explained = gain_xr_[j] * gain_xr_[j] / (gain_xx_[j] * gain_rr_);
-    const bool judged = c.type == 0 || c.type == code(FaultType::gain);  // others: by their own evidence
+    const bool judged = c.type == FaultType::none || c.type == FaultType::gain;  // others: by their own evidence
     if (judged && explained > best_explained) {
       second_explained = std::max(second_explained, best_explained);
       best = j;
@@ -580,7 +592,7 @@ void ContactForceFdi::gain_regression(std::span<const double> recovered, double 
   }
   Channel& c = channels_[best];
   const double beta = gain_xr_[best] / gain_xx_[best];
-  const double threshold = c.type == 0 ? params_.gain_threshold : 0.5 * params_.gain_threshold;
+  const double threshold = c.type == FaultType::none ? params_.gain_threshold : 0.5 * params_.gain_threshold;
   if (std::abs(beta) <= threshold) {
     gain_unisolated_ = false;
     return;
@@ -588,11 +600,11 @@ void ContactForceFdi::gain_regression(std::span<const double> recovered, double 
   gain_unisolated_ = best_explained - second_explained < params_.gain_isolation_margin;
   if (gain_unisolated_) return;
   // recovered_new = recovered (1 - beta): k_new = k / (1 - beta).
-  const double gain = (c.type == code(FaultType::gain) ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
-  if (c.type == code(FaultType::gain) && std::abs(1.0 - 1.0 / gain) < 0.5 * params_.gain_threshold) {
+  const double gain = (c.type == FaultType::gain ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
+  if (c.type == FaultType::gain && std::abs(1.0 - 1.0 / gain) < 0.5 * params_.gain_threshold) {
     clear(c);  // the reading is its force again
   } else {
-    raise(c, code(FaultType::gain), t);
+    raise(c, FaultType::gain, t);
     c.gain = gain;
   }
   // The window's residuals were computed with the old correction: start a new one.

@@ -371,6 +371,15 @@ TEST(ContactForceFdi, WindowsTooLongForTheTickAreConfigErrors) {
     EXPECT_EQ(e.problems()[0].path, "/params/noise_window_s");
     EXPECT_NE(e.problems()[0].message.find("at most 100000 ticks"), std::string::npos) << e.what();
   }
+  // The airborne mean's fixed 0.02 s is no parameter: the tick is what is too short.
+  p.noise_window_s = p.jump_window_s = 1e-4;
+  try {
+    const ContactForceFdi fdi(p, StageContext(1e-8, "fdi"));
+    FAIL() << "a 1e-8 s tick makes the 0.02 s airborne mean 2e6 ticks long";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.problems()[0].path, "");
+    EXPECT_NE(e.problems()[0].message.find("sample period 1e-08 s is too short"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ZmpFromContactForces, IsTheCentreOfPressureOfAllPads) {

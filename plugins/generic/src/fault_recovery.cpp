@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "ftsense/fault_type.hpp"
-
 namespace ftsense::generic {
 
 void FaultRecovery::Params::describe(ParamSchema<Params>& schema) {
@@ -28,9 +26,7 @@ void FaultRecovery::Params::validate(Diagnostics& diag, std::string_view path) c
 
 FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
     : correction_(params.correction) {
-  for (const auto& t : params.substitute_types) {
-    substitute_codes_.push_back(static_cast<int>(*fault_type_from_string(t)));
-  }
+  for (const auto& t : params.substitute_types) substitute_types_.push_back(*fault_type_from_string(t));
   const std::size_t dim = context.wired_dim("measured", 1);
   ports_.add_input({"measured", dim, std::string(kAnyUnit), "the monitored sensor"});
   ports_.add_input({"fault_estimate", dim, std::string(kAnyUnit), "the estimated fault eta_hat"});
@@ -51,13 +47,11 @@ void FaultRecovery::step(const StepIO& io) noexcept {
   const auto type = io.in(kFaultType);
   const auto out = io.out(kRecovered);
   for (std::size_t j = 0; j < out.size(); ++j) {
-    // A code that is not one of the table's integers is itself invalid data.
-    const double t = type[j];
-    const bool known = std::isfinite(t) && t >= 0.0 && t <= 255.0 && t == std::floor(t);
-    const int code = known ? static_cast<int>(t) : static_cast<int>(FaultType::invalid);
+    // A code that is not one of the table's is itself invalid data.
+    const FaultType t = fault_type_from_code(type[j]).value_or(FaultType::invalid);
     const bool substitute = !std::isfinite(measured[j]) ||
-                            std::find(substitute_codes_.begin(), substitute_codes_.end(), code) !=
-                                substitute_codes_.end();
+                            std::find(substitute_types_.begin(), substitute_types_.end(), t) !=
+                                substitute_types_.end();
     const bool correct = correction_ == Correction::always || fault[j] != 0.0;
     const double corrected = correct ? measured[j] - fault_estimate[j] : measured[j];
     double value = substitute ? estimate[j] : corrected;

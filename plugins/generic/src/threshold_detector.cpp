@@ -62,7 +62,7 @@ ThresholdDetector::ThresholdDetector(const Params& params, const StageContext& c
   }
   ports_.add_output({"fault", dim, std::string(kDimensionless), "1 when a fault is detected, else 0"});
   ports_.add_output({"fault_type", dim, std::string(kDimensionless),
-                     "fault type code: 0 none, 1 unclassified, 8 invalid"});
+                     "fault type code (fault_type.hpp): none, unclassified or invalid"});
   above_for_s_.assign(dim, 0.0);
   below_for_s_.assign(dim, 0.0);
   raised_.assign(dim, 0);
@@ -87,12 +87,12 @@ void ThresholdDetector::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < thresholds_.size(); ++j) {
     if (!std::isfinite(s[j]) || (check_measured_ && !std::isfinite(io.in(kMeasured)[j]))) {
       fault[j] = 1.0;
-      type[j] = static_cast<double>(FaultType::invalid);
+      type[j] = fault_code(FaultType::invalid);
       continue;
     }
     if (warming_up) {
       fault[j] = 0.0;
-      type[j] = static_cast<double>(FaultType::none);
+      type[j] = fault_code(FaultType::none);
       continue;
     }
     if (std::abs(s[j] - centers_[j]) > thresholds_[j]) {
@@ -106,7 +106,7 @@ void ThresholdDetector::step(const StepIO& io) noexcept {
       if (below_for_s_[j] >= off_delay_s_ - 0.5 * sample_period_s_) raised_[j] = 0;
     }
     fault[j] = raised_[j] ? 1.0 : 0.0;
-    type[j] = static_cast<double>(raised_[j] ? FaultType::unclassified : FaultType::none);
+    type[j] = fault_code(raised_[j] ? FaultType::unclassified : FaultType::none);
   }
 }
 

@@ -18,9 +18,10 @@
 //
 // Ports: input `measured` [N], n values (n from the wiring); outputs `virtual` [N],
 // `residual` [N] (r_j = s_j - s_hat_j), `stance` [1] (stance_j as 0/1) and `available` [1] (0/1),
-// n values each. The residual is computed here because ftsense's stage-level independence check
-// does not yet honour leave-one-out outputs (the monitor's check does): wiring `virtual` into a
-// difference_residual next to `measured` would be refused.
+// n values each. ftsense's independence rule, in a stage as in the monitor, accepts a leave-one-out
+// output as the virtual sensor of exactly the measured signal it leaves out, so `virtual` could
+// also be wired into a difference_residual next to `measured`; the `residual` output saves that
+// stage.
 
 // [snippet:plugin_struct]
 #include <cstddef>

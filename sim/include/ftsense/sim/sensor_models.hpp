@@ -9,7 +9,8 @@
 //
 // Force channel, per tick k (time t_k = k dt), true normal force N:
 //   y = N + sigma n_k                     (sensor noise, n_k ~ N(0,1))
-//   y = fault(y) if a fault is active on the channel (t_start <= t < t_end):
+//   y = fault(y) if a fault is active on the channel (t_start <= t < t_end), one model per
+//   sensor fault type of include/ftsense/fault_type.hpp (every type but none and unclassified):
 //     offset      y + offset_N
 //     drift       y + slope_N_s (t - t_start)
 //     frozen      value_N, or (no value given) the channel's output at the tick before t_start
@@ -25,6 +26,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "ftsense/fault_type.hpp"
 
 namespace ftsense::sim {
 
@@ -42,25 +45,6 @@ class Rng {
   bool has_spare_ = false;
   double spare_ = 0.0;
 };
-
-/// Fault type codes as used in the truth columns (1 is reserved for "detected, unclassified").
-enum class FaultType : int {
-  none = 0,
-  offset = 2,
-  drift = 3,
-  frozen = 4,
-  gain = 5,
-  noise = 6,
-  spikes = 7,
-  invalid = 8,
-  saturation = 9
-};
-
-[[nodiscard]] std::string_view to_string(FaultType t);
-/// Parses a scenario type name; nullopt if unknown.
-[[nodiscard]] std::optional<FaultType> fault_type_from_string(std::string_view s);
-/// The names accepted by fault_type_from_string, in code order.
-[[nodiscard]] const std::vector<std::string_view>& fault_type_names();
 
 /// Force channels: 0..3 = l_foot/p1..p4, 4..7 = r_foot/p1..p4.
 inline constexpr std::array<std::string_view, 8> kForceChannels = {

@@ -24,7 +24,8 @@
 //             stays spike_hold_s after the last spike.
 //   noise     over noise_window_s, more than half of the second differences exceed
 //             noise_factor * noise_std_N * sqrt(6) (their healthy standard deviation).
-//   airborne  while the pad has been airborne for airborne_settle_s, |mean N_j| > airborne_threshold_N:
+//   airborne  |mean N_j| > airborne_threshold_N, the mean of the readings taken once the pad has
+//             been airborne for airborne_settle_s, over at least 0.02 s and 10 readings:
 //             offset, drift or frozen-at-load; the mean measures the fault directly.
 //   jump      |N_j,k - N_j,k-1| > jump_threshold_N, with no foot touching down within
 //             touchdown_guard_s (a landing impact jumps pads and, unseen by the trunk IMU, the
@@ -75,6 +76,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ftsense/fault_type.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::biped {
@@ -155,7 +157,7 @@ class ContactForceFdi {
     double candidate_load = 0.0;
     double jump_load_before = 0.0;
     // state
-    int type = 0;  // FaultType code, 0 healthy
+    FaultType type = FaultType::none;
     double flagged_since = 0.0;
     double clear_since = -1.0;
     double offset = 0.0, slope = 0.0, gain = 1.0;
@@ -165,7 +167,7 @@ class ContactForceFdi {
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
   };
 
-  void raise(Channel& c, int type, double t) noexcept;
+  void raise(Channel& c, FaultType type, double t) noexcept;
   // The stance-regression gain test (see the header comment); runs after recovery.
   void gain_regression(std::span<const double> recovered, double residual, bool usable, double t) noexcept;
   void clear(Channel& c) noexcept;

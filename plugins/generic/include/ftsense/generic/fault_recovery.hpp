@@ -5,6 +5,8 @@
 //   recovered_j = virtual_j                           when the channel's fault type is one of
 //                                                     `substitute_types` (default: frozen,
 //                                                     invalid), or measured_j is not finite
+//                                                     (a fault_type value that is not one of
+//                                                     fault_type.hpp's codes counts as invalid)
 //
 // With correction = "when_flagged", measured_j passes through unchanged while fault_j = 0.
 // The output is never NaN: if the chosen value is not finite, the other one is used, and if
@@ -14,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ftsense/fault_type.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::generic {
@@ -28,7 +31,8 @@ class FaultRecovery {
 
   struct Params {
     Correction correction = Correction::always;
-    std::vector<std::string> substitute_types{"frozen", "invalid"};
+    std::vector<std::string> substitute_types{std::string(to_string(FaultType::frozen)),
+                                              std::string(to_string(FaultType::invalid))};
     static void describe(ParamSchema<Params>& schema);
     void validate(Diagnostics& diag, std::string_view path) const;
   };
@@ -44,7 +48,7 @@ class FaultRecovery {
  private:
   Ports ports_;
   Correction correction_;
-  std::vector<int> substitute_codes_;
+  std::vector<FaultType> substitute_types_;
   std::vector<double> last_;
 };
 
