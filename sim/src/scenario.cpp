@@ -9,6 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ftsense/json_text.hpp"
+#include "ftsense/text_file.hpp"
+
 namespace ftsense::sim {
 
 namespace {
@@ -129,7 +132,7 @@ class ObjectReader {
     if (errors_.size() != before || !j_.contains(key)) return std::nullopt;
     if (std::find(choices.begin(), choices.end(), s) == choices.end()) {
       std::vector<std::string> c(choices.begin(), choices.end());
-      errors_.push_back(at(key) + " = " + j_.at(key).dump() + " is not one of: " + join(c, ", "));
+      errors_.push_back(at(key) + " = " + ftsense::detail::abbreviated_dump(j_.at(key)) + " is not one of: " + join(c, ", "));
       return std::nullopt;
     }
     return s;
@@ -147,9 +150,9 @@ class ObjectReader {
       const json& e = (*v)[i];
       const std::string p = at(key) + "/" + std::to_string(i);
       if (!e.is_number()) {
-        errors_.push_back(p + " = " + e.dump() + " has type " + type_name(e) + ", expected number");
+        errors_.push_back(p + " = " + ftsense::detail::abbreviated_dump(e) + " has type " + type_name(e) + ", expected number");
       } else if (!r.contains(e.get<double>())) {
-        errors_.push_back(p + " = " + e.dump() + " is out of range, expected " + r.describe());
+        errors_.push_back(p + " = " + ftsense::detail::abbreviated_dump(e) + " is out of range, expected " + r.describe());
       } else {
         out[i] = e.get<double>();
       }
@@ -178,7 +181,7 @@ class ObjectReader {
       if (std::find(allowed_.begin(), allowed_.end(), it.key()) == allowed_.end()) {
         std::vector<std::string> allowed(allowed_.begin(), allowed_.end());
         std::sort(allowed.begin(), allowed.end());
-        errors_.push_back(at(it.key()) + " = " + it.value().dump() +
+        errors_.push_back(at(it.key()) + " = " + ftsense::detail::abbreviated_dump(it.value()) +
                           " is not a known key (allowed here: " + join(allowed, ", ") + ")");
       }
     }
@@ -256,7 +259,7 @@ std::vector<std::string_view> sensor_fault_type_names() {
 std::optional<FaultSpec> read_fault(const json& j, const std::string& path, double duration,
                                     const std::vector<std::string_view>& channels, std::vector<std::string>& e) {
   if (!j.is_object()) {
-    e.push_back(path + " = " + j.dump() + " has type " + type_name(j) + ", expected object");
+    e.push_back(path + " = " + ftsense::detail::abbreviated_dump(j) + " has type " + type_name(j) + ", expected object");
     return std::nullopt;
   }
   const std::size_t before = e.size();
@@ -337,7 +340,8 @@ Scenario parse_scenario(const json& doc) {
   std::vector<std::string> e;
   Scenario s;
   if (!doc.is_object())
-    throw ScenarioError({"(document root) = " + doc.dump() + " has type " + type_name(doc) + ", expected object"});
+    throw ScenarioError({"(document root) = " + ftsense::detail::abbreviated_dump(doc) + " has type " + type_name(doc) +
+                         ", expected object"});
   ObjectReader r(doc, "", e);
   r.string("name", s.name, false);
   r.string("description", s.description, false);
@@ -357,23 +361,40 @@ Scenario parse_scenario(const json& doc) {
   return s;
 }
 
+namespace {
+// The strict reader's problems (position or JSON Pointer first) as scenario problems.
+[[noreturn]] void rethrow_as_scenario_error(const ftsense::ConfigError& ex) {
+  std::vector<std::string> p;
+  for (const auto& d : ex.problems()) p.push_back(d.text());
+  throw ScenarioError(std::move(p));
+}
+}  // namespace
+
 Scenario parse_scenario_text(const std::string& text) {
   json doc;
   try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& ex) {
-    throw ScenarioError({std::string("JSON syntax error: ") + ex.what()});
+    // Strict: duplicate keys (the last duration_s would silently win), numbers beyond a double and
+    // nesting deeper than a scenario needs are errors, with their position.
+    doc = ftsense::parse_json_text(text, "scenario");
+  } catch (const ftsense::ConfigError& ex) {
+    rethrow_as_scenario_error(ex);
   }
   return parse_scenario(doc);
 }
 
 Scenario load_scenario(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError({path.string() + ": cannot open the scenario file"});
-  std::ostringstream buf;
-  buf << in.rdbuf();
+  std::string text;
+  json doc;
   try {
-    return parse_scenario_text(buf.str());
+    text = ftsense::read_text_file(path, "scenario file");
+    doc = ftsense::parse_json_text(text, path.string());  // its messages start with path:line:column
+  } catch (const ftsense::TextFileError& ex) {
+    throw ScenarioError({ex.what()});
+  } catch (const ftsense::ConfigError& ex) {
+    rethrow_as_scenario_error(ex);
+  }
+  try {
+    return parse_scenario(doc);
   } catch (const ScenarioError& ex) {
     std::vector<std::string> p;
     for (const auto& m : ex.problems()) p.push_back(path.string() + ": " + m);

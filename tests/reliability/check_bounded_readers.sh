@@ -45,5 +45,20 @@ row log_is_a_link_loop "loop of symbolic links" "$ftsense" run --config "$cfg" -
 row faults_is_a_device "/dev/zero: is not a regular file" \
     "$ftsense" inject --input "$work/log.csv" --faults /dev/zero --output "$work/o.csv"
 
+# Scenarios go through the same strict JSON reader as configs (finding 1; 11: 1e400).
+awk 'BEGIN { for (i = 0; i < 100000; i++) printf "["; for (i = 0; i < 100000; i++) printf "]"; print "" }' > "$work/deep.json"
+printf '{"duration_s": 5, "duration_s": 3600, "gait": {}, "faults": []}\n' > "$work/duplicate.json"
+printf '{"duration_s": 1e400, "gait": {}, "faults": []}\n' > "$work/overflow.json"
+row scenario_nested_deep "deep.json:1:101: not valid JSON: nested deeper than 100" \
+    "$ftsense" simulate --scenario "$work/deep.json" --out "$work/sim.csv" --quiet
+row scenario_duplicate_key "/duration_s: duplicate key 'duration_s'" \
+    "$ftsense" simulate --scenario "$work/duplicate.json" --out "$work/sim.csv" --quiet
+row scenario_number_overflow "overflow.json:1:16: not valid JSON: number overflow parsing '1e400'" \
+    "$ftsense" simulate --scenario "$work/overflow.json" --out "$work/sim.csv" --quiet
+row scenario_is_a_device "/dev/zero: is not a regular file" \
+    "$ftsense" simulate --scenario /dev/zero --out "$work/sim.csv" --quiet
+[ ! -e "$work/sim.csv" ] && { passes=$((passes + 1)); echo "ok   refused_scenarios_wrote_nothing"; } \
+  || { failures=$((failures + 1)); echo "FAIL refused_scenarios_wrote_nothing"; }
+
 echo "bounded readers: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]
