@@ -1,3 +1,8 @@
+// Why this file is longer than the ~500 lines a file usually holds: it is the biped robust
+// detector's one evidence loop, whose tests (jump, frozen, noise, airborne, sum residual, gain
+// regression) share each channel's state tick by tick. Issue 13 replaces it with the generic FDI
+// layer (signal validators, constraint residuals, change detection, classification, recovery),
+// which splits it by role; cutting the loop into files before that would only scatter the state.
 #include "ftsense/biped/contact_force_fdi.hpp"
 
 #include <algorithm>
