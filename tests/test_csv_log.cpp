@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "ftsense/io/csv_log.hpp"
 
 namespace ftsense::io {
@@ -117,6 +119,33 @@ TEST(CsvLog, ReadsFromAStreamLikeFromAFile) {
     FAIL() << "expected a LogError";
   } catch (const LogError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("bad.csv:3: time_s = ", 0), 0u) << e.what();
+  }
+}
+
+TEST(CsvLog, NumbersBeyondDoubleAreInfinitiesAndBelowItZeros) {
+  std::istringstream in("time_s,a,b,c,d,e\n0,1e400,-1e400,1e-400,-1e-400,4.9e-324\n");
+  CsvLogReader r(in, "range.csv");
+  std::vector<double> v;
+  ASSERT_TRUE(r.next(v));
+  EXPECT_EQ(v[1], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(v[2], -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(v[3], 0.0);
+  EXPECT_FALSE(std::signbit(v[3]));
+  EXPECT_EQ(v[4], 0.0);
+  EXPECT_TRUE(std::signbit(v[4]));
+  EXPECT_EQ(v[5], std::numeric_limits<double>::denorm_min());
+}
+
+TEST(CsvLog, ALastRowWithoutLineEndMayBeCutAndIsRefused) {
+  std::istringstream in("time_s,a\n0,1.5\n0.001,1");  // "12.5" cut after its first digit?
+  CsvLogReader r(in, "cut.csv");
+  std::vector<double> v;
+  ASSERT_TRUE(r.next(v));
+  try {
+    (void)r.next(v);
+    FAIL() << "the cut row was accepted";
+  } catch (const LogError& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.csv:3: the last row has no line end"), std::string::npos) << e.what();
   }
 }
 

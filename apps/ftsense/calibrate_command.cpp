@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <iostream>
@@ -14,7 +15,7 @@ int calibrate_command(const std::vector<std::string>& args) {
       {"config", true, true, "pipeline config (JSON) with threshold_detector stage(s)"},
       {"input", true, true, "a fault-free log (CSV); several, comma-separated, to cover several gaits"},
       {"output", true, true, "where to write the thresholds (JSON), for 'ftsense run --thresholds'"},
-      {"margin", true, false, "threshold = margin x the largest |signal| seen (default 1.25)"},
+      {"margin", true, false, "threshold = margin x the largest |signal| seen (default 1.25; 1 to 1000)"},
       {"band", false, false,
        "centre each channel's band: centre = (min + max) / 2 and threshold = margin x (max - min) / 2 "
        "of the signal seen, instead of margin x max |signal|"}};
@@ -34,8 +35,9 @@ int calibrate_command(const std::vector<std::string>& args) {
   if (const auto m = options.find("margin"); m != options.end()) {
     char* end = nullptr;
     margin = std::strtod(m->second.c_str(), &end);
-    if (end == m->second.c_str() || *end != '\0' || !(margin >= 1.0) || !std::isfinite(margin)) {
-      throw UsageError{"ftsense calibrate: --margin = '" + m->second + "' violates >= 1 (a finite number)"};
+    // Above 1000 the detector would be deaf to anything but a burst.
+    if (end == m->second.c_str() || *end != '\0' || !(margin >= 1.0 && margin <= 1000.0)) {
+      throw UsageError{"ftsense calibrate: --margin = '" + m->second + "' violates >= 1 and <= 1000"};
     }
   }
   const std::string& config_path = options.at("config");
@@ -48,12 +50,16 @@ int calibrate_command(const std::vector<std::string>& args) {
     std::vector<double> max_abs;
     std::vector<double> min_seen;
     std::vector<double> max_seen;
+    std::vector<std::vector<double>> magnitudes;  // every |s| after warm-up, per channel
+    std::vector<double> max_time_s;               // when max_abs was seen
   };
   std::vector<Detector> detectors;
   for (std::size_t i = 0; i < pipeline.stage_count(); ++i) {
     if (pipeline.stage(i).plugin_name() != "threshold_detector") continue;
     const Json params = pipeline.stage(i).params_json();
-    Detector d{std::string(pipeline.stage_name(i)), pipeline.stage_input(i, 0), params.value("warmup_s", 0.0), {}, {}, {}};
+    Detector d{std::string(pipeline.stage_name(i)), pipeline.stage_input(i, 0), params.value("warmup_s", 0.0), {}, {}, {}, {}, {}};
+    d.magnitudes.resize(d.signal.dim);
+    d.max_time_s.assign(d.signal.dim, std::nan(""));
     d.max_abs.assign(d.signal.dim, 0.0);
     d.min_seen.assign(d.signal.dim, std::numeric_limits<double>::infinity());
     d.max_seen.assign(d.signal.dim, -std::numeric_limits<double>::infinity());
@@ -99,6 +105,8 @@ int calibrate_command(const std::vector<std::string>& args) {
           const auto s = pipeline.values(d.signal);
           for (std::size_t j = 0; j < s.size(); ++j) {
             if (!std::isfinite(s[j])) continue;
+            d.magnitudes[j].push_back(std::abs(s[j]));
+            if (std::abs(s[j]) > d.max_abs[j]) d.max_time_s[j] = t;
             d.max_abs[j] = std::max(d.max_abs[j], std::abs(s[j]));
             d.min_seen[j] = std::min(d.min_seen[j], s[j]);
             d.max_seen[j] = std::max(d.max_seen[j], s[j]);
@@ -111,6 +119,47 @@ int calibrate_command(const std::vector<std::string>& args) {
     }
     ticks += summary.ticks;
     std::cerr << clock_warnings(input, summary, pipeline.sample_period_s(), clock);
+  }
+
+  // Refuse what cannot honestly be calibrated: a threshold from no data, from a burst, or that
+  // overflows would pass as a number and silently blind (or deafen) the detector.
+  constexpr double kBurstRatio = 1000.0;  // max |s| / median |s| of a fault-free residual is tens
+  std::vector<std::string> refusals;
+  for (auto& d : detectors) {
+    for (std::size_t j = 0; j < d.magnitudes.size(); ++j) {
+      const std::string what = "ftsense calibrate: " + d.name + " channel " + std::to_string(j) + ": ";
+      auto& m = d.magnitudes[j];
+      if (m.empty()) {
+        refusals.push_back(what + "no finite sample after the " + format_number(d.warmup_s) +
+                           " s warm-up (a log shorter than the warm-up, or a virtual sensor never ready: is an "
+                           "input such as the IMU all NaN?); calibrate on a log where it is");
+        continue;
+      }
+      if (d.max_seen[j] == d.min_seen[j]) {
+        refusals.push_back(what + "the signal was " + format_number(d.max_seen[j]) +
+                           " throughout, so the threshold would be 0 and flag any change (an input never "
+                           "finite, such as an all-NaN sensor, held by a filter?); calibrate on a log where it varies");
+        continue;
+      }
+      const auto middle = m.begin() + static_cast<std::ptrdiff_t>(m.size() / 2);
+      std::nth_element(m.begin(), middle, m.end());
+      const double median = *middle;
+      if (median > 0.0 && d.max_abs[j] > kBurstRatio * median) {
+        refusals.push_back(what + "max |signal| " + format_number(d.max_abs[j]) + " at t = " +
+                           format_number(d.max_time_s[j]) + " s is more than " + format_number(kBurstRatio) +
+                           " x its median " + format_number(median) +
+                           ": the log holds a burst or a fault there; calibrate on a fault-free log");
+      }
+      if (!std::isfinite(margin * d.max_abs[j])) {
+        refusals.push_back(what + "margin x max |signal| = " + format_number(margin) + " x " +
+                           format_number(d.max_abs[j]) + " is not a finite number; give a smaller --margin");
+      }
+    }
+  }
+  if (!refusals.empty()) {
+    for (const auto& r : refusals) std::cerr << "error: " << r << '\n';
+    std::cerr << "ftsense calibrate: nothing written\n";
+    return kExitRuntime;
   }
 
   const bool band = options.count("band") > 0;

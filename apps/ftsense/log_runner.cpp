@@ -178,6 +178,11 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
   pipeline.reset();
   std::deque<std::vector<double>> ahead = read_ahead_and_check_rate(log, period, clock.rate_check_rows);
   std::size_t line = 1;  // of the row being stepped (the header is line 1)
+  // The rate is checked again on every block of steps: a log whose rate changes after its first
+  // rows would otherwise run with every time constant off by the ratio.
+  std::vector<double> block_steps;
+  block_steps.reserve(clock.rate_block_steps);
+  std::size_t block_first_line = 0;
   RowPrefetcher rest(log);  // the rows after the read-ahead, parsed on a second thread
   while (true) {
     if (!ahead.empty()) {
@@ -196,9 +201,25 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
           summary.first_gap_line = line;
           summary.first_gap_s = dt;
         }
-      } else if (std::abs(dt - period) > 0.1 * period && summary.irregular_steps++ == 0) {
-        summary.first_irregular_line = line;
-        summary.first_irregular_dt = dt;
+      } else {
+        if (std::abs(dt - period) > 0.1 * period && summary.irregular_steps++ == 0) {
+          summary.first_irregular_line = line;
+          summary.first_irregular_dt = dt;
+        }
+        if (block_steps.empty()) block_first_line = line;
+        block_steps.push_back(dt);
+        if (block_steps.size() == clock.rate_block_steps) {
+          const auto middle = block_steps.begin() + static_cast<std::ptrdiff_t>(block_steps.size() / 2);
+          std::nth_element(block_steps.begin(), middle, block_steps.end());
+          if (std::abs(*middle - period) > 0.1 * period) {
+            std::ostringstream message;
+            message << log.path() << ":" << block_first_line << ": from this line the log is sampled every " << *middle
+                    << " s (median of " << block_steps.size() << " steps), not the config's sample_period_s = "
+                    << period << " s: its rate changed mid-log; resample it, or cut it where the rate changes";
+            throw io::LogError(io::LogError::Kind::bad_row, message.str());
+          }
+          block_steps.clear();
+        }
       }
     }
     last_time = t;

@@ -42,9 +42,12 @@ struct RunSummary {
 //   runs again, rather than one predict step pretending to bridge the gap; counted and reported;
 // - smaller irregularities (jitter, a dropped sample or two) are counted and reported only.
 // Rows not after the previous one are rejected by the reader (io::LogError).
+// - after that, the median step of every block of `rate_block_steps` steps (gaps left out) must
+//   be within 10 % of T too, else LogError at the block's first line: the rate changed mid-log.
 struct ClockPolicy {
   double gap_reset_periods = 10.0;
   std::size_t rate_check_rows = 50;
+  std::size_t rate_block_steps = 100;
 };
 
 // Steps the pipeline once per log row, writes the monitored channels to `out` (if given) and

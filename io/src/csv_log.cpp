@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <set>
 #include <utility>
@@ -33,10 +34,13 @@ bool parse_cell(std::string_view cell, double& out) {
   const char* end = cell.data() + cell.size();
   const auto [ptr, ec] = std::from_chars(cell.data(), end, out);
   if (ec == std::errc::result_out_of_range) {
-    // Beyond double's range: keep the sign, as an infinity the sanity checks then catch.
-    out = (cell.front() == '-') ? -std::numeric_limits<double>::infinity()
-                                : std::numeric_limits<double>::infinity();
-    return ptr == end;
+    // from_chars says the same for 1e400 and 1e-400; strtod tells them apart (rare path): a
+    // magnitude beyond double's range becomes a signed infinity the sanity checks then catch, one
+    // below its smallest denormal the nearest double, a signed zero.
+    if (ptr != end) return false;
+    const std::string text(cell);
+    out = std::strtod(text.c_str(), nullptr);
+    return true;
   }
   return ec == std::errc() && ptr == end;
 }
@@ -115,6 +119,12 @@ bool CsvLogReader::next(std::vector<double>& values) {
   while (true) {
     if (!std::getline(in(), line_buffer_)) return false;
     ++line_;
+    if (in().eof() && !trim(line_buffer_).empty()) {
+      // The last line has no line end: a logger stopped mid-row may have cut its last number
+      // ("12.5" written as "1"), which would read as a wrong value rather than a missing one.
+      fail("the last row has no line end, so it may be cut mid-row; if it is complete, end the file with a "
+           "newline, else delete the row");
+    }
     if (!trim(line_buffer_).empty()) break;  // blank lines (e.g. a trailing newline) are skipped
   }
   values.resize(columns_.size());

@@ -1,6 +1,7 @@
 #include "ftsense/report/run_output.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "ftsense/diagnostics.hpp"
 #include "ftsense/io/csv_log.hpp"
@@ -60,6 +61,16 @@ ScoredRun load_scored_run(const std::string& run_path, const std::string& truth_
     if (r.truth.rows() != r.run.rows()) {
       throw ConfigError(truth_path, "has " + std::to_string(r.truth.rows()) + " rows but " + run_path + " has " +
                                         std::to_string(r.run.rows()) + "; give the log the run was made from");
+    }
+    // Same length is not enough: a run copies its log's time stamps, so they must agree row by row.
+    const auto& run_time = r.run.at("time_s");
+    const auto& truth_time = r.truth.at("time_s");
+    for (std::size_t k = 0; k < run_time.size(); ++k) {
+      if (std::abs(run_time[k] - truth_time[k]) > 1e-9 * std::max(1.0, std::abs(truth_time[k]))) {
+        throw ConfigError(truth_path, "row " + std::to_string(k + 2) + " has time_s = " + format_number(truth_time[k]) +
+                                          " but " + run_path + " has " + format_number(run_time[k]) +
+                                          "; give the log the run was made from");
+      }
     }
   }
   r.time = &r.run.at("time_s");
