@@ -56,6 +56,11 @@ int report_command(const std::vector<std::string>& args) {
   }
   report_options.figures = !options.count("no-figures");
   const std::string truth = options.count("truth") ? options.at("truth") : std::string();
+  std::error_code ec;
+  if (std::filesystem::exists(options.at("out"), ec) && !std::filesystem::is_directory(options.at("out"), ec)) {
+    throw UsageError{"error: " + options.at("out") + ": --out is a folder for metrics.json, report.md and the "
+                     "figures, and this is a file; give a folder name"};
+  }
   try {
     const Report r = make_report(options.at("run"), truth, options.at("out"), report_options);
     std::cout << r.table << "wrote " << options.at("out") << "/report.md\n";

@@ -12,8 +12,9 @@ namespace ftsense::cli {
 int run_command(const std::vector<std::string>& args) {
   const std::vector<OptionSpec> specs{
       {"config", true, true, "pipeline config (JSON); see docs/config_reference.md"},
-      {"input", true, true, "input log (CSV, first column time_s)"},
-      {"output", true, false, "where to write the monitored channels (CSV); without it only the summary is printed"},
+      {"input", true, true, "input log (CSV, first column time_s); - for standard input"},
+      {"output", true, false, "where to write the monitored channels (CSV; - for standard output, the summary then on "
+                              "standard error); without it only the summary is printed"},
       {"thresholds", true, false, "thresholds from 'ftsense calibrate' (JSON), applied to the config"},
       {"record", true, false, "further signals to write, comma-separated \"<stage>.<port>\" or \"input.<name>\""},
       {"gap-reset", true, false, "a time step longer than this many sample periods resets the pipeline (default 10)"}};
@@ -55,7 +56,8 @@ int run_command(const std::vector<std::string>& args) {
   // 2. The log: open, map columns (all missing ones reported together).
   std::optional<io::CsvLogReader> log;
   try {
-    log.emplace(input_path);
+    if (input_path == "-") log.emplace(std::cin, "standard input");
+    else log.emplace(input_path);
   } catch (const io::LogError& e) {
     throw UsageError{std::string("error: ") + e.what()};
   }
@@ -123,11 +125,13 @@ int run_command(const std::vector<std::string>& args) {
   }
   if (out) out->commit();  // only now does output_path change
   std::cerr << clock_warnings(input_path, summary, pipeline.sample_period_s(), clock);
-  std::cout << "ftsense run: " << summary.ticks << " ticks, " << pipeline.monitor().channels.size()
+  // With the rows on standard output, the summary goes to standard error.
+  std::ostream& summary_out = output_path == "-" ? std::cerr : std::cout;
+  summary_out << "ftsense run: " << summary.ticks << " ticks, " << pipeline.monitor().channels.size()
             << " channels -> " << (write_output ? output_path : std::string("(no --output: nothing written)")) << '\n';
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {
     if (!std::isnan(summary.first_fault_time_s[c])) {
-      std::cout << "  " << pipeline.monitor().channels[c] << ": fault first flagged at t = "
+      summary_out << "  " << pipeline.monitor().channels[c] << ": fault first flagged at t = "
                 << summary.first_fault_time_s[c] << " s\n";
     }
   }

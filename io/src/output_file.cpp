@@ -65,9 +65,18 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) n
 
 void check_output_path(const std::filesystem::path& output, const std::vector<std::string>& inputs,
                        const std::string& what) {
+  if (output == "-") return;  // standard output
   std::error_code ec;
-  if (std::filesystem::is_directory(output, ec)) {
+  const auto status = std::filesystem::status(output, ec);
+  if (std::filesystem::is_directory(status)) {
     throw OutputError(output.string() + ": " + what + " is a directory; give a file name inside it");
+  }
+  const std::string text = output.lexically_normal().string();
+  const bool device_path = text.rfind("/dev/", 0) == 0 || text.rfind("/proc/", 0) == 0;
+  if (device_path || (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))) {
+    throw OutputError(output.string() + ": " + what +
+                      " is not a regular file (a device, pipe or terminal); give a file name, or '-' for standard "
+                      "output (the program's messages then go to standard error)");
   }
   for (const std::string& input : inputs) {
     if (!input.empty() && input != "-" && same_file(output, input)) {
@@ -80,6 +89,10 @@ void check_output_path(const std::filesystem::path& output, const std::vector<st
 OutputFile::OutputFile(std::filesystem::path target, const std::vector<std::string>& inputs, const std::string& what)
     : target_(std::move(target)) {
   check_output_path(target_, inputs, what);
+  if (target_ == "-") {
+    to_stdout_ = true;
+    return;
+  }
   // Through a symbolic link, the file it names is replaced, not the link.
   std::error_code ec;
   if (std::filesystem::is_symlink(target_, ec)) target_ = std::filesystem::weakly_canonical(target_, ec);
@@ -97,6 +110,7 @@ OutputFile::OutputFile(std::filesystem::path target, const std::vector<std::stri
 }
 
 OutputFile::~OutputFile() {
+  if (to_stdout_) return;
   if (!committed_) {
     file_.close();
     std::error_code ec;
@@ -106,6 +120,12 @@ OutputFile::~OutputFile() {
 }
 
 void OutputFile::commit() {
+  if (to_stdout_) {
+    std::cout.flush();
+    if (!std::cout) throw OutputError("standard output: writing failed (closed pipe or full disk)");
+    committed_ = true;
+    return;
+  }
   file_.flush();
   const bool written = static_cast<bool>(file_);
   file_.close();

@@ -91,6 +91,24 @@ printf '{"channels": {"c1": "cell/c1/force_N"}, "faults": [{"channel": "c1", "ty
 row inject_fault_after_the_end 2 "/faults/0/start_s = 50 is after the log's last row \(t = 1.999 s\)" "$work/new.csv" \
     "$ftsense" inject --input "$work/log.csv" --faults "$work/faults_late.json" --output "$work/new.csv"
 
+# Messages that name the right cause (finding 11), and standard input and output as '-'.
+row output_is_dev_stdout 2 "/dev/stdout: output is not a regular file .* or '-' for standard output" "$work/log.csv" \
+    "$ftsense" run --config "$cfg" --input "$work/log.csv" --output /dev/stdout
+"$ftsense" run --config "$cfg" --input "$work/log.csv" --output "$work/previous.csv" > /dev/null
+row report_out_is_a_file 2 "previous.csv: --out is a folder .* and this is a file" "$work/previous.csv" \
+    "$ftsense" report --run "$work/previous.csv" --out "$work/previous.csv" --no-figures
+: > "$work/empty.csv"
+row run_empty_log 2 "empty.csv:1: the file is empty" "$work/empty.csv" \
+    "$ftsense" run --config "$cfg" --input "$work/empty.csv"
+"$ftsense" run --config "$cfg" --input - --output - < "$work/log.csv" > "$work/stdout.csv" 2> "$work/err"
+status=$?
+if [ $status -eq 0 ] && head -1 "$work/stdout.csv" | grep -q '^time_s,c1/measured_N' && [ "$(wc -l < "$work/stdout.csv")" -eq 2001 ] \
+   && grep -q "2000 ticks, 3 channels -> -" "$work/err" && cmp -s "$work/stdout.csv" "$work/previous.csv"; then
+  passes=$((passes + 1)); echo "ok   stdin_to_stdout_with_the_summary_on_stderr"
+else
+  failures=$((failures + 1)); echo "FAIL stdin_to_stdout_with_the_summary_on_stderr: status $status"; cat "$work/err"
+fi
+
 # Interrupted mid-run: the log arrives through a pipe that stays open, so the run is surely still
 # reading when the signal comes; afterwards nothing is under the final name and no temporary file
 # is left.

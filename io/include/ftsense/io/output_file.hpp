@@ -7,10 +7,13 @@
 // before the process ends) or throws never leaves a file under the final name that looks
 // complete, and never destroys the previous result of the same name before the new one is whole.
 // An output that is, or links to, one of the command's inputs is refused before anything is
-// written.
+// written, and so is one that exists but is not a regular file (a device, a pipe, a terminal:
+// /dev/stdout would mix the data with the program's messages). The target "-" is standard output
+// itself, written directly (a pipe cannot be whole or absent).
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -41,7 +44,8 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
   ~OutputFile();  // not committed: the temporary file is removed
 
-  [[nodiscard]] std::ostream& stream() noexcept { return file_; }
+  [[nodiscard]] std::ostream& stream() noexcept { return to_stdout_ ? static_cast<std::ostream&>(std::cout) : file_; }
+  [[nodiscard]] bool is_stdout() const noexcept { return to_stdout_; }
   [[nodiscard]] const std::filesystem::path& target() const noexcept { return target_; }
   // Flushes, checks that every write succeeded and renames onto the target. Throws OutputError
   // (the temporary file removed) when writing failed.
@@ -53,6 +57,7 @@ class OutputFile {
   std::ofstream file_;
   int slot_ = -1;  // in the list of files the signal handler removes
   bool committed_ = false;
+  bool to_stdout_ = false;
 };
 
 }  // namespace ftsense::io
