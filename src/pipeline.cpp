@@ -4,6 +4,7 @@
 // builds it).
 
 #include <algorithm>
+#include <limits>
 
 namespace ftsense {
 
@@ -80,6 +81,17 @@ void Pipeline::step_stage(std::size_t run_index, double time_s) noexcept {
 
 void Pipeline::step(double time_s) noexcept {
   double* const v = values_.data();
+  for (std::size_t i = 0; i < inputs_.size(); ++i) {
+    const PipelineInput& in = inputs_[i];
+    double* const first = v + in.values.offset;
+    for (double* x = first; x != first + in.values.dim; ++x) {
+      // NaN compares false both ways and stays as it is.
+      if (*x < in.plausible_min || *x > in.plausible_max) {
+        *x = std::numeric_limits<double>::quiet_NaN();
+        ++implausible_[i];
+      }
+    }
+  }
   for (auto& s : stages_) {
     for (const Copy& c : s.gathers) std::copy_n(v + c.from, c.count, v + c.to);
     s.io.time_s = time_s;

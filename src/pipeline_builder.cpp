@@ -48,6 +48,7 @@ class PipelineBuilder {
     if (doc_.monitor) build_monitor(*doc_.monitor);
     diag_.throw_if_errors();
     pipeline_.values_.assign(next_offset_, 0.0);
+    pipeline_.implausible_.assign(pipeline_.inputs_.size(), 0);
     pipeline_.warnings_ = diag_.warnings();
     pipeline_.bind_spans();
     pipeline_.reset();
@@ -66,6 +67,10 @@ class PipelineBuilder {
     for (const InputDecl& in : doc_.inputs) derivations.push_back({in.name, in.derived_from});
     for (const InputDecl& in : doc_.inputs) {
       PipelineInput input{in.name, in.columns, in.unit, in.derived_from, allocate(in.columns.size())};
+      if (in.plausible_range) {
+        input.plausible_min = (*in.plausible_range)[0];
+        input.plausible_max = (*in.plausible_range)[1];
+      }
       signals_["input." + in.name] = SignalInfo{input.values, in.unit, {input_dependencies(in.name, derivations), {}}};
       pipeline_.inputs_.push_back(std::move(input));
     }

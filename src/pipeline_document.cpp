@@ -16,6 +16,7 @@ std::string_view to_string(DocumentValue value) noexcept {
     case DocumentValue::array: return "array";
     case DocumentValue::text_list: return "array of strings";
     case DocumentValue::wire: return "wire";
+    case DocumentValue::range: return "[min, max]";
   }
   return "?";
 }
@@ -29,6 +30,8 @@ bool has_type(const Json& value, DocumentValue type) noexcept {
     case DocumentValue::array: return value.is_array();
     case DocumentValue::text_list:
       return value.is_array() && std::all_of(value.begin(), value.end(), [](const Json& v) { return v.is_string(); });
+    case DocumentValue::range:
+      return value.is_array() && value.size() == 2 && value[0].is_number() && value[1].is_number();
     case DocumentValue::wire:
       return value.is_string() ||
              (value.is_array() && !value.empty() &&
@@ -73,6 +76,10 @@ std::vector<DocumentSection> make_sections() {
         {"derived_from", V::text_list, false, "", "input names",
          "inputs this one is computed from (for the independence rule, e.g. a logged ZMP computed from "
          "the force sensors)"},
+        {"plausible_range", V::range, false, "", "min < max, in `unit`",
+         "what the quantity can physically be (a foot force between -0.5 m g and 3 m g, say): a value outside "
+         "is read as missing (NaN), so a burst, a stuck-at-full-scale IMU or an absurd position makes the "
+         "stages that use it not ready instead of feeding them"},
         description}});
   sections.push_back(
       {"stages/<i>", "a stage", "",
@@ -247,6 +254,16 @@ class DocumentReader {
       }
       if (const Json* from = field(spec, path, section, "derived_from")) {
         for (const Json& f : *from) input.derived_from.push_back(f.get<std::string>());
+      }
+      if (const Json* range = field(spec, path, section, "plausible_range")) {
+        const double lo = (*range)[0].get<double>();
+        const double hi = (*range)[1].get<double>();
+        if (!(lo < hi)) {
+          diag_.error(path + "/plausible_range", " = " + range->dump() + " violates min < max");
+          ok = false;
+        } else {
+          input.plausible_range = std::array<double, 2>{lo, hi};
+        }
       }
       (void)field(spec, path, section, "description");
       if (ok) doc_.inputs.push_back(std::move(input));

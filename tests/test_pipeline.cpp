@@ -184,3 +184,39 @@ TEST(Pipeline, MonitorGathersConcatenatedSignals) {
 
 }  // namespace
 }  // namespace ftsense
+
+namespace ftsense {
+namespace {
+
+TEST(Pipeline, ValuesOutsideAnInputsPlausibleRangeAreReadAsMissing) {
+  Json config = test::base_config();
+  config["inputs"]["measured"]["plausible_range"] = Json::array({-50.0, 5000.0});
+  Pipeline p = Pipeline::build(config, reference_plugins::registry());
+  const SignalRef measured = p.signal("input.measured");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::array<double, 3> row{1e12, -50.0, nan};
+  std::copy(row.begin(), row.end(), p.input_values(0).begin());
+  p.step(0.0);
+  const auto v = p.values(measured);
+  EXPECT_TRUE(std::isnan(v[0]));  // a burst beyond the range
+  EXPECT_EQ(v[1], -50.0);         // the bound itself is plausible
+  EXPECT_TRUE(std::isnan(v[2]));  // already missing: not counted
+  EXPECT_EQ(p.implausible_counts(), (std::vector<std::size_t>{1, 0}));
+  p.reset();
+  EXPECT_EQ(p.implausible_counts()[0], 1u);
+}
+
+TEST(Pipeline, APlausibleRangeMustBeOrdered) {
+  Json config = test::base_config();
+  config["inputs"]["measured"]["plausible_range"] = Json::array({10.0, -10.0});
+  try {
+    (void)Pipeline::build(config, reference_plugins::registry());
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.problems().at(0).path, "/inputs/measured/plausible_range");
+    EXPECT_EQ(e.problems().at(0).message, " = [10.0,-10.0] violates min < max");
+  }
+}
+
+}  // namespace
+}  // namespace ftsense

@@ -129,6 +129,14 @@ int run_command(const std::vector<std::string>& args) {
   std::ostream& summary_out = output_path == "-" ? std::cerr : std::cout;
   summary_out << "ftsense run: " << summary.ticks << " ticks, " << pipeline.monitor().channels.size()
             << " channels -> " << (write_output ? output_path : std::string("(no --output: nothing written)")) << '\n';
+  for (std::size_t i = 0; i < pipeline.inputs().size(); ++i) {
+    if (const std::size_t n = pipeline.implausible_counts()[i]; n > 0) {
+      const PipelineInput& in = pipeline.inputs()[i];
+      summary_out << "  input " << in.name << ": " << n << " value" << (n == 1 ? "" : "s") << " outside its plausible_range ["
+                  << format_number(in.plausible_min) << ", " << format_number(in.plausible_max) << "] " << in.unit
+                  << " read as missing\n";
+    }
+  }
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {
     if (!std::isnan(summary.first_fault_time_s[c])) {
       summary_out << "  " << pipeline.monitor().channels[c] << ": fault first flagged at t = "

@@ -22,12 +22,14 @@
 // "allow_dependent_virtual_sensor" is true, which turns the error into a warning).
 //
 // Per tick: write each input's values into input_values(i), call step(t), read values(ref).
+// step() first replaces input values outside their input's plausible_range by NaN.
 // step() runs the stages in dependency order over one preallocated buffer: no allocation, no
 // exception, no string lookup.
 
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -55,6 +57,9 @@ struct PipelineInput {
   std::string unit;
   std::vector<std::string> derived_from;  // other inputs this one is computed from
   SignalRef values;
+  // Values outside [min, max] are replaced by NaN before the stages run (no range: +-inf).
+  double plausible_min = -std::numeric_limits<double>::infinity();
+  double plausible_max = std::numeric_limits<double>::infinity();
 };
 
 // What the `run` program writes per monitored channel: one signal per row of kMonitorColumns
@@ -96,6 +101,9 @@ class Pipeline {
   [[nodiscard]] bool has_monitor() const noexcept { return has_monitor_; }
   [[nodiscard]] const Monitor& monitor() const noexcept { return monitor_; }
   [[nodiscard]] const std::vector<Diagnostic>& warnings() const noexcept { return warnings_; }
+  // Input values replaced by NaN for lying outside their input's plausible_range, per input,
+  // since the pipeline was built (reset() keeps the count).
+  [[nodiscard]] const std::vector<std::size_t>& implausible_counts() const noexcept { return implausible_; }
 
   // Looks up "input.<name>" or "<stage>.<port>" (set-up time only; throws ConfigError).
   [[nodiscard]] SignalRef signal(std::string_view reference) const;
@@ -155,6 +163,7 @@ class Pipeline {
   Monitor monitor_;
   std::vector<Diagnostic> warnings_;
   std::vector<double> values_;
+  std::vector<std::size_t> implausible_;  // per input
 };
 
 }  // namespace ftsense

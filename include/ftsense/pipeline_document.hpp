@@ -34,7 +34,7 @@
 namespace ftsense {
 
 // The JSON type a key takes.
-enum class DocumentValue { number, boolean, text, object, array, text_list, wire };
+enum class DocumentValue { number, boolean, text, object, array, text_list, wire, range };
 // As users read it: "number", "array of strings", "wire", ...
 [[nodiscard]] std::string_view to_string(DocumentValue value) noexcept;
 // Whether `value` has the JSON type (a wire: a string or a non-empty array of strings).
@@ -86,6 +86,7 @@ struct InputDecl {
   std::vector<std::string> columns;       // log column names, one per value
   std::string unit;
   std::vector<std::string> derived_from;  // other inputs this one is computed from
+  std::optional<std::array<double, 2>> plausible_range;  // [min, max]; values outside read as missing
 };
 
 struct StageDecl {

@@ -36,6 +36,10 @@ foot_pos_nan          l_foot/pos_x_m       6.0   6.2   nan    quiet
 planned_zmp_nan       plan/zmp_x_m         6.0   6.2   nan    quiet
 zero_vertical_force   imu/acc_z_m_s2       6.0   6.2   0      finite
 cop_far_outside       plan/zmp_y_m         6.0   7.0   2.0    finite
+force_burst_1e12      r_foot/p2/force_N    6.0   6.2   1e12   invalid:r_foot/p2
+imu_stuck_at_16g      imu/acc_z_m_s2       6.0   6.5   156.9  not_ready
+foot_pos_1e6_m        l_foot/pos_x_m       6.0   6.2   1e6    quiet
+contact_plan_minus_1  plan/contact_l       6.0   6.2   -1     not_ready
 robot_lifted          l_foot/p1/force_N+l_foot/p2/force_N+l_foot/p3/force_N+l_foot/p4/force_N+r_foot/p1/force_N+r_foot/p2/force_N+r_foot/p3/force_N+r_foot/p4/force_N 6.0 6.2 0 finite"
 
 passes=0
