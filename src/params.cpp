@@ -54,6 +54,21 @@ std::string ParamInfo::what() const {
   return "(" + description + (unit.empty() ? "" : ", " + unit) + ")";
 }
 
+std::string PlausibleRange::text(std::string_view unit) const {
+  std::string out = format_number(low);
+  out.append(" .. ").append(format_number(high));
+  if (!unit.empty()) out.append(" ").append(unit);
+  if (!reason.empty()) out.append(" (").append(reason).append(")");
+  return out;
+}
+
+void check_plausible(const PlausibleRange& range, std::string_view unit, double value, const Json& raw,
+                     const std::string& path, Diagnostics& diag) {
+  if (value >= range.low && value <= range.high) return;
+  diag.warning(path, " = " + detail::abbreviated_dump(raw) + " is outside the plausible range " + range.text(unit) +
+                         "; check the unit or the value");
+}
+
 namespace detail {
 
 std::string abbreviated_dump(const Json& value) {
@@ -97,6 +112,7 @@ bool read_number(const ParamInfo& info, const Json& raw, const std::string& path
   const std::size_t before = diag.errors().size();
   check_number(info, v, raw, path, diag);
   if (diag.errors().size() != before) return false;
+  if (info.plausible) check_plausible(*info.plausible, info.unit, v, raw, path, diag);
   out = v;
   return true;
 }
@@ -117,6 +133,7 @@ bool read_integer(const ParamInfo& info, const Json& raw, const std::string& pat
   const std::size_t before = diag.errors().size();
   check_number(info, static_cast<double>(v), raw, path, diag);
   if (diag.errors().size() != before) return false;
+  if (info.plausible) check_plausible(*info.plausible, info.unit, static_cast<double>(v), raw, path, diag);
   out = v;
   return true;
 }

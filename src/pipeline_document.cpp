@@ -61,7 +61,8 @@ std::vector<DocumentSection> make_sections() {
   std::vector<DocumentSection> sections;
   sections.push_back(
       {"", "the pipeline config", "",
-       {{"sample_period_s", V::number, true, "", "> 0", "tick period T of the pipeline, s"},
+       {{"sample_period_s", V::number, true, "", "> 0", "tick period T of the pipeline, s",
+         PlausibleRange{1e-5, 1.0, "control loops tick at 1 Hz to 100 kHz"}},
         {"inputs", V::object, true, "", "non-empty", "the signals the pipeline reads each tick, by name"},
         {"stages", V::array, true, "", "", "the processing stages, run in dependency order"},
         {"monitor", V::object, false, "", "", "the monitored channels written by `ftsense run`"},
@@ -156,6 +157,8 @@ class DocumentReader {
         diag_.error("/sample_period_s", " = " + t->dump() + " violates > 0 (tick period T, s)");
       } else {
         doc_.sample_period_s = t->get<double>();
+        const DocumentKey& k = section.at("sample_period_s");
+        if (k.plausible) check_plausible(*k.plausible, "s", *doc_.sample_period_s, *t, "/sample_period_s", diag_);
       }
     }
     if (const Json* a = field(cfg_, "", section, "allow_dependent_virtual_sensor")) {

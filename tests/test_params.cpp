@@ -133,6 +133,82 @@ TEST(Params, IntegerOutOfRangeIsAnError) {
   EXPECT_NE(d.errors()[0].message.find("32-bit integer"), std::string::npos);
 }
 
+// A plausible range: inside the bounds, outside the range is a warning, not an error.
+struct Robot {
+  double mass_kg = 50.0;
+  int ticks = 20;
+  std::vector<double> heights_m{0.5};
+  std::vector<std::array<double, 2>> points{{0.1, 0.05}};
+
+  static void describe(ParamSchema<Robot>& s) {
+    s.add("mass_kg", &Robot::mass_kg, "robot mass").unit("kg").greater_than(0.0).plausible(1.0, 1000.0, "robot mass");
+    s.add("ticks", &Robot::ticks, "ticks").at_least(1).plausible(2, 100, "a few ticks");
+    s.add("heights_m", &Robot::heights_m, "heights").unit("m").greater_than(0.0).plausible(0.01, 3.0, "heights");
+    s.add("points", &Robot::points, "foot points").unit("m").plausible(-1.0, 1.0, "feet");
+  }
+};
+
+TEST(Params, ImplausibleValueIsAWarningWithItsPath) {
+  Diagnostics d;
+  const auto p = load_params<Robot>(Json{{"mass_kg", 0.001}}, "/stages/3/params", "test", d);
+  EXPECT_FALSE(d.has_errors());
+  ASSERT_EQ(d.warnings().size(), 1u);
+  EXPECT_EQ(d.warnings()[0].path, "/stages/3/params/mass_kg");
+  EXPECT_EQ(d.warnings()[0].text(),
+            "/stages/3/params/mass_kg = 0.001 is outside the plausible range 1 .. 1000 kg (robot mass); "
+            "check the unit or the value");
+  EXPECT_EQ(p.mass_kg, 0.001);  // a warning keeps the value: the user may mean it
+}
+
+TEST(Params, PlausibleRangeIsInclusiveAndQuietInside) {
+  for (const double mass : {1.0, 114.0, 1000.0}) {
+    Diagnostics d;
+    Json params = Json::parse(R"({"ticks": 2, "heights_m": [0.01, 3.0], "points": [[-1.0, 1.0]]})");
+    params["mass_kg"] = mass;
+    (void)load_params<Robot>(params, "/p", "test", d);
+    EXPECT_FALSE(d.has_errors()) << mass;
+    EXPECT_TRUE(d.warnings().empty()) << mass << ": " << d.warnings()[0].text();
+  }
+  Diagnostics defaults;
+  (void)load_params<Robot>(Json::object(), "/p", "test", defaults);
+  EXPECT_TRUE(defaults.warnings().empty());
+}
+
+TEST(Params, ImplausibleIntegersListEntriesAndPointCoordinatesWarnEach) {
+  Diagnostics d;
+  (void)load_params<Robot>(Json::parse(R"({"mass_kg": 1e300, "ticks": 1000000, "heights_m": [0.5, 1e-300, 7],
+                                           "points": [[0.1, 0.05], [120, -0.05]]})"),
+                           "/p", "test", d);
+  EXPECT_FALSE(d.has_errors());
+  std::vector<std::string> lines;
+  for (const auto& w : d.warnings()) lines.push_back(w.text());
+  const std::vector<std::string> expected{
+      "/p/mass_kg = 1e+300 is outside the plausible range 1 .. 1000 kg (robot mass); check the unit or the value",
+      "/p/ticks = 1000000 is outside the plausible range 2 .. 100 (a few ticks); check the unit or the value",
+      "/p/heights_m/1 = 1e-300 is outside the plausible range 0.01 .. 3 m (heights); check the unit or the value",
+      "/p/heights_m/2 = 7 is outside the plausible range 0.01 .. 3 m (heights); check the unit or the value",
+      "/p/points/1/0 = 120 is outside the plausible range -1 .. 1 m (feet); check the unit or the value",
+  };
+  EXPECT_EQ(lines, expected);
+}
+
+TEST(Params, HardBoundsStayErrorsWithoutAPlausibilityWarning) {
+  Diagnostics d;
+  (void)load_params<Robot>(Json::parse(R"({"mass_kg": -5, "ticks": 0})"), "/p", "test", d);
+  ASSERT_EQ(d.errors().size(), 2u);
+  EXPECT_EQ(d.errors()[0].text(), "/p/mass_kg = -5 violates > 0 (robot mass, kg)");
+  EXPECT_EQ(d.errors()[1].text(), "/p/ticks = 0 violates >= 1 (ticks)");
+  EXPECT_TRUE(d.warnings().empty());
+}
+
+TEST(Params, PlausibleRangeInWords) {
+  const auto infos = param_infos<Robot>();
+  ASSERT_TRUE(infos[0].plausible.has_value());
+  EXPECT_EQ(infos[0].plausible->text(infos[0].unit), "1 .. 1000 kg (robot mass)");
+  EXPECT_EQ(infos[0].rule(), "> 0");  // the rule stays the hard bound
+  EXPECT_FALSE(param_infos<AllKinds>()[0].plausible.has_value());
+}
+
 TEST(JsonPointer, TokensAreEscaped) {
   EXPECT_EQ(json_pointer_append("/inputs", "r_foot/p1~x"), "/inputs/r_foot~1p1~0x");
   EXPECT_EQ(json_pointer_append("/stages", 3), "/stages/3");

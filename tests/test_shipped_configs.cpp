@@ -1,13 +1,17 @@
 // The shipped SURALP configs: they build, and the paper's literal measured-ZMP choice is caught
-// by the independence rule unless explicitly allowed.
+// by the independence rule unless explicitly allowed. Every shipped config is plausible: no
+// parameter outside its plausible range (params.hpp), so no warning but that one.
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
 #include "ftsense/pipeline.hpp"
+#include "ftsense/pipeline_document.hpp"
 #include "ftsense/reference_plugins.hpp"
 #include "ftsense/testing/allocation_counter.hpp"
 
@@ -27,6 +31,50 @@ TEST(ShippedConfigs, SuralpBuildsWithoutWarnings) {
   EXPECT_TRUE(p.warnings().empty());
   EXPECT_EQ(p.monitor().channels.size(), 8u);
   EXPECT_EQ(p.monitor().unit, "N");
+}
+
+// configs/*.json, the insole example's config and the CLI tests' config. A config whose
+// plugins ftsense does not ship (the insole example's own) has its document and the parameters
+// of every stage with a reference plugin checked; the others are built whole.
+TEST(ShippedConfigs, EveryShippedConfigIsPlausible) {
+  namespace fs = std::filesystem;
+  const fs::path root(FTSENSE_SOURCE_DIR);
+  std::vector<fs::path> paths{root / "examples/insole_fdi/config/insole_fdi.json", root / "tests/cli/good.json"};
+  for (const auto& entry : fs::directory_iterator(root / "configs")) {
+    if (entry.path().extension() == ".json") paths.push_back(entry.path());
+  }
+  std::sort(paths.begin(), paths.end());
+  ASSERT_GE(paths.size(), 6u);
+  const PluginRegistry registry = reference_plugins::registry();
+  for (const fs::path& path : paths) {
+    SCOPED_TRACE(path.string());
+    const Json config = load(fs::relative(path, root).string());
+    bool all_known = true;
+    for (const Json& stage : config.at("stages")) all_known = all_known && registry.find(stage.at("plugin").get<std::string>());
+    std::vector<Diagnostic> warnings;
+    if (all_known) {
+      warnings = Pipeline::build(config, registry, path.parent_path()).warnings();
+    } else {
+      Diagnostics diag;
+      (void)read_pipeline_document(config, diag);
+      std::size_t checked = 0;
+      for (std::size_t i = 0; i < config.at("stages").size(); ++i) {
+        const Json& stage = config.at("stages")[i];
+        const PluginInfo* plugin = registry.find(stage.at("plugin").get<std::string>());
+        if (plugin == nullptr) continue;
+        plugin->check_params(stage.value("params", Json::object()), "/stages/" + std::to_string(i) + "/params", diag);
+        ++checked;
+      }
+      EXPECT_GT(checked, 0u);
+      EXPECT_FALSE(diag.has_errors());
+      warnings = diag.warnings();
+    }
+    for (const Diagnostic& w : warnings) {
+      const bool allowed_dependence = path.filename() == "suralp_measured_zmp.json" &&
+                                      w.message.find("allow_dependent_virtual_sensor") != std::string::npos;
+      EXPECT_TRUE(allowed_dependence) << w.text();
+    }
+  }
 }
 
 TEST(ShippedConfigs, MeasuredZmpTripsTheIndependenceRuleUnlessAllowed) {

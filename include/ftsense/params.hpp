@@ -14,6 +14,15 @@
 // From that one description ftsense loads JSON strictly (unknown keys, missing required keys,
 // wrong types, out-of-bounds values and unknown choices are all errors, collected together with
 // their JSON Pointer path), saves JSON (round trip), and generates docs/config_reference.md.
+//
+// Bounds say what the code can compute with; a *plausible range* says what a real robot needs:
+//
+//       s.add("mass_kg", ...).unit("kg").greater_than(0).plausible(0.5, 1000, "robot mass: ...");
+//
+// A value outside the bounds is an error; inside them but outside the plausible range it is a
+// warning with its JSON Pointer (a unit slip such as grams for kilograms, a typo such as 1e-300),
+// which `ftsense check` and `ftsense run` print and which does not stop the pipeline.
+//
 // An optional member `void validate(Diagnostics&, std::string_view path) const` adds
 // cross-field rules; it runs only when every field loaded.
 
@@ -44,6 +53,16 @@ struct ParamBound {
   bool inclusive = true;
 };
 
+// Values a real robot plausibly needs, [low, high] in the parameter's unit, and why.
+struct PlausibleRange {
+  double low = 0.0;
+  double high = 0.0;
+  std::string reason;  // what the range spans, e.g. "robot mass: 1 kg toys to 300 kg machines"
+
+  // "0.5 .. 1000 kg (robot mass: ...)" (the unit is left out when empty).
+  [[nodiscard]] std::string text(std::string_view unit) const;
+};
+
 // What a parameter is, as users read it (type erased: the same for every Params struct).
 struct ParamInfo {
   std::string key;
@@ -57,6 +76,7 @@ struct ParamInfo {
   std::size_t max_count = std::numeric_limits<std::size_t>::max();
   std::vector<std::string> choices;  // choice only
   Json default_value;                // null when required
+  std::optional<PlausibleRange> plausible;  // numbers only (each entry of a list)
 
   // The value rule in words: "> 0", ">= 0 and <= 1", "one of: planned, measured", ...
   [[nodiscard]] std::string rule() const;
@@ -77,6 +97,11 @@ bool read_integer(const ParamInfo& info, const Json& raw, const std::string& pat
 bool check_count(const ParamInfo& info, const Json& raw, const std::string& path, Diagnostics& diag);
 std::string abbreviated_dump(const Json& value);
 }  // namespace detail
+
+// Warns "path = value is outside the plausible range ...; check the unit or the value" when a
+// (valid) value lies outside `range`. Used for plugin parameters and the pipeline document alike.
+void check_plausible(const PlausibleRange& range, std::string_view unit, double value, const Json& raw,
+                     const std::string& path, Diagnostics& diag);
 
 template <class P>
 class ParamSchema {
@@ -103,6 +128,22 @@ class ParamSchema {
     FieldBuilder& at_most(double v) { field_->info.upper = ParamBound{v, true}; return *this; }
     FieldBuilder& count_at_least(std::size_t n) { field_->info.min_count = n; return *this; }
     FieldBuilder& count_at_most(std::size_t n) { field_->info.max_count = n; return *this; }
+    // Call after the bounds: the plausible range must lie within them.
+    FieldBuilder& plausible(double low, double high, std::string reason) {
+      return plausible(PlausibleRange{low, high, std::move(reason)});
+    }
+    FieldBuilder& plausible(PlausibleRange range) {
+      const ParamInfo& info = field_->info;
+      const double low = range.low, high = range.high;
+      FTSENSE_DEMAND(info.kind == ParamKind::number || info.kind == ParamKind::integer ||
+                         info.kind == ParamKind::number_list || info.kind == ParamKind::point_list,
+                     "a plausible range is for numbers: " + info.key);
+      FTSENSE_DEMAND(low < high, "plausible range of " + info.key + " is empty");
+      FTSENSE_DEMAND(!info.lower || low >= info.lower->value, "plausible range of " + info.key + " below its bound");
+      FTSENSE_DEMAND(!info.upper || high <= info.upper->value, "plausible range of " + info.key + " above its bound");
+      field_->info.plausible = std::move(range);
+      return *this;
+    }
 
    private:
     Field* field_;

@@ -48,6 +48,7 @@ struct DocumentKey {
   std::string default_value;  // JSON text of the default of an optional key; empty: none
   std::string rule;           // beyond the type: "> 0", "non-empty", "unique identifier", ...
   std::string meaning;        // what it is; also the hint of "missing required key (...)"
+  std::optional<PlausibleRange> plausible = std::nullopt;  // numbers: outside it is a warning
 };
 
 struct DocumentSection {

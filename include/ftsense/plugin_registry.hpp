@@ -38,10 +38,8 @@ PluginInfo make_plugin_info() {
     Diagnostics local;
     const std::string params_path = std::string(stage_path) + "/params";
     auto params = load_params<typename P::Params>(raw, params_path, P::name, local);
-    if (local.has_errors()) {
-      diag.merge(local);
-      return nullptr;
-    }
+    diag.merge(local);  // warnings (implausible values) too, when the parameters load
+    if (local.has_errors()) return nullptr;
     try {
       return std::make_unique<StageOf<P>>(params, context);
     } catch (const ConfigError& e) {

@@ -4,15 +4,18 @@
 #include <stdexcept>
 
 #include "ftsense/biped/contact_force_qp_ceres.hpp"
+#include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::biped {
 
 void ContactForceDistribution::Params::describe(ParamSchema<Params>& schema) {
   schema.add("points", &Params::points, "contact points (x, y) of the foot, foot frame")
-      .unit("m").count_at_least(1).count_at_most(kMaxContactPoints).required();
+      .unit("m").count_at_least(1).count_at_most(kMaxContactPoints).required()
+      .plausible(plausible::foot_point_m());
   schema.add("weights", &Params::weights,
              "diagonal of W, one value for all points or one per point (paper: 0.01, see README)")
-      .unit("m^2").greater_than(0.0).count_at_least(1);
+      .unit("m^2").greater_than(0.0).count_at_least(1)
+      .plausible(1e-12, 0.1, "sqrt(w) is about the CoP error W allows: a micrometre to 0.3 m");
   schema.add_choice("solver", &Params::solver,
                     "active_set: exact and allocation-free; ceres: Ceres-solved subproblems (offline)",
                     {{"active_set", Solver::active_set}, {"ceres", Solver::ceres}});

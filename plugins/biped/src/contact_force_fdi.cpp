@@ -11,6 +11,7 @@
 
 #include "ftsense/biped/frames.hpp"
 #include "ftsense/fault_type.hpp"
+#include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::biped {
 
@@ -41,53 +42,57 @@ bool corrects(FaultType type) {
 
 void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("points", &Params::points, "contact points (x, y) of each foot, foot frame (both feet alike)")
-      .unit("m").count_at_least(1).count_at_most(8).required();
+      .unit("m").count_at_least(1).count_at_most(8).required().plausible(plausible::foot_point_m());
   schema.add("noise_std_N", &Params::noise_std_N, "nominal standard deviation of a healthy sensor's noise")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0)
+      .plausible(1e-3, 200.0, "millinewtons (load cells) to tens of newtons (insoles)");
   schema.add("airborne_height_m", &Params::airborne_height_m, "a pad this high above the ground carries nothing")
-      .unit("m").greater_than(0.0);
+      .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
   schema.add("airborne_settle_s", &Params::airborne_settle_s, "time a pad must be airborne before it is tested")
-      .unit("s").at_least(0.0);
+      .unit("s").at_least(0.0).plausible(0.0, 5.0, "a part of a swing phase (0.2 to 1 s)");
   schema.add("airborne_threshold_N", &Params::airborne_threshold_N, "|mean reading| of an airborne pad that is a fault")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
   schema.add("airborne_clear_N", &Params::airborne_clear_N, "|mean reading| of an airborne pad that re-admits it")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
   schema.add("jump_threshold_N", &Params::jump_threshold_N, "one-tick change of a single channel that is a jump candidate")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
   schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
   schema.add("jump_window_s", &Params::jump_window_s, "window of the sum-residual step test")
-      .unit("s").greater_than(0.0).at_most(1.0);
+      .unit("s").greater_than(0.0).at_most(1.0).plausible(1e-4, 1.0, "one tick at 10 kHz to a second");
   schema.add("touchdown_guard_s", &Params::touchdown_guard_s,
              "no jump or spike test this long after any foot touches down (landing impacts)")
-      .unit("s").at_least(0.0);
+      .unit("s").at_least(0.0).plausible(0.0, 5.0, "landing impacts settle within tenths of a second");
   schema.add("touchdown_height_m", &Params::touchdown_height_m,
              "a foot touches down when all its pads come below this height")
-      .unit("m").greater_than(0.0);
-  schema.add("stale_ticks", &Params::stale_ticks, "repeated readings that make a channel frozen").at_least(2);
+      .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
+  schema.add("stale_ticks", &Params::stale_ticks, "repeated readings that make a channel frozen").at_least(2)
+      .plausible(2, 10000, "10,000 ticks are 1 s at 10 kHz, 100 s at 100 Hz");
   schema.add("stale_tolerance_N", &Params::stale_tolerance_N, "readings this close count as repeated (quantisation)")
-      .unit("N").at_least(0.0);
+      .unit("N").at_least(0.0)
+      .plausible(0.0, 100.0, "force sensors quantise in steps of up to a few newtons");
   schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
   schema.add("spike_hold_s", &Params::spike_hold_s, "the spikes flag stays this long after the last spike")
-      .unit("s").at_least(0.0);
+      .unit("s").at_least(0.0).plausible(plausible::flag_delay_s());
   schema.add("noise_window_s", &Params::noise_window_s, "window of the noise-burst test")
-      .unit("s").greater_than(0.0).at_most(1.0);
+      .unit("s").greater_than(0.0).at_most(1.0).plausible(1e-3, 1.0, "ten ticks at 10 kHz to a second");
   schema.add("noise_factor", &Params::noise_factor,
              "second differences above this many healthy standard deviations count as noisy")
-      .greater_than(0.0);
+      .greater_than(0.0).plausible(1.0, 100.0, "below 1 standard deviation healthy noise counts as noisy");
   schema.add("sum_cutoff_hz", &Params::sum_cutoff_hz, "low-pass cut-off of the sum residual for the unisolated test")
-      .unit("Hz").greater_than(0.0);
+      .unit("Hz").greater_than(0.0).plausible(plausible::cutoff_hz());
   schema.add("sum_threshold_N", &Params::sum_threshold_N,
              "|low-passed sum residual| with no channel flagged that is an unisolated or virtual-sensor fault")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
   schema.add("clear_s", &Params::clear_s, "time the raising test must stay clear to re-admit a channel")
-      .unit("s").at_least(0.0);
+      .unit("s").at_least(0.0).plausible(plausible::flag_delay_s());
   schema.add("hold_s", &Params::hold_s, "a raised flag stays at least this long; spikes keep it this long after the last")
-      .unit("s").at_least(0.0);
+      .unit("s").at_least(0.0).plausible(plausible::flag_delay_s());
   schema.add("gain_window_s", &Params::gain_window_s,
              "window of the stance regression of the sum residual on each channel (gain test)")
-      .unit("s").greater_than(0.0).at_most(60.0);
+      .unit("s").greater_than(0.0).at_most(60.0)
+      .plausible(0.05, 60.0, "a part of a stance phase to a minute");
   schema.add("gain_threshold", &Params::gain_threshold,
              "|1 - 1/k| of a channel reading k times its force that is a gain fault")
       .greater_than(0.0).less_than(1.0);
@@ -99,7 +104,7 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
       .greater_than(0.0).less_than(1.0);
   schema.add("gain_min_load_N", &Params::gain_min_load_N,
              "RMS load a channel must carry over the gain window to be judged by the gain test")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
 }
 
 void ContactForceFdi::LineFit::add(double t, double b, double weight) noexcept {

@@ -2,14 +2,16 @@
 
 #include <limits>
 
+#include "ftsense/plausible_ranges.hpp"
+
 namespace ftsense::biped {
 
 void FootCop::Params::describe(ParamSchema<Params>& schema) {
   schema.add("points", &Params::points, "contact points (x, y) of the foot, foot frame")
-      .unit("m").count_at_least(3).required();
+      .unit("m").count_at_least(3).required().plausible(plausible::foot_point_m());
   schema.add("min_normal_force_N", &Params::min_normal_force_N,
              "below this normal force the CoP is undefined (no division)")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::min_load_N());
 }
 
 FootCop::FootCop(const Params& params, const StageContext& /*context*/)

@@ -10,10 +10,11 @@ namespace ftsense::biped {
 
 void LegForceSplit::Params::describe(ParamSchema<Params>& schema) {
   schema.add("mass_kg", &Params::mass_kg, "total robot mass m; required unless mass_source is input")
-      .unit("kg").at_least(0.0);
+      .unit("kg").at_least(0.0).plausible(0.5, 1000.0, "robot mass: 1 kg toys to 300 kg machines");
   schema.add("lateral_reach_m", &Params::lateral_reach_m,
              "c_lat_max of eq. 7; 0 records |c_lat| at each single-support onset")
-      .unit("m").at_least(0.0);
+      .unit("m").at_least(0.0)
+      .plausible(0.0, 1.0, "a CoM is centimetres to tens of centimetres beside a foot");
   schema.add_choice("mass_source", &Params::mass_source,
                     "where m comes from: mass_kg, or input port mass (e.g. the URDF's total mass)",
                     {{"param", MassSource::param}, {"input", MassSource::input}});

@@ -15,8 +15,9 @@ Eigen::Matrix3d initial_covariance() noexcept { return Eigen::Vector3d(1e-2, 1e-
 
 void LipmComEstimator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("com_height_m", &Params::com_height_m, "constant CoM height z_c of the LIPM")
-      .unit("m").greater_than(0.0).required();
-  schema.add("gravity_m_s2", &Params::gravity_m_s2, "gravity g").unit("m/s^2").greater_than(0.0);
+      .unit("m").greater_than(0.0).required().plausible(0.05, 3.0, "CoM height: 0.1 m toys to 2 m machines");
+  schema.add("gravity_m_s2", &Params::gravity_m_s2, "gravity g").unit("m/s^2").greater_than(0.0)
+      .plausible(1.5, 15.0, "9.81 on Earth, 1.62 on the Moon, 3.71 on Mars");
   schema.add_choice("zmp_source", &Params::zmp_source,
                     "which ZMP feeds the LIPM: the gait plan's (independent of the force sensors) or "
                     "one measured by the force sensors (the paper's choice)",
@@ -25,15 +26,16 @@ void LipmComEstimator::Params::describe(ParamSchema<Params>& schema) {
              "also correct with a kinematic CoM measurement (adds input kinematic_com)");
   schema.add("jerk_noise_m_s3", &Params::jerk_noise_m_s3,
              "process noise: standard deviation of the CoM jerk (drives c'' per tick)")
-      .unit("m/s^3").greater_than(0.0);
+      .unit("m/s^3").greater_than(0.0).plausible(1e-3, 1e4, "a walking robot's CoM jerk is 1 to 100 m/s^3");
   schema.add("acc_noise_m_s2", &Params::acc_noise_m_s2,
              "standard deviation of the IMU's horizontal acceleration as a CoM acceleration")
-      .unit("m/s^2").greater_than(0.0);
+      .unit("m/s^2").greater_than(0.0)
+      .plausible(1e-4, 100.0, "accelerometer noise and trunk vibration: 1 mm/s^2 to 10 m/s^2");
   schema.add("zmp_noise_m", &Params::zmp_noise_m, "standard deviation of the ZMP in p = c - c''/omega0^2")
-      .unit("m").greater_than(0.0);
+      .unit("m").greater_than(0.0).plausible(1e-5, 1.0, "micrometres to a foot length");
   schema.add("kinematic_com_noise_m", &Params::kinematic_com_noise_m,
              "standard deviation of the kinematic CoM (if used)")
-      .unit("m").greater_than(0.0);
+      .unit("m").greater_than(0.0).plausible(1e-5, 1.0, "micrometres to centimetres");
 }
 
 LipmComEstimator::LipmComEstimator(const Params& params, const StageContext& context)

@@ -3,14 +3,15 @@
 #include <cmath>
 
 #include "ftsense/biped/frames.hpp"
+#include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::biped {
 
 void ZmpFromContactForces::Params::describe(ParamSchema<Params>& schema) {
   schema.add("points", &Params::points, "contact points (x, y) of each foot, foot frame")
-      .unit("m").count_at_least(1).required();
+      .unit("m").count_at_least(1).required().plausible(plausible::foot_point_m());
   schema.add("min_total_force_N", &Params::min_total_force_N, "below this total load the last ZMP is held")
-      .unit("N").greater_than(0.0);
+      .unit("N").greater_than(0.0).plausible(plausible::min_load_N());
 }
 
 ZmpFromContactForces::ZmpFromContactForces(const Params& params, const StageContext& /*context*/)

@@ -3,12 +3,14 @@
 #include <cmath>
 #include <numbers>
 
+#include "ftsense/plausible_ranges.hpp"
+
 namespace ftsense::generic {
 
 void LowPass::Params::describe(ParamSchema<Params>& schema) {
   schema.add("cutoff_hz", &Params::cutoff_hz, "cut-off frequency f_c, below 1 / (2 T)")
       .unit("Hz")
-      .greater_than(0.0);
+      .greater_than(0.0).plausible(plausible::cutoff_hz());
   schema.add_choice("start", &Params::start, "initial output: the first finite sample, or zero",
                     {{"first_sample", Start::first_sample}, {"zero", Start::zero}});
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "ftsense/fault_type.hpp"
+#include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::generic {
 
@@ -18,14 +19,14 @@ void ThresholdDetector::Params::describe(ParamSchema<Params>& schema) {
       .count_at_least(1);
   schema.add("on_delay_s", &Params::on_delay_s, "time |signal| must stay above tr_j to raise")
       .unit("s")
-      .at_least(0.0);
+      .at_least(0.0).plausible(plausible::flag_delay_s());
   schema.add("off_delay_s", &Params::off_delay_s, "time |signal| must stay below tr_j to clear")
       .unit("s")
-      .at_least(0.0);
+      .at_least(0.0).plausible(plausible::flag_delay_s());
   schema.add("warmup_s", &Params::warmup_s,
              "no threshold flags during this time after reset (initialisation transient)")
       .unit("s")
-      .at_least(0.0);
+      .at_least(0.0).plausible(0.0, 600.0, "initial transients settle in seconds; ten minutes at most");
   schema.add("check_measured", &Params::check_measured,
              "also flag a channel invalid while its measured value is NaN or Inf (adds input measured)");
 }

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "ftsense/biped/frames.hpp"
+#include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::robot_model {
 namespace {
@@ -32,19 +33,19 @@ void UrdfKinematics::Params::describe(ParamSchema<Params>& schema) {
       .required();
   schema.add("left_sole_points_m", &Params::left_sole_points_m,
              "sole outline points (x, y) in the left sole frame, for the contact test; empty: the frame origin")
-      .unit("m");
+      .unit("m").plausible(plausible::foot_point_m());
   schema.add("right_sole_points_m", &Params::right_sole_points_m,
              "sole outline points (x, y) in the right sole frame, for the contact test; empty: the frame origin")
-      .unit("m");
+      .unit("m").plausible(plausible::foot_point_m());
   schema.add_choice("ground_reference", &Params::ground_reference,
                     "the ground the sole heights are measured from: the plane z = ground_height_m, or the "
                     "lower foot's lowest sole point",
                     {{"plane", Params::GroundReference::plane}, {"lowest_sole", Params::GroundReference::lowest_sole}});
   schema.add("ground_height_m", &Params::ground_height_m, "height of the ground plane, world frame (ground_reference = plane)")
-      .unit("m");
+      .unit("m").plausible(-10.0, 10.0, "the floor lies within metres of the world origin");
   schema.add("contact_height_m", &Params::contact_height_m,
              "a foot is in contact when its lowest sole point is below this height above the ground")
-      .unit("m").greater_than(0.0);
+      .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
 }
 
 UrdfKinematics::UrdfKinematics(const Params& params, const StageContext& context) : params_(params) {
