@@ -1,3 +1,7 @@
+// Why this file is longer than the ~500 lines a file usually holds: every section (KKT property
+// tests, brute-force agreement, analytic cases, allocation and iteration limits, the checker
+// itself) runs on the same random-problem generators, brute-force oracle and solver adapters of
+// its first 250 lines; one file keeps one oracle for the two solvers of the contact-force QP.
 #include "ftsense/biped/contact_force_qp.hpp"
 #include "ftsense/biped/contact_force_qp_ceres.hpp"
 
