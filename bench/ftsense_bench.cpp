@@ -16,7 +16,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -57,14 +56,12 @@ const Walk& walk() {
     ftsense::sim::Scenario scenario =
         ftsense::sim::load_scenario(std::string(FTSENSE_SOURCE_DIR) + "/configs/scenarios/clean.json");
     scenario.duration_s = 20.0;
-    const auto path = (std::filesystem::temp_directory_path() / "ftsense_bench_walk.csv").string();
-    {
-      std::ofstream out(path);
-      (void)ftsense::sim::simulate(scenario, 1, out);
-    }
+    // In memory, not a temporary file: runs side by side (ctest -j, two worktrees) must not share one.
+    std::stringstream csv;
+    (void)ftsense::sim::simulate(scenario, 1, csv);
     const Pipeline p = Pipeline::build(read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp.json"),
                                        ftsense::reference_plugins::registry());
-    ftsense::io::CsvLogReader log(path);
+    ftsense::io::CsvLogReader log(csv, "simulated walk");
     std::vector<std::size_t> columns;
     for (const auto& in : p.inputs()) {
       for (const auto& c : in.columns) columns.push_back(*log.find_column(c));
@@ -77,7 +74,6 @@ const Walk& walk() {
       for (std::size_t c : columns) values.push_back(row[c]);
       result.inputs.push_back(std::move(values));
     }
-    std::filesystem::remove(path);
     return result;
   }();
   return w;
