@@ -3,11 +3,14 @@
 //
 // It reads the log in 1 MiB blocks, parses every cell of every row with std::from_chars (each
 // cell must be a whole number, as ftsense's reader requires; an empty cell is NaN), and writes
-// per row COLUMNS numbers with std::to_chars (shortest round trip, "nan" for NaN, as ftsense's
-// writer), taking the row's cells in turn: the rows and columns of `ftsense run`'s output with
-// no pipeline, no per-row checks and no second thread.
+// one row per row with std::to_chars (shortest round trip, "nan" for NaN, as ftsense's writer):
+// output column j holds input column COLUMNS[j]. replay_throughput.sh picks, for each column of
+// `ftsense run`'s output, the input column whose numbers are about as long, so the floor writes
+// as many columns and about as many bytes, with no pipeline, no per-row checks and no second
+// thread.
 //
-// Usage: ftsense-replay-floor INPUT.csv OUTPUT.csv COLUMNS
+// Usage: ftsense-replay-floor INPUT.csv OUTPUT.csv COLUMNS   (COLUMNS: comma-separated indices)
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -25,20 +28,25 @@ namespace {
   std::exit(1);
 }
 
-// Appends COLUMNS numbers taken from `row` in turn, then a newline.
-void write_row(const std::vector<double>& row, std::size_t columns, std::string& out) {
-  char buffer[32];
-  for (std::size_t j = 0; j < columns; ++j) {
-    if (j) out += ',';
-    const double v = row[j % row.size()];
+// Longest std::to_chars of a double (shortest round trip), "-2.2250738585072014e-308", and a comma.
+constexpr std::size_t kMaxCellChars = 25;
+
+// Writes one output row at `out`, column j from input cell columns[j], then a newline; returns
+// the end. `out` has room for kMaxCellChars per column and the newline.
+char* write_row(const std::vector<double>& row, const std::vector<std::size_t>& columns, char* out) {
+  char* const end = out + columns.size() * kMaxCellChars + 1;
+  for (std::size_t j = 0; j < columns.size(); ++j) {
+    if (j) *out++ = ',';
+    const double v = row[columns[j]];
     if (std::isnan(v)) {
-      out += "nan";
+      out = std::copy_n("nan", 3, out);
     } else {
-      const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-      out.append(buffer, ec == std::errc() ? end : buffer);
+      const auto [next, ec] = std::to_chars(out, end, v);
+      if (ec == std::errc()) out = next;
     }
   }
-  out += '\n';
+  *out++ = '\n';
+  return out;
 }
 
 }  // namespace
@@ -48,15 +56,23 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: ftsense-replay-floor INPUT.csv OUTPUT.csv COLUMNS\n");
     return 2;
   }
-  const std::size_t columns = std::strtoull(argv[3], nullptr, 10);
-  if (columns == 0) fail(std::string("COLUMNS '") + argv[3] + "' is not a positive count");
+  std::vector<std::size_t> columns;
+  std::size_t widest = 0;
+  for (const char* p = argv[3];; ++p) {
+    std::size_t index = 0;
+    const auto [end, ec] = std::from_chars(p, p + std::strlen(p), index);
+    if (ec != std::errc() || (*end != ',' && *end != '\0')) fail(std::string("COLUMNS '") + argv[3] + "' is not a list of indices");
+    columns.push_back(index);
+    widest = std::max(widest, index);
+    p = end;
+    if (*p == '\0') break;
+  }
   std::FILE* in = std::fopen(argv[1], "rb");
   if (!in) fail(std::string("cannot open ") + argv[1]);
   std::FILE* out = std::fopen(argv[2], "wb");
   if (!out) fail(std::string("cannot create ") + argv[2]);
-
   std::string header;
-  for (std::size_t j = 0; j < columns; ++j) header += (j ? ",c" : "c") + std::to_string(j);
+  for (std::size_t j = 0; j < columns.size(); ++j) header += (j ? ",c" : "c") + std::to_string(columns[j]);
   header += '\n';
   std::fwrite(header.data(), 1, header.size(), out);
 
@@ -64,8 +80,8 @@ int main(int argc, char** argv) {
   std::vector<char> buffer(2 * kBlock);
   std::size_t held = 0;  // bytes of an unfinished line carried over from the previous block
   std::vector<double> row;
-  std::string text;
-  text.reserve(kBlock + 4096);
+  std::vector<char> text(kBlock + columns.size() * kMaxCellChars + 1);  // output, flushed per block
+  char* text_end = text.data();
   std::size_t line = 0;
   bool at_end = false;
   while (!at_end) {
@@ -95,10 +111,11 @@ int main(int argc, char** argv) {
           if (!comma) break;
           cell = comma + 1;
         }
-        write_row(row, columns, text);
-        if (text.size() >= kBlock) {
-          std::fwrite(text.data(), 1, text.size(), out);
-          text.clear();
+        if (row.size() <= widest) fail("line " + std::to_string(line) + ": fewer cells than COLUMNS needs");
+        text_end = write_row(row, columns, text_end);
+        if (static_cast<std::size_t>(text_end - text.data()) >= kBlock) {
+          std::fwrite(text.data(), 1, static_cast<std::size_t>(text_end - text.data()), out);
+          text_end = text.data();
         }
       }
       p = eol == end ? end : eol + 1;
@@ -107,7 +124,7 @@ int main(int argc, char** argv) {
     held = static_cast<std::size_t>(end - p);
     std::memmove(buffer.data(), p, held);
   }
-  std::fwrite(text.data(), 1, text.size(), out);
+  std::fwrite(text.data(), 1, static_cast<std::size_t>(text_end - text.data()), out);
   if (std::fclose(out) != 0) fail(std::string("writing ") + argv[2] + " failed");
   std::fclose(in);
   std::printf("%zu rows\n", line > 0 ? line - 1 : 0);

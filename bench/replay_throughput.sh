@@ -2,8 +2,10 @@
 # Replay throughput of `ftsense run` end to end (CSV parsing, pipeline, CSV writing) over a
 # 120 s simulated walk (120,000 ticks), against a floor measured in the same invocation:
 # ftsense-replay-floor (bench/replay_floor.cpp) reads the same log on one thread and writes as many
-# rows and columns with the same number formatting, without the pipeline. Three rounds, each runs
-# both; prints every run, the best of each and the ratio of the bests.
+# rows and columns as ftsense run, each column an input column whose numbers are about as long as
+# ftsense's in that column (so about as many bytes), with the same number formatting and no
+# pipeline. One untimed run of ftsense to pick those columns, then five rounds, each runs both;
+# prints every run, the best of each and the ratio of the bests.
 # Usage: bench/replay_throughput.sh [BUILD_DIR]
 set -eu
 build=${1:-build}
@@ -25,19 +27,36 @@ seconds() {  # wall time of a command, in seconds
   end=$(date +%s.%N)
   echo "$end - $start" | bc -l
 }
+"$build/bin/ftsense" run --config "$root/configs/suralp.json" --input "$work/long.csv" --output "$work/out.csv" > /dev/null
+columns=$(/usr/bin/python3 - "$work/long.csv" "$work/out.csv" <<'PY'
+import sys
+def mean_lengths(path):  # mean characters per cell of each column, every 10th row
+    with open(path) as f:
+        next(f)
+        total, rows = None, 0
+        for i, line in enumerate(f):
+            if i % 10:
+                continue
+            cells = line.rstrip("\n").split(",")
+            total = [len(c) for c in cells] if total is None else [t + len(c) for t, c in zip(total, cells)]
+            rows += 1
+    return [t / rows for t in total]
+inputs, outputs = mean_lengths(sys.argv[1]), mean_lengths(sys.argv[2])
+print(",".join(str(min(range(len(inputs)), key=lambda i: abs(inputs[i] - want))) for want in outputs))
+PY
+)
 best=""
 best_floor=""
-for run in 1 2 3; do
+for run in 1 2 3 4 5; do
   t=$(seconds "$build/bin/ftsense" run --config "$root/configs/suralp.json" --input "$work/long.csv" --output "$work/out.csv")
-  columns=$(head -1 "$work/out.csv" | tr ',' '\n' | wc -l)
   f=$(seconds "$build/bin/ftsense-replay-floor" "$work/long.csv" "$work/floor.csv" "$columns")
   printf 'run %d: ftsense run %.3f s, floor %.3f s\n' "$run" "$t" "$f"
   if [ -z "$best" ] || [ "$(echo "$t < $best" | bc -l)" -eq 1 ]; then best=$t; fi
   if [ -z "$best_floor" ] || [ "$(echo "$f < $best_floor" | bc -l)" -eq 1 ]; then best_floor=$f; fi
 done
-echo "output: ftsense run $(($(wc -l < "$work/out.csv") - 1)) rows x $columns columns, $(du -m "$work/out.csv" | cut -f1) MB;" \
-     "floor $(($(wc -l < "$work/floor.csv") - 1)) rows x $columns columns, $(du -m "$work/floor.csv" | cut -f1) MB"
-printf 'best of 3: %.3f s, %.0f ticks per second (%.0f times real time at 1 kHz)\n' "$best" \
+shape() { echo "$(($(wc -l < "$1") - 1)) rows x $(head -1 "$1" | tr ',' '\n' | wc -l) columns, $(du -m "$1" | cut -f1) MB"; }
+echo "output: ftsense run $(shape "$work/out.csv"); floor $(shape "$work/floor.csv")"
+printf 'best of 5: %.3f s, %.0f ticks per second (%.0f times real time at 1 kHz)\n' "$best" \
   "$(echo "$ticks / $best" | bc -l)" "$(echo "$ticks / $best / 1000" | bc -l)"
-printf 'floor, best of 3: %.3f s, %.0f ticks per second\n' "$best_floor" "$(echo "$ticks / $best_floor" | bc -l)"
+printf 'floor, best of 5: %.3f s, %.0f ticks per second\n' "$best_floor" "$(echo "$ticks / $best_floor" | bc -l)"
 printf 'ftsense run / floor: %.2f\n' "$(echo "$best / $best_floor" | bc -l)"
