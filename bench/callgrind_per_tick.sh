@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
-# Instructions per whole tick of configs/suralp.json, counted by valgrind's callgrind (deterministic:
+# Instructions per whole tick of configs/suralp.json (or CONFIG, one that reads the same inputs), counted by valgrind's callgrind (deterministic:
 # the same binary and inputs give the same count on a busy or idle machine). Runs the benchmark
 # binary for N1 and N2 ticks and divides the difference, so set-up (the simulated walk, building
 # the pipeline) cancels out; then the same difference per function (self cost, the 15 largest).
-# Usage: bench/callgrind_per_tick.sh [BUILD_DIR]
+# Usage: bench/callgrind_per_tick.sh [BUILD_DIR] [CONFIG, e.g. configs/suralp_robust.json]
 set -eu
 build=${1:-build}
+config=${2:-}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 count() {
-  valgrind --tool=callgrind --callgrind-out-file="$work/cg.$1" "$build/bin/ftsense-bench" --ticks "$1" \
+  valgrind --tool=callgrind --callgrind-out-file="$work/cg.$1" "$build/bin/ftsense-bench" --ticks "$1" $config \
     > "$work/out.$1" 2> "$work/log.$1"
   # A run that failed part-way still reports its instructions: check that it ran every tick.
   if ! grep -q "^ran $1 ticks" "$work/out.$1"; then
@@ -23,6 +24,7 @@ n1=20000
 n2=40000
 c1=$(count $n1)
 c2=$(count $n2)
+echo "config: ${config:-configs/suralp.json}"
 echo "instructions: $c1 for $n1 ticks, $c2 for $n2 ticks"
 echo "per tick: $(( (c2 - c1) / (n2 - n1) )) instructions"
 echo "per tick by function (self instructions, largest first):"
