@@ -3,7 +3,8 @@
 # 10 s simulated walk (10,000 rows) replayed through configs/suralp.json; per row, the whole run
 # and the inclusive cost of writing rows (CsvLogWriter::write_row, std::to_chars inside it), of
 # parsing rows (CsvLogReader::next, std::from_chars inside it; on the prefetch thread) and of the
-# pipeline (Pipeline::step). Usage: bench/callgrind_replay.sh [BUILD_DIR]
+# pipeline (Pipeline::step); then the same for ftsense-replay-floor (bench/replay_floor.cpp) on
+# that log, and the ratio. Usage: bench/callgrind_replay.sh [BUILD_DIR]
 set -eu
 build=${1:-build}
 work=$(mktemp -d)
@@ -19,7 +20,11 @@ rows=$(($(wc -l < "$work/walk.csv") - 1))
 valgrind --tool=callgrind --callgrind-out-file="$work/cg" "$build/bin/ftsense" run --config "$root/configs/suralp.json" \
   --input "$work/walk.csv" --output "$work/out.csv" > /dev/null 2> "$work/log"
 callgrind_annotate --inclusive=yes --threshold=100 "$work/cg" > "$work/annotate" 2> /dev/null
-/usr/bin/python3 - "$work/annotate" "$rows" <<'PY'
+columns=$(/usr/bin/python3 "$root/bench/replay_floor_columns.py" "$work/walk.csv" "$work/out.csv")
+valgrind --tool=callgrind --callgrind-out-file="$work/cg.floor" "$build/bin/ftsense-replay-floor" "$work/walk.csv" \
+  "$work/floor.csv" "$columns" > /dev/null 2> "$work/log.floor"
+floor=$(grep -E "Collected" "$work/log.floor" | awk '{print $NF}' | tr -d ',')
+/usr/bin/python3 - "$work/annotate" "$rows" "$floor" <<'PY'
 import re, sys
 rows = int(sys.argv[2])
 cost = {}
@@ -40,4 +45,6 @@ for label, prefix in [("writing rows (CsvLogWriter::write_row)", "ftsense::io::C
                       ("the pipeline (Pipeline::step)", "ftsense::Pipeline::step")]:
     c = find(prefix)
     print(f"  {label:42s} {c / rows:8.0f} per row  {100.0 * c / total:5.1f} %")
+floor = int(sys.argv[3])
+print(f"ftsense-replay-floor: {floor / rows:.0f} instructions per row; ftsense run / floor: {total / floor:.2f}")
 PY

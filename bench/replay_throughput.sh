@@ -28,23 +28,7 @@ seconds() {  # wall time of a command, in seconds
   echo "$end - $start" | bc -l
 }
 "$build/bin/ftsense" run --config "$root/configs/suralp.json" --input "$work/long.csv" --output "$work/out.csv" > /dev/null
-columns=$(/usr/bin/python3 - "$work/long.csv" "$work/out.csv" <<'PY'
-import sys
-def mean_lengths(path):  # mean characters per cell of each column, every 10th row
-    with open(path) as f:
-        next(f)
-        total, rows = None, 0
-        for i, line in enumerate(f):
-            if i % 10:
-                continue
-            cells = line.rstrip("\n").split(",")
-            total = [len(c) for c in cells] if total is None else [t + len(c) for t, c in zip(total, cells)]
-            rows += 1
-    return [t / rows for t in total]
-inputs, outputs = mean_lengths(sys.argv[1]), mean_lengths(sys.argv[2])
-print(",".join(str(min(range(len(inputs)), key=lambda i: abs(inputs[i] - want))) for want in outputs))
-PY
-)
+columns=$(/usr/bin/python3 "$root/bench/replay_floor_columns.py" "$work/long.csv" "$work/out.csv")
 best=""
 best_floor=""
 for run in 1 2 3 4 5; do
