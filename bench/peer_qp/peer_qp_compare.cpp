@@ -11,7 +11,8 @@
 //
 // Agreement (one untimed pass): the largest |N_l - N_l(ftsense)| [N] over all instances and
 // points, per solver; and ftsense's solver here against the forces the pipeline output (4
-// points; 0 expected: same solver, same inputs, same warm-start sequence).
+// points; 0 expected: same solver, same inputs, same warm-start sequence). Exit status 1 when a
+// solver failed or disagreed by more than kAgreement_N, or ftsense's differs from the pipeline.
 // Timing: P passes; in each pass every solver solves every instance once, the solvers taking
 // turns, so the load of a shared machine falls on all alike. Per pass: its wall time / instances;
 // reported: the median over passes and the fastest pass (on a busy machine other work only adds
@@ -27,6 +28,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +52,13 @@ using ftsense::peer_qp::SolverUnderTest;
 using ftsense::peer_qp::WalkInstances;
 
 constexpr std::uint64_t kSeed = 1;
+// Forces are 0..~1000 N; solvers that agree to 1e-6 N found the same optimum.
+constexpr double kAgreement_N = 1e-6;
+
+// The larger of a running maximum and a difference; NaN once either is NaN.
+double max_difference(double so_far, double d) {
+  return std::isnan(so_far) || std::isnan(d) ? std::numeric_limits<double>::quiet_NaN() : std::max(so_far, d);
+}
 
 // ftsense's exact active-set solver, as the pipeline runs it (warm start on).
 class FtsenseSolver final : public SolverUnderTest {
@@ -90,8 +99,9 @@ std::size_t parse_count(const char* flag, const char* text) {
   return static_cast<std::size_t>(value);
 }
 
-// Compares and times every contender on one geometry; prints a Markdown table.
-void compare(const char* title, const ContactGeometry& geometry, const WalkInstances& walk,
+// Compares and times every contender on one geometry; prints a Markdown table. Returns false
+// when a solver failed or disagreed (see kAgreement_N), or ftsense's differs from the pipeline.
+bool compare(const char* title, const ContactGeometry& geometry, const WalkInstances& walk,
              const std::vector<SolverKind>& kinds, std::size_t passes, bool against_pipeline) {
   const int n = geometry.size();
   const std::size_t instances = walk.feet[0].size() + walk.feet[1].size();
@@ -121,12 +131,11 @@ void compare(const char* title, const ContactGeometry& geometry, const WalkInsta
           if (k == 0) {
             ref = forces[l];
             if (against_pipeline) {
-              pipeline_difference_N = std::max(pipeline_difference_N,
-                                               std::abs(forces[l] - walk.pipeline_forces[foot][i * forces.size() + l]));
+              pipeline_difference_N = max_difference(
+                  pipeline_difference_N, std::abs(forces[l] - walk.pipeline_forces[foot][i * forces.size() + l]));
             }
           }
-          const double d = std::abs(forces[l] - ref);
-          c.max_difference_N = std::isnan(d) ? d : std::max(c.max_difference_N, d);
+          c.max_difference_N = max_difference(c.max_difference_N, std::abs(forces[l] - ref));
         }
       }
     }
@@ -163,6 +172,15 @@ void compare(const char* title, const ContactGeometry& geometry, const WalkInsta
     std::printf("| %s | %.0f | %.2f | %.0f | %.2f | %.1e | %zu |\n", c.name.c_str(), ns, ns / ftsense_median, fastest,
                 fastest / ftsense_fastest, c.max_difference_N, c.failures);
   }
+  bool agree = pipeline_difference_N == 0.0;
+  for (const Contender& c : contenders) {
+    if (c.failures > 0 || !(c.max_difference_N <= kAgreement_N)) {
+      std::printf("DISAGREEMENT: %s (%zu failed, max difference %.3g N > %.0e N)\n", c.name.c_str(), c.failures,
+                  c.max_difference_N, kAgreement_N);
+      agree = false;
+    }
+  }
+  return agree;
 }
 
 }  // namespace
@@ -193,8 +211,8 @@ int main(int argc, char** argv) {
               peers.empty() ? " none (configure with -DFTSENSE_PEER_QP_SOURCES=<dir>, see bench/peer_qp_compare.sh)" : "");
   for (const SolverKind& peer : peers) std::printf("  %s\n", peer.name.c_str());
 
-  compare("4-point instances (the config's foot: sole corners)", walk.geometry, walk, kinds, passes, true);
-  compare("8-point instances (the same loads on the 8-point outline of the sole)", ftsense::biped::bench::sole(8), walk,
-          kinds, passes, false);
-  return 0;
+  const bool four = compare("4-point instances (the config's foot: sole corners)", walk.geometry, walk, kinds, passes, true);
+  const bool eight = compare("8-point instances (the same loads on the 8-point outline of the sole)",
+                             ftsense::biped::bench::sole(8), walk, kinds, passes, false);
+  return four && eight ? 0 : 1;
 }
