@@ -5,7 +5,9 @@
 //
 //   ftsense-bench [Google Benchmark flags]   per-stage and whole-tick benchmarks
 //   ftsense-bench --latency-histogram N      N whole ticks timed one by one: median, p99, p99.9, max
-//   ftsense-bench --ticks N                  just N whole ticks (for valgrind --tool=callgrind)
+//   ftsense-bench --ticks N [CONFIG]         just N whole ticks of configs/suralp.json, or of CONFIG
+//                                            (a config reading the same inputs, path relative to
+//                                            the source tree), for valgrind --tool=callgrind
 //
 // Per stage: the stage's inputs are recorded tick by tick during a full run, then replayed into a
 // one-stage pipeline of the same plugin and parameters, so each stage is timed alone on the data
@@ -16,7 +18,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -57,14 +58,12 @@ const Walk& walk() {
     ftsense::sim::Scenario scenario =
         ftsense::sim::load_scenario(std::string(FTSENSE_SOURCE_DIR) + "/configs/scenarios/clean.json");
     scenario.duration_s = 20.0;
-    const auto path = (std::filesystem::temp_directory_path() / "ftsense_bench_walk.csv").string();
-    {
-      std::ofstream out(path);
-      (void)ftsense::sim::simulate(scenario, 1, out);
-    }
+    // In memory, not a temporary file: runs side by side (ctest -j, two worktrees) must not share one.
+    std::stringstream csv;
+    (void)ftsense::sim::simulate(scenario, 1, csv);
     const Pipeline p = Pipeline::build(read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp.json"),
                                        ftsense::reference_plugins::registry());
-    ftsense::io::CsvLogReader log(path);
+    ftsense::io::CsvLogReader log(csv, "simulated walk");
     std::vector<std::size_t> columns;
     for (const auto& in : p.inputs()) {
       for (const auto& c : in.columns) columns.push_back(*log.find_column(c));
@@ -77,7 +76,6 @@ const Walk& walk() {
       for (std::size_t c : columns) values.push_back(row[c]);
       result.inputs.push_back(std::move(values));
     }
-    std::filesystem::remove(path);
     return result;
   }();
   return w;
@@ -226,8 +224,17 @@ int latency_histogram(std::size_t ticks) {
   return 0;
 }
 
-int run_ticks(std::size_t ticks) {
-  Pipeline p = Pipeline::build(suralp_config("active_set"), ftsense::reference_plugins::registry());
+int run_ticks(std::size_t ticks, const std::string& config) {
+  Pipeline p = Pipeline::build(config.empty() ? suralp_config("active_set")
+                                              : read_json(std::string(FTSENSE_SOURCE_DIR) + "/" + config),
+                               ftsense::reference_plugins::registry());
+  const Pipeline suralp = Pipeline::build(suralp_config("active_set"), ftsense::reference_plugins::registry());
+  for (std::size_t i = 0; i < std::max(p.inputs().size(), suralp.inputs().size()); ++i) {
+    if (i >= p.inputs().size() || i >= suralp.inputs().size() || p.inputs()[i].columns != suralp.inputs()[i].columns) {
+      std::fprintf(stderr, "ftsense-bench: %s does not read the same inputs as configs/suralp.json\n", config.c_str());
+      return 2;
+    }
+  }
   const Walk& w = walk();
   p.reset();
   double sink = 0.0;
@@ -245,7 +252,9 @@ int run_ticks(std::size_t ticks) {
 
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "--latency-histogram") return latency_histogram(parse_count(argv[2]));
-  if (argc == 3 && std::string(argv[1]) == "--ticks") return run_ticks(parse_count(argv[2]));
+  if ((argc == 3 || argc == 4) && std::string(argv[1]) == "--ticks") {
+    return run_ticks(parse_count(argv[2]), argc == 4 ? argv[3] : "");
+  }
   register_benchmarks();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -161,27 +162,27 @@ bool CsvLogReader::next(std::vector<double>& values) {
 
 CsvLogWriter::CsvLogWriter(const std::string& path, const std::vector<std::string>& columns,
                            const std::vector<std::string>& inputs)
-    : file_(path, inputs), column_count_(columns.size()) {
+    : file_(path, inputs), column_count_(columns.size()), row_(columns.size() * kMaxCellChars + 1) {
   for (std::size_t i = 0; i < columns.size(); ++i) file_.stream() << (i ? "," : "") << columns[i];
   file_.stream() << '\n';
-  row_.reserve(columns.size() * 24);
 }
 
 void CsvLogWriter::write_row(std::span<const double> values) {
-  row_.clear();
-  char buffer[32];
+  // Formatted straight into the row buffer, which has room for the longest cell of every column.
+  char* out = row_.data();
+  char* const end = row_.data() + row_.size();
   for (std::size_t i = 0; i < values.size() && i < column_count_; ++i) {
-    if (i) row_ += ',';
+    if (i) *out++ = ',';
     const double v = values[i];
     if (std::isnan(v)) {
-      row_ += "nan";
+      out = std::copy_n("nan", 3, out);
     } else {
-      const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-      row_.append(buffer, ec == std::errc() ? end : buffer);
+      const auto [next, ec] = std::to_chars(out, end, v);
+      if (ec == std::errc()) out = next;
     }
   }
-  row_ += '\n';
-  file_.stream().write(row_.data(), static_cast<std::streamsize>(row_.size()));
+  *out++ = '\n';
+  file_.stream().write(row_.data(), out - row_.data());
 }
 
 void CsvLogWriter::flush() {

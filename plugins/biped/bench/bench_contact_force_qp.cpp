@@ -6,6 +6,7 @@
 // medians.
 #include "ftsense/biped/contact_force_qp.hpp"
 #include "ftsense/biped/contact_force_qp_ceres.hpp"
+#include "bench_soles.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -49,15 +50,7 @@ std::vector<Sample> gait_trajectory(double cop_reach, int cycles) {
   return samples;
 }
 
-ContactGeometry foot(int points) {
-  if (points == 4) return ContactGeometry::rectangle(0.240, 0.150);
-  ContactGeometry geometry; // 8 points on the outline of a 0.24 x 0.15 m sole
-  geometry.points.resize(2, 8);
-  geometry.points << 0.12, 0.12, 0.04, -0.06, -0.12, -0.12, -0.06, 0.04, //
-      0.05, -0.05, -0.075, -0.065, -0.04, 0.04, 0.065, 0.075;
-  geometry.weights = ftsense::biped::ContactVector::Constant(8, 0.01);
-  return geometry;
-}
+ContactGeometry foot(int points) { return ftsense::biped::bench::sole(points); }
 
 template <class Solver>
 void run(benchmark::State& state, bool warm_start) {

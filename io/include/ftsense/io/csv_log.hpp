@@ -79,8 +79,10 @@ class CsvLogWriter {
 
  private:
   OutputFile file_;
+  // Longest std::to_chars of a double (shortest round trip), "-2.2250738585072014e-308", and a comma.
+  static constexpr std::size_t kMaxCellChars = 25;
   std::size_t column_count_;
-  std::string row_;
+  std::vector<char> row_;
 };
 
 }  // namespace ftsense::io
