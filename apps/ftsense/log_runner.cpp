@@ -168,6 +168,8 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
   const std::size_t channels = m.channels.size();
   RunSummary summary;
   summary.first_fault_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
+  summary.unjudged_ticks.assign(channels, 0);
+  summary.first_unjudged_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> row;
   const std::size_t per_channel = kMonitorColumnCount + m.extra.size();
   std::size_t recorded_values = 0;
@@ -237,6 +239,10 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
       for (std::size_t i = 0; i < kMonitorColumnCount; ++i) o[i] = columns[i][c];
       for (std::size_t e = 0; e < m.extra.size(); ++e) o[kMonitorColumnCount + e] = pipeline.values(m.extra[e].signal)[c];
       if (fault[c] != 0.0 && std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
+      if (!std::isfinite(columns[static_cast<std::size_t>(MonitorColumn::virtual_value)][c]) &&
+          summary.unjudged_ticks[c]++ == 0) {
+        summary.first_unjudged_time_s[c] = t;
+      }
     }
     std::size_t at = 1 + per_channel * channels;
     for (const SignalRef& r : recorded) {

@@ -31,6 +31,10 @@ struct RunSummary {
   std::size_t first_gap_line = 0;
   double first_gap_s = 0.0;
   std::vector<double> first_fault_time_s;  // per channel; NaN when never flagged
+  // Per channel: ticks whose virtual value was not finite (the virtual sensor not ready: the
+  // channel could not be judged, so "no fault" says nothing), and the first such time.
+  std::vector<std::size_t> unjudged_ticks;
+  std::vector<double> first_unjudged_time_s;
 };
 
 // How the runner treats the log's clock (documented in docs/reliability.md):

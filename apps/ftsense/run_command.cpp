@@ -137,6 +137,15 @@ int run_command(const std::vector<std::string>& args) {
                   << " read as missing\n";
     }
   }
+  for (std::size_t c = 0; c < summary.unjudged_ticks.size(); ++c) {
+    // Silence is not health: say where the channel could not be judged at all.
+    if (const std::size_t n = summary.unjudged_ticks[c]; n > 0) {
+      summary_out << "  " << pipeline.monitor().channels[c] << ": not judged for " << n << " tick"
+                  << (n == 1 ? "" : "s") << " (" << format_number(static_cast<double>(n) * pipeline.sample_period_s())
+                  << " s; first at t = " << summary.first_unjudged_time_s[c]
+                  << " s): the virtual sensor was not ready, so a fault there would go unseen\n";
+    }
+  }
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {
     if (!std::isnan(summary.first_fault_time_s[c])) {
       summary_out << "  " << pipeline.monitor().channels[c] << ": fault first flagged at t = "
