@@ -81,14 +81,13 @@ void Pipeline::step_stage(std::size_t run_index, double time_s) noexcept {
 
 void Pipeline::step(double time_s) noexcept {
   double* const v = values_.data();
-  for (std::size_t i = 0; i < inputs_.size(); ++i) {
-    const PipelineInput& in = inputs_[i];
-    double* const first = v + in.values.offset;
-    for (double* x = first; x != first + in.values.dim; ++x) {
+  for (const InputGate& g : gates_) {
+    double* const first = v + g.values.offset;
+    for (double* x = first; x != first + g.values.dim; ++x) {
       // NaN compares false both ways and stays as it is.
-      if (*x < in.plausible_min || *x > in.plausible_max) {
+      if (*x < g.min || *x > g.max) {
         *x = std::numeric_limits<double>::quiet_NaN();
-        ++implausible_[i];
+        ++implausible_[g.input];
       }
     }
   }

@@ -70,6 +70,7 @@ class PipelineBuilder {
       if (in.plausible_range) {
         input.plausible_min = (*in.plausible_range)[0];
         input.plausible_max = (*in.plausible_range)[1];
+        pipeline_.gates_.push_back({pipeline_.inputs_.size(), input.values, input.plausible_min, input.plausible_max});
       }
       signals_["input." + in.name] = SignalInfo{input.values, in.unit, {input_dependencies(in.name, derivations), {}}};
       pipeline_.inputs_.push_back(std::move(input));

@@ -164,6 +164,14 @@ class Pipeline {
   std::vector<Diagnostic> warnings_;
   std::vector<double> values_;
   std::vector<std::size_t> implausible_;  // per input
+  // The inputs with a plausible_range, laid out for the tick (the others cost nothing).
+  struct InputGate {
+    std::size_t input = 0;
+    SignalRef values;
+    double min = 0.0;
+    double max = 0.0;
+  };
+  std::vector<InputGate> gates_;
 };
 
 }  // namespace ftsense
