@@ -169,7 +169,10 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
   RunSummary summary;
   summary.first_fault_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
   summary.unjudged_ticks.assign(channels, 0);
-  summary.first_unjudged_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
+  summary.longest_unjudged_start_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
+  summary.longest_unjudged_ticks.assign(channels, 0);
+  std::vector<double> stretch_start_s(channels, 0.0);
+  std::vector<std::size_t> stretch_ticks(channels, 0);
   std::vector<double> row;
   const std::size_t per_channel = kMonitorColumnCount + m.extra.size();
   std::size_t recorded_values = 0;
@@ -239,9 +242,15 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
       for (std::size_t i = 0; i < kMonitorColumnCount; ++i) o[i] = columns[i][c];
       for (std::size_t e = 0; e < m.extra.size(); ++e) o[kMonitorColumnCount + e] = pipeline.values(m.extra[e].signal)[c];
       if (fault[c] != 0.0 && std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
-      if (!std::isfinite(columns[static_cast<std::size_t>(MonitorColumn::virtual_value)][c]) &&
-          summary.unjudged_ticks[c]++ == 0) {
-        summary.first_unjudged_time_s[c] = t;
+      if (std::isfinite(columns[static_cast<std::size_t>(MonitorColumn::virtual_value)][c])) {
+        stretch_ticks[c] = 0;
+      } else {
+        summary.unjudged_ticks[c]++;
+        if (stretch_ticks[c]++ == 0) stretch_start_s[c] = t;
+        if (stretch_ticks[c] > summary.longest_unjudged_ticks[c]) {
+          summary.longest_unjudged_ticks[c] = stretch_ticks[c];
+          summary.longest_unjudged_start_s[c] = stretch_start_s[c];
+        }
       }
     }
     std::size_t at = 1 + per_channel * channels;

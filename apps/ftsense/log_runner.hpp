@@ -32,9 +32,11 @@ struct RunSummary {
   double first_gap_s = 0.0;
   std::vector<double> first_fault_time_s;  // per channel; NaN when never flagged
   // Per channel: ticks whose virtual value was not finite (the virtual sensor not ready: the
-  // channel could not be judged, so "no fault" says nothing), and the first such time.
+  // channel could not be judged, so "no fault" says nothing), and the longest unbroken stretch of
+  // them (its first time and length; the first one of that length).
   std::vector<std::size_t> unjudged_ticks;
-  std::vector<double> first_unjudged_time_s;
+  std::vector<double> longest_unjudged_start_s;
+  std::vector<std::size_t> longest_unjudged_ticks;
 };
 
 // How the runner treats the log's clock (documented in docs/reliability.md):

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -137,14 +138,31 @@ int run_command(const std::vector<std::string>& args) {
                   << " read as missing\n";
     }
   }
+  // Silence is not health: say where channels could not be judged at all, one line for the
+  // channels that share the same stretch (a virtual sensor's input out usually blinds them all).
+  std::vector<bool> said(summary.unjudged_ticks.size(), false);
+  const auto seconds = [&pipeline](std::size_t ticks) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", static_cast<double>(ticks) * pipeline.sample_period_s());
+    return std::string(text);
+  };
   for (std::size_t c = 0; c < summary.unjudged_ticks.size(); ++c) {
-    // Silence is not health: say where the channel could not be judged at all.
-    if (const std::size_t n = summary.unjudged_ticks[c]; n > 0) {
-      summary_out << "  " << pipeline.monitor().channels[c] << ": not judged for " << n << " tick"
-                  << (n == 1 ? "" : "s") << " (" << format_number(static_cast<double>(n) * pipeline.sample_period_s())
-                  << " s; first at t = " << summary.first_unjudged_time_s[c]
-                  << " s): the virtual sensor was not ready, so a fault there would go unseen\n";
+    const std::size_t n = summary.unjudged_ticks[c];
+    if (n == 0 || said[c]) continue;
+    std::string names;
+    for (std::size_t d = c; d < summary.unjudged_ticks.size(); ++d) {
+      if (!said[d] && summary.unjudged_ticks[d] == n &&
+          summary.longest_unjudged_ticks[d] == summary.longest_unjudged_ticks[c] &&
+          summary.longest_unjudged_start_s[d] == summary.longest_unjudged_start_s[c]) {
+        names += (names.empty() ? "" : ", ") + pipeline.monitor().channels[d];
+        said[d] = true;
+      }
     }
+    const std::size_t longest = summary.longest_unjudged_ticks[c];
+    summary_out << "  " << names << ": not judged for " << n << " tick" << (n == 1 ? "" : "s") << " (" << seconds(n)
+                << " s), the longest stretch " << seconds(longest) << " s from t = "
+                << summary.longest_unjudged_start_s[c]
+                << " s: the virtual sensor was not ready, so a fault there would go unseen\n";
   }
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {
     if (!std::isnan(summary.first_fault_time_s[c])) {

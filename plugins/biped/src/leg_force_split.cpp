@@ -15,6 +15,10 @@ void LegForceSplit::Params::describe(ParamSchema<Params>& schema) {
              "c_lat_max of eq. 7; 0 records |c_lat| at each single-support onset")
       .unit("m").at_least(0.0)
       .plausible(0.0, 1.0, "a CoM is centimetres to tens of centimetres beside a foot");
+  schema.add("gravity_m_s2", &Params::gravity_m_s2,
+             "gravity g; a flight (no foot in contact) with a vertical specific force above g / 2 "
+             "contradicts the IMU")
+      .unit("m/s^2").greater_than(0.0).plausible(1.5, 15.0, "9.81 on Earth, 1.62 on the Moon, 3.71 on Mars");
   schema.add_choice("mass_source", &Params::mass_source,
                     "where m comes from: mass_kg, or input port mass (e.g. the URDF's total mass)",
                     {{"param", MassSource::param}, {"input", MassSource::input}});
@@ -40,7 +44,7 @@ LegForceSplit::LegForceSplit(const Params& params, const StageContext& /*context
   ports_.add_output({"l_force", 3, "N", "left foot ground reaction force F_L, world frame"});
   ports_.add_output({"r_force", 3, "N", "right foot ground reaction force F_R, world frame"});
   ports_.add_output({"total_force", 3, "N", "total ground reaction force F = m R_wb f_imu"});
-  ports_.add_output({"alpha", 1, "1", "split factor alpha in [-1, 1]"});
+  ports_.add_output({"alpha", 1, "1", "split factor alpha in [-1, 1]; NaN when the split is unknown"});
 }
 
 void LegForceSplit::reset() noexcept {
@@ -67,21 +71,36 @@ void LegForceSplit::step(const StepIO& io) noexcept {
   const double distance = across.norm();
   const Eigen::Vector2d u = distance > 1e-6 ? Eigen::Vector2d(across / distance) : Eigen::Vector2d(0.0, 1.0);
   const double c_lat = (c - 0.5 * (o_l + o_r)).head<2>().dot(u);
+  // A stance foot's force runs along its line to the CoM; leaning beyond 45 degrees it would need
+  // a friction coefficient above 1: the CoM or the foot position is wrong, the split unknown.
+  const auto beyond_friction = [&c](const Eigen::Vector3d& o) {
+    return (c - o).head<2>().norm() > c.z() - o.z();
+  };
+  const bool split_known = std::isfinite(c_lat) && !(left && beyond_friction(o_l)) && !(right && beyond_friction(o_r));
   if (was_double_support_ && left != right && std::isfinite(c_lat) && std::abs(c_lat) > 1e-3) {
     recorded_reach_m_ = std::abs(c_lat);
   }
   was_double_support_ = left && right;
   double reach = params_.lateral_reach_m > 0.0 ? params_.lateral_reach_m : recorded_reach_m_;
   if (!(reach > 1e-3)) reach = std::max(0.5 * distance, 1e-3);
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   double alpha = 0.0;
   if (left && right) {
-    alpha = std::isfinite(c_lat) ? std::clamp(c_lat / reach, -1.0, 1.0) : 0.0;
+    alpha = split_known ? std::clamp(c_lat / reach, -1.0, 1.0) : kNaN;
   } else if (left) {
-    alpha = 1.0;
+    alpha = split_known ? 1.0 : kNaN;
   } else if (right) {
-    alpha = -1.0;
+    alpha = split_known ? -1.0 : kNaN;
   } else if (all_finite(contact)) {
-    total.setZero();  // flight, or the robot lifted: no ground force to split
+    const double mass = params_.mass_source == Params::MassSource::input ? io.in(kMass)[0] : params_.mass_kg;
+    // Flight: a free fall reads about 0, so a robot held up (about g) contradicts the schedule.
+    const bool held = !(total.z() <= 0.5 * params_.gravity_m_s2 * mass);
+    if (held) {
+      total.setConstant(kNaN);
+      alpha = kNaN;
+    } else {
+      total.setZero();  // no ground force to split
+    }
   }
   const auto fl = io.out(kLeftForce);
   const auto fr = io.out(kRightForce);

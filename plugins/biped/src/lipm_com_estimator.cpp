@@ -2,7 +2,9 @@
 
 #include <Eigen/Cholesky>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ftsense/biped/frames.hpp"
 
@@ -36,6 +38,10 @@ void LipmComEstimator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("kinematic_com_noise_m", &Params::kinematic_com_noise_m,
              "standard deviation of the kinematic CoM (if used)")
       .unit("m").greater_than(0.0).plausible(1e-5, 1.0, "micrometres to centimetres");
+  schema.add("max_com_std_ratio", &Params::max_com_std_ratio,
+             "the CoM is not ready while its standard deviation exceeds this many times the steady "
+             "state's with every measurement present (the ZMP missing, dropped or just started)")
+      .unit("1").greater_than(1.0).plausible(1.2, 100.0, "a few times the filter's settled uncertainty");
 }
 
 LipmComEstimator::LipmComEstimator(const Params& params, const StageContext& context)
@@ -65,6 +71,9 @@ LipmComEstimator::LipmComEstimator(const Params& params, const StageContext& con
   ports_.add_output({"com_variance", 2, "m^2", "posterior variance of the CoM position (x, y)"});
   ports_.add_output({"covariance_resets", 2, "1",
                      "restarts of each axis (x, y) since reset: non-finite state or covariance not positive definite"});
+  ports_.add_output({"ready", 1, "1",
+                     "1 when the CoM's variance is within max_com_std_ratio^2 of its steady state on both axes"});
+  steady_state_com_variance_ = solve_steady_state_com_variance();
   reset();
 }
 
@@ -76,6 +85,7 @@ void LipmComEstimator::reset() noexcept {
     a.last_good_com = 0.0;
     a.restarted = false;
     a.gated_zmp_ticks = 0;
+    a.zmp_used_last_tick = true;
     a.resets = 0.0;
   }
   initialised_ = false;
@@ -92,6 +102,31 @@ void LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z,
   axis.s += k * innovation;
   axis.P -= k * ph.transpose();
   axis.P = 0.5 * (axis.P + axis.P.transpose());
+}
+
+double LipmComEstimator::solve_steady_state_com_variance() const noexcept {
+  // The covariance recursion does not depend on the data: predict, then every scalar update.
+  const Eigen::RowVector3d h_acc(0.0, 0.0, 1.0);
+  const Eigen::RowVector3d h_zmp(1.0, 0.0, -1.0 / omega2_);
+  const Eigen::RowVector3d h_com(1.0, 0.0, 0.0);
+  const auto apply = [](Eigen::Matrix3d& p, const Eigen::RowVector3d& h, double variance) {
+    const Eigen::Vector3d ph = p * h.transpose();
+    const double s = h.dot(ph) + variance;
+    p -= ph * ph.transpose() / s;
+    p = 0.5 * (p + p.transpose());
+  };
+  Eigen::Matrix3d p = initial_covariance();
+  double previous = p(0, 0);
+  // The filter settles in a few time constants; 10^6 ticks bounds the loop for any sane T.
+  for (int k = 0; k < 1000000; ++k) {
+    p = transition_ * p * transition_.transpose() + process_noise_;
+    apply(p, h_acc, params_.acc_noise_m_s2 * params_.acc_noise_m_s2);
+    apply(p, h_zmp, params_.zmp_noise_m * params_.zmp_noise_m);
+    if (params_.use_kinematic_com) apply(p, h_com, params_.kinematic_com_noise_m * params_.kinematic_com_noise_m);
+    if (std::abs(p(0, 0) - previous) <= 1e-15 * p(0, 0)) break;
+    previous = p(0, 0);
+  }
+  return p(0, 0);
 }
 
 void LipmComEstimator::step(const StepIO& io) noexcept {
@@ -114,6 +149,7 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
   const Eigen::RowVector3d h_acc(0.0, 0.0, 1.0);
   const Eigen::RowVector3d h_zmp(1.0, 0.0, -1.0 / omega2_);
   const Eigen::RowVector3d h_com(1.0, 0.0, 0.0);
+  const double ready_variance = params_.max_com_std_ratio * params_.max_com_std_ratio * steady_state_com_variance_;
   for (int i = 0; i < 2; ++i) {
     Axis& a = axes_[i];
     // Predict with the ZMP rate of the last tick (zero when the ZMP is unavailable).
@@ -123,10 +159,13 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
     if (zmp_ok) {
       const double zmp_variance = params_.zmp_noise_m * params_.zmp_noise_m;
       const double innovation = zmp[i] - h_zmp.dot(a.s);
-      if (innovation * innovation <= kGateSigma2 * (h_zmp.dot(a.P * h_zmp.transpose()) + zmp_variance)) {
+      // |c - p| <= z_c (friction mu <= 1), widened by the CoM's own 3-sigma uncertainty.
+      const bool physical = std::abs(zmp[i] - a.s(0)) <= params_.com_height_m + 3.0 * std::sqrt(std::max(a.P(0, 0), 0.0));
+      if (physical && innovation * innovation <= kGateSigma2 * (h_zmp.dot(a.P * h_zmp.transpose()) + zmp_variance)) {
         a.gated_zmp_ticks = 0;
       } else if (++a.gated_zmp_ticks >= kGatedTicksBeforeRestart) {
-        // The ZMP has disagreed absurdly for a while: the filter, not the ZMP, is lost.
+        // The ZMP has disagreed absurdly for a while: take the filter, not the ZMP, as lost (were
+        // the ZMP the broken one, the stages downstream see a CoM no stance foot can hold).
         a.s = Eigen::Vector3d(zmp[i], 0.0, 0.0);
         a.P = initial_covariance();
         a.previous_zmp = zmp[i];
@@ -136,6 +175,16 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
         zmp_ok = false;
       }
     }
+    if (zmp_ok && !a.zmp_used_last_tick && a.P(0, 0) > ready_variance) {
+      // The ZMP is back after the CoM lost track (not ready): the state drifted with the IMU for
+      // a while, and its velocity would take seconds to correct. Re-acquire as at the start, but
+      // mid-motion: c'' from the IMU and c = p + c'' / omega0^2 (the LIPM), c' learnt afresh.
+      const double c_acc = std::isfinite(acc[i]) ? acc[i] : 0.0;
+      a.s = Eigen::Vector3d(zmp[i] + c_acc / omega2_, 0.0, c_acc);
+      a.P = initial_covariance();
+      a.previous_zmp = zmp[i];
+    }
+    a.zmp_used_last_tick = zmp_ok;
     const double p = zmp_ok ? zmp[i] : a.previous_zmp;
     if (a.restarted) {
       a.previous_zmp = p;  // after a restart the rate starts again from this tick's ZMP
@@ -156,6 +205,7 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
   const auto vel = io.out(kComVelocity);
   const auto accel = io.out(kComAcceleration);
   const auto variance = io.out(kComVariance);
+  bool ready = true;
   for (int i = 0; i < 2; ++i) {
     Axis& a = axes_[i];
     const bool healthy = a.s.allFinite() && a.P.allFinite() && Eigen::LLT<Eigen::Matrix3d>(a.P).info() == Eigen::Success;
@@ -168,13 +218,19 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
       a.resets += 1.0;
     }
     a.last_good_com = a.s(0);
+    ready = ready && a.P(0, 0) <= ready_variance;
     com[i] = a.s(0);
     vel[i] = a.s(1);
     accel[i] = a.s(2);
     variance[i] = a.P(0, 0);
     io.out(kCovarianceResets)[i] = a.resets;
   }
+  if (!ready) {
+    // Not known well enough to split forces by: the virtual sensor is not ready.
+    com[0] = com[1] = std::numeric_limits<double>::quiet_NaN();
+  }
   com[2] = params_.com_height_m;
+  io.out(kReady)[0] = ready ? 1.0 : 0.0;
 }
 
 }  // namespace ftsense::biped

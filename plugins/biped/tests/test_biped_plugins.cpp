@@ -1,6 +1,7 @@
 // Biped plugins: the contract suite and analytic oracles (LIPM convergence, force conservation,
 // CoP = moment formula, KKT of the distribution).
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -28,6 +29,11 @@ struct ContractSetup<biped::LipmComEstimator> {
     if (port == "planned_zmp") v[0] = 0.05;
   }
   static double sample_period_s() { return 1e-3; }
+  // Not ready until its CoM variance settles near the steady state (46 ticks at these noises).
+  static int settle_ticks() { return 100; }
+  // A ZMP farther than z_c from the CoM is physically impossible and dropped (then the CoM is not
+  // ready), so the ZMP walks by 1 cm per tick, not by metres.
+  static double random_step() { return 0.01; }
 };
 
 template <>
@@ -43,6 +49,9 @@ struct ContractSetup<biped::LegForceSplit> {
     if (port == "contact") v[0] = v[1] = 1.0;
   }
   static double sample_period_s() { return 1e-3; }
+  // A CoM may not lean past 45 degrees from a stance foot, so walk the inputs by 1 cm per tick
+  // (about 0.13 m over the test): the clamp on alpha is still crossed.
+  static double random_step() { return 0.01; }
 };
 
 template <>
@@ -187,6 +196,75 @@ TEST(LipmComEstimator, BrokenReadingsAreGatedAndALostFilterRestartsAndSaysSo) {
   EXPECT_EQ(h.outputs()[resets], (std::vector<double>{0.0, 0.0}));
 }
 
+TEST(LipmComEstimator, SteadyStateVarianceIsTheRiccatiFixedPoint) {
+  // Oracle: with every measurement each tick, P(0,0) of the running filter settles on P_inf.
+  PluginHarness<LipmComEstimator> h;
+  h.plugin().reset();
+  for (int k = 0; k < 20000; ++k) {
+    h.inputs()[0] = {0.0, 0.0, 9.806};
+    h.inputs()[1] = {0.0, 0.0, 0.0};
+    h.inputs()[2] = {0.01, -0.02};
+    h.step(k * 1e-3);
+  }
+  const double p_inf = h.plugin().steady_state_com_variance();
+  EXPECT_GT(p_inf, 0.0);
+  EXPECT_NEAR(h.outputs()[LipmComEstimator::kComVariance][0], p_inf, 1e-6 * p_inf);
+  EXPECT_NEAR(h.outputs()[LipmComEstimator::kComVariance][1], p_inf, 1e-6 * p_inf);
+}
+
+TEST(LipmComEstimator, WithoutTheZmpTheCoMIsNotReadyAndReacquiresWhenItReturns) {
+  // A CoM swaying on the LIPM (as in lipm_tracking_rms); the ZMP goes missing for 3 s.
+  PluginHarness<LipmComEstimator> h;
+  h.plugin().reset();
+  const double zc = 0.8, g = 9.806, omega2 = g / zc, w = 2.0 * std::numbers::pi * 0.6;
+  const double ratio = omega2 / (omega2 + w * w);
+  const auto ready = [&] { return h.outputs()[LipmComEstimator::kReady][0]; };
+  double first_not_ready = -1.0, ready_again = -1.0, worst_error_once_ready = 0.0;
+  for (int k = 0; k < 9000; ++k) {
+    const double t = k * 1e-3;
+    const double px = 0.04 * std::sin(w * t), py = 0.08 * std::cos(w * t);
+    const bool zmp_missing = t >= 3.0 && t < 6.0;
+    h.inputs()[0] = {-w * w * ratio * px, -w * w * ratio * py, g};
+    h.inputs()[1] = {0.0, 0.0, 0.0};
+    h.inputs()[2] = {zmp_missing ? std::nan("") : px, zmp_missing ? std::nan("") : py};
+    h.step(t);
+    const auto& com = h.outputs()[LipmComEstimator::kCom];
+    // Not ready and NaN go together, always.
+    ASSERT_EQ(ready() == 1.0, std::isfinite(com[0]) && std::isfinite(com[1])) << "t = " << t;
+    if (t >= 3.0 && first_not_ready < 0.0 && ready() == 0.0) first_not_ready = t;
+    if (t >= 6.0 && ready_again < 0.0 && ready() == 1.0) ready_again = t;
+    if (t >= 6.0 && ready() == 1.0) {
+      worst_error_once_ready = std::max(worst_error_once_ready, std::hypot(com[0] - ratio * px, com[1] - ratio * py));
+    }
+  }
+  std::cout << "ZMP missing at 3 s: not ready at " << first_not_ready << " s; back at 6 s: ready at " << ready_again
+            << " s; worst CoM error once ready: " << worst_error_once_ready * 1000 << " mm\n";
+  EXPECT_GT(first_not_ready, 3.0);  // not at once: the IMU carries it for a while
+  EXPECT_LT(first_not_ready, 6.0);
+  EXPECT_GT(ready_again, 6.0);
+  EXPECT_LT(ready_again, 6.2);
+  // Re-acquired, not drifted: within a centimetre of the true CoM from the first ready tick.
+  EXPECT_LT(worst_error_once_ready, 0.01);
+}
+
+TEST(LipmComEstimator, AZmpFartherThanTheCoMHeightIsDropped) {
+  // |c - p| <= z_c (friction mu <= 1): a ZMP 2 m off (z_c = 0.8 m) is dropped, the CoM stays.
+  PluginHarness<LipmComEstimator> h;
+  h.plugin().reset();
+  auto step = [&](double t, double zmp_y) {
+    h.inputs()[0] = {0.0, 0.0, 9.806};
+    h.inputs()[1] = {0.0, 0.0, 0.0};
+    h.inputs()[2] = {0.01, zmp_y};
+    h.step(t);
+  };
+  for (int k = 0; k < 1000; ++k) step(k * 1e-3, 0.0);
+  for (int k = 0; k < 150; ++k) step(1.0 + k * 1e-3, 2.0);
+  EXPECT_NEAR(h.outputs()[LipmComEstimator::kCom][1], 0.0, 1e-3);
+  // 0.7 m off is possible (a hard push), so it is taken.
+  for (int k = 0; k < 150; ++k) step(1.15 + k * 1e-3, 0.7);
+  EXPECT_GT(h.outputs()[LipmComEstimator::kCom][1], 0.3);
+}
+
 TEST(LipmComEstimator, MeasuredZmpSourceRenamesTheInput) {
   LipmComEstimator::Params p;
   p.com_height_m = 0.8;
@@ -226,9 +304,53 @@ TEST(LegForceSplit, ForcesSumToTheTotalAndFollowAlpha) {
     // F = m R f: its norm is m |f| (a rotation keeps lengths).
     EXPECT_NEAR(std::hypot(out[2][0], out[2][1], out[2][2]), 114.0 * std::hypot(0.3, -0.2, 10.1), 1e-9);
   }
+  // Flight with the IMU in free fall: no ground force to split.
+  in[0] = {0.3, -0.2, 0.4};
   in[5] = {0.0, 0.0};
   h.step(0.0);
-  EXPECT_EQ(h.outputs()[0][2] + h.outputs()[1][2], 0.0);  // flight: nothing to split
+  EXPECT_EQ(h.outputs()[0][2], 0.0);
+  EXPECT_EQ(h.outputs()[1][2], 0.0);
+  EXPECT_EQ(h.outputs()[2][2], 0.0);
+}
+
+TEST(LegForceSplit, AScheduleOrCoMThePhysicsForbidsMakesItNotReady) {
+  PluginHarness<LegForceSplit> h;
+  h.plugin().reset();
+  h.fill_nominal();
+  auto& in = h.inputs();
+  const auto all_nan = [&](std::size_t port) {
+    return std::all_of(h.outputs()[port].begin(), h.outputs()[port].end(), [](double v) { return std::isnan(v); });
+  };
+  // The schedule says flight but the IMU reads g (the robot is held): every output NaN. Just
+  // below g / 2 it is a fall, just above it the robot is held.
+  in[5] = {0.0, 0.0};
+  in[0] = {0.0, 0.0, 9.806};
+  h.step(0.0);
+  EXPECT_TRUE(all_nan(0) && all_nan(1) && all_nan(2));
+  in[0] = {0.0, 0.0, 0.49 * 9.806};
+  h.step(0.001);
+  EXPECT_EQ(h.outputs()[2][2], 0.0);
+  in[0] = {0.0, 0.0, 0.51 * 9.806};
+  h.step(0.002);
+  EXPECT_TRUE(all_nan(2));
+  // A stance foot whose line to the CoM (0.8 m up) leans past 45 degrees: the split is unknown,
+  // the total is not. The left foot is at y = +0.1, so the CoM at y = 0.9 leans exactly 45 degrees
+  // (still possible) and at y = 0.91 beyond.
+  in[0] = {0.0, 0.0, 9.806};
+  in[5] = {1.0, 0.0};
+  in[2] = {0.0, 0.9, 0.8};
+  h.step(0.003);
+  EXPECT_NEAR(h.outputs()[0][2], 114.0 * 9.806, 1e-9);
+  in[2] = {0.0, 0.91, 0.8};
+  h.step(0.004);
+  EXPECT_TRUE(all_nan(0) && all_nan(1) && all_nan(3));
+  EXPECT_NEAR(h.outputs()[2][2], 114.0 * 9.806, 1e-9);
+  // In double support a CoM that is not ready (NaN) leaves the split unknown too.
+  in[5] = {1.0, 1.0};
+  in[2] = {std::nan(""), std::nan(""), 0.8};
+  h.step(0.005);
+  EXPECT_TRUE(all_nan(0) && all_nan(1));
+  EXPECT_NEAR(h.outputs()[2][2], 114.0 * 9.806, 1e-9);
 }
 
 TEST(LegForceSplit, RecordsTheLateralReachAtSingleSupportOnset) {

@@ -11,9 +11,18 @@
 //
 // c_lat_max is `lateral_reach_m` when > 0; otherwise it is recorded as |c_lat| at each onset of
 // single support (starting from half the feet's distance). A foot the contact schedule says is in
-// swing carries nothing (alpha = +-1); with neither foot in contact both forces are zero. A
-// non-finite IMU reading, orientation or contact state with a foot possibly in contact makes the
-// forces NaN: the virtual sensor is not ready, and the stages downstream pass that on.
+// swing carries nothing (alpha = +-1). A non-finite IMU reading, orientation or contact state with
+// a foot possibly in contact makes the forces NaN: the virtual sensor is not ready, and the stages
+// downstream pass that on. Two physical checks make it not ready too:
+//   - neither foot in contact (flight) while the vertical specific force (R_wb f_imu)_z is above
+//     g / 2: a robot in flight falls freely (0), one that is held reads about g, so the schedule
+//     contradicts the IMU and the ground force is unknown (every output NaN). In a true flight
+//     all forces are zero;
+//   - a foot in contact whose line to the CoM leans more than 45 degrees,
+//     |c - o_i|_xy > c_z - o_{i,z}: its force along that line would need a friction coefficient
+//     above 1, which no sole has, so the CoM (or the foot's position) is wrong. The split is then
+//     unknown (l_force, r_force NaN); the total force F does not depend on c and stays.
+//     A CoM that is not ready (NaN) in double support leaves the split unknown as well.
 // o_L, o_R are the foot frame origins (sole plane under the ankle) in the world frame [m].
 // m is `mass_kg`, or with mass_source = "input" the value of input `mass` (for example the URDF's
 // total mass from urdf_kinematics).
@@ -33,6 +42,7 @@ class LegForceSplit {
   struct Params {
     double mass_kg = 0.0;
     double lateral_reach_m = 0.0;
+    double gravity_m_s2 = 9.806;
     enum class MassSource { param, input };
     MassSource mass_source = MassSource::param;
     static void describe(ParamSchema<Params>& schema);

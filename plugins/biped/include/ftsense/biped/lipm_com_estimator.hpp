@@ -29,7 +29,22 @@
 // is counted; it restarts at the last healthy CoM and takes the ZMP rate afresh. A measurement
 // whose innovation exceeds 100 standard deviations (sqrt of H P H^T + R) is dropped as broken (a
 // ZMP so dropped is treated as missing, in the prediction too); 200 consecutive dropped ZMP
-// readings mean the filter is lost, and the axis restarts on the ZMP (counted too). Allocation-free.
+// readings mean the filter is lost, and the axis restarts on the ZMP (counted too).
+//
+// Physics gate on the ZMP: c'' = omega0^2 (c - p) and no sole holds a horizontal force above its
+// normal force (friction coefficient mu <= 1), so |c'' | <= g and |c - p| <= z_c. A ZMP farther
+// than z_c + 3 sigma_c from the CoM (sigma_c = sqrt(P(0,0))) asks for the impossible and is
+// dropped like a broken one.
+//
+// Readiness: the ZMP is what makes c observable; without it the IMU only integrates and P(0,0)
+// grows. P_inf, the steady-state posterior variance of c with every measurement present, is
+// computed at construction from the Riccati recursion (so it follows T and the noise parameters).
+// While P(0,0) > max_com_std_ratio^2 P_inf on either axis (the ZMP missing or dropped for a while,
+// or the filter just started) the CoM is not known well enough to split forces by: com x, y are
+// NaN (the virtual sensor is not ready) and output `ready` is 0. When the ZMP comes back to a CoM
+// that is not ready, the axis re-acquires as at the start but mid-motion, c'' from the IMU and
+// c = p + c''/omega0^2, c' = 0 with the initial covariance: the state that drifted on the IMU alone
+// has a velocity error that would otherwise take seconds to correct. Allocation-free.
 
 #include <array>
 #include <string_view>
@@ -57,11 +72,15 @@ class LipmComEstimator {
     double acc_noise_m_s2 = 0.5;
     double zmp_noise_m = 0.03;
     double kinematic_com_noise_m = 0.01;
+    double max_com_std_ratio = 2.0;
     static void describe(ParamSchema<Params>& schema);
   };
 
   enum Input : std::size_t { kImuAcc, kBaseRpy, kZmp, kKinematicCom };
-  enum Output : std::size_t { kCom, kComVelocity, kComAcceleration, kComVariance, kCovarianceResets };
+  enum Output : std::size_t { kCom, kComVelocity, kComAcceleration, kComVariance, kCovarianceResets, kReady };
+
+  // P_inf: the steady-state posterior variance of c [m^2] with every measurement present.
+  [[nodiscard]] double steady_state_com_variance() const noexcept { return steady_state_com_variance_; }
 
   LipmComEstimator(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
@@ -76,10 +95,13 @@ class LipmComEstimator {
     double last_good_com = 0.0;  // the CoM of the last healthy tick, where a restart begins
     bool restarted = false;
     int gated_zmp_ticks = 0;  // consecutive ZMP readings rejected by the gate
+    bool zmp_used_last_tick = true;  // false while the ZMP is missing or dropped
     double resets = 0.0;  // restarts after a non-finite state or a covariance that is not positive definite
   };
   // One scalar Kalman update; skipped when z is not finite or its innovation fails the 100-sigma gate.
   void update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept;
+  // Iterates the covariance recursion with every measurement until P(0,0) settles.
+  [[nodiscard]] double solve_steady_state_com_variance() const noexcept;
   static constexpr double kGateSigma2 = 1e4;
   static constexpr int kGatedTicksBeforeRestart = 200;
 
@@ -89,6 +111,7 @@ class LipmComEstimator {
   double omega2_;
   Eigen::Matrix3d transition_;
   Eigen::Matrix3d process_noise_;
+  double steady_state_com_variance_ = 0.0;
   std::array<Axis, 2> axes_;
   bool initialised_ = false;
 };
