@@ -187,7 +187,7 @@ void CsvLogWriter::write_row(std::span<const double> values) {
 
 void CsvLogWriter::flush() {
   file_.stream().flush();
-  if (!file_.stream()) throw OutputError(file_.target().string() + ": writing failed (disk full?)");
+  if (!file_.stream()) throw OutputError(file_.target().string() + ": writing failed (disk full?); nothing was written under that name");
 }
 
 void CsvLogWriter::commit() { file_.commit(); }

@@ -64,6 +64,10 @@ row run_bad_row_keeps_previous_result 1 "bad_row.csv:1002" "$work/previous.csv" 
     "$ftsense" run --config "$cfg" --input "$work/bad_row.csv" --output "$work/previous.csv"
 row run_bad_row_writes_nothing 1 "bad_row.csv:1002" "$work/new.csv" \
     "$ftsense" run --config "$cfg" --input "$work/bad_row.csv" --output "$work/new.csv"
+# A full disk, made by a file-size limit of 64 KiB (SIGXFSZ ignored, so write fails with EFBIG as
+# it would with ENOSPC): the write fails before the rename, the previous result stays.
+row run_disk_full_keeps_previous_result 1 "writing failed \(disk full\?\); nothing was written" "$work/previous.csv" \
+    bash -c 'ulimit -f 64; trap "" XFSZ; exec "$@"' full_disk "$ftsense" run --config "$cfg" --input "$work/log.csv" --output "$work/previous.csv"
 row run_success_replaces_previous 0 - "$work/log.csv" \
     "$ftsense" run --config "$cfg" --input "$work/log.csv" --output "$work/previous.csv"
 grep -q "c1/measured_N" "$work/previous.csv" && { passes=$((passes + 1)); echo "ok   run_success_wrote_the_result"; } \
