@@ -81,6 +81,7 @@ void Pipeline::step_stage(std::size_t run_index, double time_s) noexcept {
 
 void Pipeline::step(double time_s) noexcept {
   double* const v = values_.data();
+  for (const InputConversion& c : conversions_) v[c.at] = c.scale * v[c.at] + c.offset;
   for (const InputGate& g : gates_) {
     double* const first = v + g.values.offset;
     for (double* x = first; x != first + g.values.dim; ++x) {

@@ -34,6 +34,9 @@ class PipelineBuilder {
     doc_ = read_pipeline_document(cfg_, diag_);
     if (!cfg_.is_object()) diag_.throw_if_errors();
     pipeline_.sample_period_s_ = doc_.sample_period_s.value_or(0.0);
+    pipeline_.time_column_ = doc_.time.column;
+    pipeline_.time_unit_ = doc_.time.unit;
+    pipeline_.time_seconds_per_unit_ = doc_.time.seconds_per_unit;
     place_inputs();
     find_plugins();
     built_.assign(doc_.stages.size(), false);
@@ -66,7 +69,19 @@ class PipelineBuilder {
     std::vector<InputDerivation> derivations;
     for (const InputDecl& in : doc_.inputs) derivations.push_back({in.name, in.derived_from});
     for (const InputDecl& in : doc_.inputs) {
-      PipelineInput input{in.name, in.columns, in.unit, in.derived_from, allocate(in.columns.size())};
+      PipelineInput input;
+      input.name = in.name;
+      input.columns = in.columns;
+      input.unit = in.unit;
+      input.derived_from = in.derived_from;
+      input.values = allocate(in.columns.size());
+      input.scale = in.scale;
+      input.offset = in.offset;
+      for (std::size_t i = 0; i < in.columns.size() && i < in.scale.size() && i < in.offset.size(); ++i) {
+        if (in.scale[i] != 1.0 || in.offset[i] != 0.0) {
+          pipeline_.conversions_.push_back({input.values.offset + i, in.scale[i], in.offset[i]});
+        }
+      }
       if (in.plausible_range) {
         input.plausible_min = (*in.plausible_range)[0];
         input.plausible_max = (*in.plausible_range)[1];

@@ -1,6 +1,9 @@
 #include "ftsense/pipeline_document.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
 
 namespace ftsense {
 
@@ -17,6 +20,7 @@ std::string_view to_string(DocumentValue value) noexcept {
     case DocumentValue::text_list: return "array of strings";
     case DocumentValue::wire: return "wire";
     case DocumentValue::range: return "[min, max]";
+    case DocumentValue::numbers: return "number or array of numbers";
   }
   return "?";
 }
@@ -32,6 +36,9 @@ bool has_type(const Json& value, DocumentValue type) noexcept {
       return value.is_array() && std::all_of(value.begin(), value.end(), [](const Json& v) { return v.is_string(); });
     case DocumentValue::range:
       return value.is_array() && value.size() == 2 && value[0].is_number() && value[1].is_number();
+    case DocumentValue::numbers:
+      return value.is_number() ||
+             (value.is_array() && std::all_of(value.begin(), value.end(), [](const Json& v) { return v.is_number(); }));
     case DocumentValue::wire:
       return value.is_string() ||
              (value.is_array() && !value.empty() &&
@@ -66,6 +73,8 @@ std::vector<DocumentSection> make_sections() {
         {"inputs", V::object, true, "", "non-empty", "the signals the pipeline reads each tick, by name"},
         {"stages", V::array, true, "", "", "the processing stages, run in dependency order"},
         {"monitor", V::object, false, "", "", "the monitored channels written by `ftsense run`"},
+        {"time", V::object, false, "{\"column\": \"time_s\", \"unit\": \"s\"}", "",
+         "the log's time column (see `time` below)"},
         {"allow_dependent_virtual_sensor", V::boolean, false, "false", "",
          "accept a virtual sensor computed from the sensor it judges (a warning instead of an error)"},
         description}});
@@ -81,6 +90,11 @@ std::vector<DocumentSection> make_sections() {
          "what the quantity can physically be (a foot force between -0.5 m g and 3 m g, say): a value outside "
          "is read as missing (NaN), so a burst, a stuck-at-full-scale IMU or an absurd position makes the "
          "stages that use it not ready instead of feeding them"},
+        {"scale", V::numbers, false, "1", "finite, not 0; one number, or one per column",
+         "value = scale * logged + offset: raw counts, millivolts or another unit to `unit` (the range "
+         "applies after)"},
+        {"offset", V::numbers, false, "0", "finite; one number, or one per column",
+         "value = scale * logged + offset, in `unit`"},
         description}});
   sections.push_back(
       {"stages/<i>", "a stage", "",
@@ -105,6 +119,12 @@ std::vector<DocumentSection> make_sections() {
                               extra_column_name("<channel>", "<name>", "<unit>") +
                               "` (no suffix when dimensionless)"});
   sections.push_back(std::move(monitor));
+  sections.push_back(
+      {"time", "the time column",
+       "The log's first column is its time; `ftsense run` and `calibrate` read it in seconds. "
+       "PlotJuggler writes `__time` in seconds; loggers often write nanoseconds.",
+       {{"column", V::text, false, "\"time_s\"", "non-empty", "name of the log's first column"},
+        {"unit", V::text, false, "\"s\"", "one of: s, ms, us, ns", "unit of the time stamps"}}});
   return sections;
 }
 
@@ -161,6 +181,7 @@ class DocumentReader {
         if (k.plausible) check_plausible(*k.plausible, "s", *doc_.sample_period_s, *t, "/sample_period_s", diag_);
       }
     }
+    if (const Json* time = field(cfg_, "", section, "time")) read_time(*time);
     if (const Json* a = field(cfg_, "", section, "allow_dependent_virtual_sensor")) {
       doc_.allow_dependent_virtual_sensor = a->get<bool>();
     }
@@ -268,6 +289,8 @@ class DocumentReader {
           input.plausible_range = std::array<double, 2>{lo, hi};
         }
       }
+      ok = read_coefficients(spec, path, section, "scale", 1.0, input.columns.size(), input.scale) && ok;
+      ok = read_coefficients(spec, path, section, "offset", 0.0, input.columns.size(), input.offset) && ok;
       (void)field(spec, path, section, "description");
       if (ok) doc_.inputs.push_back(std::move(input));
     }
@@ -282,6 +305,59 @@ class DocumentReader {
         }
       }
     }
+  }
+
+  void read_time(const Json& time) {
+    const DocumentSection& section = document_section(DocumentSectionId::time);
+    check_keys(time, "/time", section);
+    if (const Json* column = field(time, "/time", section, "column")) {
+      if (column->get<std::string>().empty()) {
+        diag_.error("/time/column", "is empty; name the log's time column (its first column)");
+      } else {
+        doc_.time.column = column->get<std::string>();
+      }
+    }
+    if (const Json* unit = field(time, "/time", section, "unit")) {
+      static constexpr std::array<std::pair<std::string_view, double>, 4> kUnits{
+          {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"ns", 1e-9}}};
+      const std::string u = unit->get<std::string>();
+      const auto it = std::find_if(kUnits.begin(), kUnits.end(), [&u](const auto& k) { return k.first == u; });
+      if (it == kUnits.end()) {
+        diag_.error("/time/unit", " = \"" + u + "\" is not one of s, ms, us, ns");
+      } else {
+        doc_.time.unit = u;
+        doc_.time.seconds_per_unit = it->second;
+      }
+    }
+  }
+
+  // scale or offset of an input: absent (the default for every column), one number for every
+  // column, or one per column. Returns false when it reported a problem.
+  bool read_coefficients(const Json& spec, const std::string& path, const DocumentSection& section,
+                         std::string_view key, double fallback, std::size_t columns, std::vector<double>& out) {
+    out.assign(columns, fallback);
+    const Json* value = field(spec, path, section, key);
+    if (value == nullptr) return !spec.contains(std::string(key));
+    const std::string key_path = json_pointer_append(path, key);
+    if (value->is_array() && value->size() != columns) {
+      diag_.error(key_path, "has " + std::to_string(value->size()) + " numbers for " + std::to_string(columns) +
+                                " columns; give one number, or one per column");
+      return false;
+    }
+    bool ok = true;
+    for (std::size_t i = 0; i < columns; ++i) {
+      const Json& v = value->is_array() ? (*value)[i] : *value;
+      const double x = v.get<double>();
+      const bool zero_scale = key == "scale" && x == 0.0;
+      if (!std::isfinite(x) || zero_scale) {
+        diag_.error(value->is_array() ? json_pointer_append(key_path, i) : key_path,
+                    " = " + v.dump() + (zero_scale ? " would erase the signal; scale must not be 0" : " is not finite"));
+        ok = false;
+      } else {
+        out[i] = x;
+      }
+    }
+    return ok;
   }
 
   void read_stages(const Json& stages) {

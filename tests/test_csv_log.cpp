@@ -69,7 +69,7 @@ const BadLogCase kBadLogs[] = {
     {"too_few_fields", "time_s,a,b\n0,1\n", LogError::Kind::bad_row, ":2: row has 2 fields but the header has 3"},
     {"too_many_fields", "time_s,a\n0,1,2\n", LogError::Kind::bad_row, ":2: row has more fields than the header's 2"},
     {"time_not_increasing", "time_s,a\n0.002,1\n0.001,1\n", LogError::Kind::bad_row,
-     ":3: time_s = 0.001000 is not after the previous row's 0.002000"},
+     ":3: time_s = 0.001 s is not after the previous row's 0.002 s"},
     {"duplicated_timestamp", "time_s,a\n0.002,1\n0.002,1\n", LogError::Kind::bad_row, "is not after"},
     {"time_nan", "time_s,a\nnan,1\n", LogError::Kind::bad_row, ":2: time_s is not a finite number"},
     // from_chars reads "-1" after the explicit '+' was skipped: "+-1" used to load as -1.

@@ -86,7 +86,7 @@ int calibrate_command(const std::vector<std::string>& args) {
   for (const std::string& input : inputs) {
     std::optional<io::CsvLogReader> log;
     try {
-      log.emplace(input);
+      log.emplace(input, time_column_of(pipeline));
     } catch (const io::LogError& e) {
       throw UsageError{std::string("error: ") + e.what()};
     }

@@ -22,6 +22,11 @@ struct ColumnMap {
 // kMonitorColumns (monitor_columns.hpp) and the monitor's extra signals.
 std::vector<std::string> monitor_columns(const Monitor& monitor);
 
+// The log's time column as the config declares it ("time": {"column", "unit"}).
+[[nodiscard]] inline io::TimeColumn time_column_of(const Pipeline& pipeline) {
+  return io::TimeColumn{pipeline.time_column(), pipeline.time_unit(), pipeline.time_seconds_per_unit()};
+}
+
 struct RunSummary {
   std::size_t ticks = 0;
   std::size_t irregular_steps = 0;  // rows whose time step differs from T by more than 10 %

@@ -57,8 +57,8 @@ int run_command(const std::vector<std::string>& args) {
   // 2. The log: open, map columns (all missing ones reported together).
   std::optional<io::CsvLogReader> log;
   try {
-    if (input_path == "-") log.emplace(std::cin, "standard input");
-    else log.emplace(input_path);
+    if (input_path == "-") log.emplace(std::cin, "standard input", time_column_of(pipeline));
+    else log.emplace(input_path, time_column_of(pipeline));
   } catch (const io::LogError& e) {
     throw UsageError{std::string("error: ") + e.what()};
   }

@@ -22,7 +22,8 @@
 // "allow_dependent_virtual_sensor" is true, which turns the error into a warning).
 //
 // Per tick: write each input's values into input_values(i), call step(t), read values(ref).
-// step() first replaces input values outside their input's plausible_range by NaN.
+// step() first converts each input with a scale or offset (value = scale * logged + offset), then
+// replaces input values outside their input's plausible_range by NaN.
 // step() runs the stages in dependency order over one preallocated buffer: no allocation, no
 // exception, no string lookup.
 
@@ -60,6 +61,9 @@ struct PipelineInput {
   // Values outside [min, max] are replaced by NaN before the stages run (no range: +-inf).
   double plausible_min = -std::numeric_limits<double>::infinity();
   double plausible_max = std::numeric_limits<double>::infinity();
+  // value = scale * logged + offset, one coefficient per value (1 and 0: no conversion).
+  std::vector<double> scale;
+  std::vector<double> offset;
 };
 
 // What the `run` program writes per monitored channel: one signal per row of kMonitorColumns
@@ -96,6 +100,10 @@ class Pipeline {
   ~Pipeline();
 
   [[nodiscard]] double sample_period_s() const noexcept { return sample_period_s_; }
+  // The log's time column: name, unit as written, and seconds per unit.
+  [[nodiscard]] const std::string& time_column() const noexcept { return time_column_; }
+  [[nodiscard]] const std::string& time_unit() const noexcept { return time_unit_; }
+  [[nodiscard]] double time_seconds_per_unit() const noexcept { return time_seconds_per_unit_; }
   [[nodiscard]] const std::vector<PipelineInput>& inputs() const noexcept { return inputs_; }
   [[nodiscard]] std::span<double> input_values(std::size_t input_index) noexcept;
   [[nodiscard]] bool has_monitor() const noexcept { return has_monitor_; }
@@ -156,6 +164,9 @@ class Pipeline {
   void bind_spans() noexcept;
 
   double sample_period_s_ = 0.0;
+  std::string time_column_ = "time_s";
+  std::string time_unit_ = "s";
+  double time_seconds_per_unit_ = 1.0;
   std::vector<PipelineInput> inputs_;
   std::vector<StageRun> stages_;
   std::vector<Copy> monitor_gathers_;
@@ -172,6 +183,13 @@ class Pipeline {
     double max = 0.0;
   };
   std::vector<InputGate> gates_;
+  // The inputs' values with a scale or offset, laid out for the tick: buffer offset, coefficients.
+  struct InputConversion {
+    std::size_t at = 0;
+    double scale = 1.0;
+    double offset = 0.0;
+  };
+  std::vector<InputConversion> conversions_;
 };
 
 }  // namespace ftsense

@@ -34,7 +34,7 @@
 namespace ftsense {
 
 // The JSON type a key takes.
-enum class DocumentValue { number, boolean, text, object, array, text_list, wire, range };
+enum class DocumentValue { number, boolean, text, object, array, text_list, wire, range, numbers };
 // As users read it: "number", "array of strings", "wire", ...
 [[nodiscard]] std::string_view to_string(DocumentValue value) noexcept;
 // Whether `value` has the JSON type (a wire: a string or a non-empty array of strings).
@@ -61,7 +61,7 @@ struct DocumentSection {
   [[nodiscard]] std::vector<std::string> key_names() const;
 };
 
-enum class DocumentSectionId : std::size_t { pipeline, input, stage, monitor };
+enum class DocumentSectionId : std::size_t { pipeline, input, stage, monitor, time };
 // Every section of the document, in DocumentSectionId order.
 [[nodiscard]] const std::vector<DocumentSection>& pipeline_document_sections();
 [[nodiscard]] const DocumentSection& document_section(DocumentSectionId id);
@@ -88,6 +88,16 @@ struct InputDecl {
   std::string unit;
   std::vector<std::string> derived_from;  // other inputs this one is computed from
   std::optional<std::array<double, 2>> plausible_range;  // [min, max]; values outside read as missing
+  // value = scale * logged + offset, one coefficient per column (raw counts to the unit).
+  std::vector<double> scale;
+  std::vector<double> offset;
+};
+
+// The log's time column: its name and unit; the reader converts it to seconds.
+struct TimeColumnDecl {
+  std::string column = "time_s";
+  std::string unit = "s";
+  double seconds_per_unit = 1.0;
 };
 
 struct StageDecl {
@@ -109,6 +119,7 @@ struct MonitorDecl {
 
 struct PipelineDocument {
   std::optional<double> sample_period_s;  // empty: missing or invalid (reported)
+  TimeColumnDecl time;
   bool allow_dependent_virtual_sensor = false;
   std::vector<InputDecl> inputs;  // the well-declared ones (a broken one is reported, not here)
   std::vector<StageDecl> stages;

@@ -1,5 +1,7 @@
 #include "ftsense/io/csv_log.hpp"
 
+#include <charconv>
+
 #include <cerrno>
 #include <filesystem>
 #include <system_error>
@@ -48,7 +50,7 @@ bool parse_cell(std::string_view cell, double& out) {
 
 }  // namespace
 
-CsvLogReader::CsvLogReader(const std::string& path) : path_(path) {
+CsvLogReader::CsvLogReader(const std::string& path, TimeColumn time) : path_(path), time_(std::move(time)) {
   // A log is a file or a pipe (a logger streaming into ftsense); a directory or a device
   // (/dev/zero) is refused before reading.
   std::error_code ec;
@@ -72,14 +74,24 @@ CsvLogReader::CsvLogReader(const std::string& path) : path_(path) {
   read_header();
 }
 
-CsvLogReader::CsvLogReader(std::istream& in, std::string name) : path_(std::move(name)), stream_(&in) {
+CsvLogReader::CsvLogReader(std::istream& in, std::string name, TimeColumn time)
+    : path_(std::move(name)), time_(std::move(time)), stream_(&in) {
   read_header();
 }
+
+namespace {
+// Seconds in the shortest form that reads back exactly (1 ms steps stay apart on epoch time).
+std::string format_seconds(double t) {
+  char text[40];
+  const auto result = std::to_chars(text, text + sizeof text, t);
+  return std::string(text, result.ptr);
+}
+}  // namespace
 
 void CsvLogReader::read_header() {
   if (!std::getline(in(), line_buffer_)) {
     throw LogError(LogError::Kind::bad_header,
-                   path_ + ":1: the file is empty; a log starts with a header line 'time_s,...'");
+                   path_ + ":1: the file is empty; a log starts with a header line '" + time_.name + ",...'");
   }
   std::string_view header = line_buffer_;
   if (header.size() >= 3 && static_cast<unsigned char>(header[0]) == 0xEF &&
@@ -99,8 +111,11 @@ void CsvLogReader::read_header() {
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
-  if (columns_.front() != "time_s") {
-    fail("the first column is '" + columns_.front() + "'; a log's first column must be time_s");
+  if (columns_.front() != time_.name) {
+    fail("the first column is '" + columns_.front() + "'; a log's first column must be its time, '" + time_.name +
+         "'" + (time_.name == "time_s" ? " (if '" + columns_.front() + "' is the time, say so in the config: \"time\": {\"column\": \"" +
+                                             columns_.front() + "\", \"unit\": \"s\"}, or ms, us, ns)"
+                                       : std::string(" (the config's time.column)")));
   }
 }
 
@@ -150,11 +165,12 @@ bool CsvLogReader::next(std::vector<double>& values) {
     fail("row has " + std::to_string(column) + " fields but the header has " +
          std::to_string(columns_.size()));
   }
+  if (time_.seconds_per_unit != 1.0) values[0] *= time_.seconds_per_unit;
   const double t = values[0];
-  if (!std::isfinite(t)) fail("time_s is not a finite number");
+  if (!std::isfinite(t)) fail(time_.name + " is not a finite number");
   if (last_time_ && !(t > *last_time_)) {
-    fail("time_s = " + std::to_string(t) + " is not after the previous row's " +
-         std::to_string(*last_time_) + "; time must be strictly increasing (sort or de-duplicate the log)");
+    fail(time_.name + " = " + format_seconds(t) + " s is not after the previous row's " + format_seconds(*last_time_) +
+         " s; time must be strictly increasing (sort or de-duplicate the log)");
   }
   last_time_ = t;
   return true;

@@ -1,5 +1,7 @@
 #pragma once
-// CSV logs (design.md): first column `time_s`, strictly increasing; then named columns. Cells
+// CSV logs (design.md): first column the time (`time_s` unless the reader is told another name
+// and unit: `__time` in ns, say; the reader converts it to seconds), strictly increasing; then
+// named columns. Cells
 // are decimal numbers; `nan`, `inf` and an empty cell (a dropped sample) read as NaN/Inf.
 //
 // The reader streams: one row at a time into a caller-owned vector, no allocation per row once
@@ -30,14 +32,21 @@ class LogError : public std::runtime_error {
   Kind kind_;
 };
 
+// The log's time column: its name and unit (seconds per unit: 1e-9 for ns).
+struct TimeColumn {
+  std::string name = "time_s";
+  std::string unit = "s";
+  double seconds_per_unit = 1.0;
+};
+
 class CsvLogReader {
  public:
   // Opens `path` and reads the header; throws LogError when the file is missing, empty, or the
-  // header is not `time_s,...` with unique non-empty names.
-  explicit CsvLogReader(const std::string& path);
+  // header does not start with the time column or has empty or repeated names.
+  explicit CsvLogReader(const std::string& path, TimeColumn time = {});
   // Reads a log from `in` (which must outlive the reader); `name` stands for the file in
   // messages. Same header checks and errors as above, except cannot_open.
-  CsvLogReader(std::istream& in, std::string name);
+  CsvLogReader(std::istream& in, std::string name, TimeColumn time = {});
 
   [[nodiscard]] const std::vector<std::string>& columns() const noexcept { return columns_; }
   [[nodiscard]] std::optional<std::size_t> find_column(std::string_view name) const noexcept;
@@ -45,7 +54,8 @@ class CsvLogReader {
   // 1-based line number of the row read last (the header is line 1).
   [[nodiscard]] std::size_t line() const noexcept { return line_; }
 
-  // Reads the next data row into `values` (resized to columns().size() on first use). Returns
+  // Reads the next data row into `values` (resized to columns().size() on first use; values[0] is
+  // the time in seconds). Returns
   // false at the end of the file. Throws LogError on a malformed row (field count, non-numeric
   // cell, time not strictly increasing), naming line and column.
   bool next(std::vector<double>& values);
@@ -56,6 +66,7 @@ class CsvLogReader {
   std::istream& in() noexcept { return stream_ != nullptr ? *stream_ : file_; }
 
   std::string path_;
+  TimeColumn time_;
   std::ifstream file_;             // when opened from a path
   std::istream* stream_ = nullptr;  // when reading a caller's stream
   std::vector<std::string> columns_;
