@@ -5,6 +5,7 @@
 // independence rule (independence_rule.hpp) and lays every signal out in one buffer.
 
 #include <algorithm>
+#include <deque>
 #include <map>
 #include <optional>
 #include <set>
@@ -165,12 +166,12 @@ class PipelineBuilder {
   const SignalInfo* resolve(const WireEnd& e) {
     if (e.from_input) {
       // Absent when the input's declaration is broken (reported with the document).
-      const auto it = signals_.find(e.text);
-      return it == signals_.end() ? nullptr : &it->second;
+      const auto it = signals_.find(e.signal);
+      return it == signals_.end() ? nullptr : select(e, it->second);
     }
     if (!built_[e.producer]) return nullptr;
-    const auto it = signals_.find(e.text);
-    if (it != signals_.end()) return &it->second;
+    const auto it = signals_.find(e.signal);
+    if (it != signals_.end()) return select(e, it->second);
     const StageDecl& producer = doc_.stages[e.producer];
     std::vector<std::string> outputs;
     const std::string prefix = producer.name + ".";
@@ -180,6 +181,22 @@ class PipelineBuilder {
     diag_.error(e.path, "stage '" + producer.name + "' (" + producer.plugin + ") has no output '" + e.port + "'; " +
                             suggest(e.port, outputs));
     return nullptr;
+  }
+
+  // The end's selection of `whole` ("[i:j]"), or `whole` itself; null (reported) when the
+  // selection reaches beyond the signal's values.
+  const SignalInfo* select(const WireEnd& e, const SignalInfo& whole) {
+    if (!e.select) return &whole;
+    const auto [first, last] = *e.select;
+    if (last > whole.ref.dim) {
+      diag_.error(e.path, "\"" + e.text + "\" selects values " + std::to_string(first) + " to " +
+                              std::to_string(last - 1) + " of " + e.signal + ", which has " +
+                              std::to_string(whole.ref.dim) + " (0-based: the last is [" +
+                              std::to_string(whole.ref.dim - 1) + "])");
+      return nullptr;
+    }
+    // Same unit and dependence as the whole signal; stored where its address stays put.
+    return &selections_.emplace_back(SignalInfo{{whole.ref.offset + first, last - first}, whole.unit, whole.dependence});
   }
 
   // Every end of a wire resolved, or nullopt when one is not.
@@ -417,6 +434,7 @@ class PipelineBuilder {
   Pipeline pipeline_;
   std::size_t next_offset_ = 0;
   std::map<std::string, SignalInfo> signals_;
+  std::deque<SignalInfo> selections_;  // the selected parts of signals ("imu.acc[2]"); stable addresses
   std::vector<const PluginInfo*> plugin_of_;  // per declared stage; null: unknown or missing
   std::vector<bool> built_;                   // per declared stage
   std::set<std::size_t> construction_attempted_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <utility>
 
@@ -102,7 +103,8 @@ std::vector<DocumentSection> make_sections() {
         {"plugin", V::text, true, "", "", "the plugin that runs the stage; `ftsense plugins` lists them"},
         {"params", V::object, false, "{}", "", "the plugin's parameters"},
         {"inputs", V::object, false, "", "one wire per input port of the plugin",
-         "input port to wire: `\"input.<name>\"`, `\"<stage>.<port>\"`, or an array of them (concatenated)"},
+         "input port to wire: `\"input.<name>\"`, `\"<stage>.<port>\"`, either with a selection of its values "
+         "(`\"imu.acc[2]\"`, `\"input.pos[0:2]\"`: 0-based, end excluded), or an array of them (concatenated)"},
         description}});
   DocumentSection monitor{"monitor", "the monitor",
                           "Every monitored channel `<channel>` gets one output column per wire below; "
@@ -429,6 +431,26 @@ class DocumentReader {
     d.upstream.erase(std::unique(d.upstream.begin(), d.upstream.end()), d.upstream.end());
   }
 
+  // "[i]" or "[i:j]" with 0 <= i < j as [i, i + 1) or [i, j); nullopt when it is neither.
+  static std::optional<std::array<std::size_t, 2>> parse_selection(std::string_view s) {
+    if (s.size() < 3 || s.front() != '[' || s.back() != ']') return std::nullopt;
+    s = s.substr(1, s.size() - 2);
+    const auto number = [](std::string_view digits) -> std::optional<std::size_t> {
+      std::size_t v = 0;
+      if (digits.empty() || digits.size() > 6) return std::nullopt;
+      const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+      if (ec != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
+      return v;
+    };
+    const auto colon = s.find(':');
+    const auto first = number(s.substr(0, colon));
+    if (!first) return std::nullopt;
+    if (colon == std::string_view::npos) return std::array<std::size_t, 2>{*first, *first + 1};
+    const auto last = number(s.substr(colon + 1));
+    if (!last || !(*first < *last)) return std::nullopt;
+    return std::array<std::size_t, 2>{*first, *last};
+  }
+
   // Parses a wire value, "node.port" or an array of them, and resolves its names.
   bool read_wire(const Json& value, WireDecl& w) {
     std::vector<std::pair<std::string, std::string>> texts;  // text, path
@@ -453,14 +475,25 @@ class DocumentReader {
       WireEnd e;
       e.text = text;
       e.path = path;
-      const auto dot = text.find('.');
+      e.signal = text;
+      if (const auto bracket = text.find('['); bracket != std::string::npos) {
+        e.signal = text.substr(0, bracket);
+        e.select = parse_selection(std::string_view(text).substr(bracket));
+        if (!e.select) {
+          diag_.error(path, " = \"" + text + "\" has a selection that is not \"[i]\" or \"[i:j]\" with 0 <= i < j "
+                            "(0-based, j excluded): \"" + e.signal + "[2]\" is the third value");
+          ok = false;
+          continue;
+        }
+      }
+      const auto dot = e.signal.find('.');
       if (dot == std::string::npos) {
         diag_.error(path, " = \"" + text + "\" violates the wire form \"input.<name>\" or \"<stage>.<port>\"");
         ok = false;
         continue;
       }
-      e.node = text.substr(0, dot);
-      e.port = text.substr(dot + 1);
+      e.node = e.signal.substr(0, dot);
+      e.port = e.signal.substr(dot + 1);
       if (e.node == "input") {
         e.from_input = true;
         if (std::find(declared_inputs_.begin(), declared_inputs_.end(), e.port) == declared_inputs_.end()) {

@@ -220,3 +220,56 @@ TEST(Pipeline, APlausibleRangeMustBeOrdered) {
 
 }  // namespace
 }  // namespace ftsense
+
+namespace ftsense {
+namespace {
+
+TEST(Pipeline, AnInputsScaleAndOffsetComeBeforeItsPlausibleRange) {
+  // Raw counts: N = 0.25 counts - 200, per column or for all; the range is in newtons.
+  Json config = test::base_config();
+  config["inputs"]["measured"]["scale"] = 0.25;
+  config["inputs"]["measured"]["offset"] = Json::array({-200.0, 0.0, 10.0});
+  config["inputs"]["measured"]["plausible_range"] = Json::array({-150.0, 5000.0});
+  Pipeline p = Pipeline::build(config, reference_plugins::registry());
+  const std::array<double, 3> counts{1000.0, 8.0, -1000.0};
+  std::copy(counts.begin(), counts.end(), p.input_values(0).begin());
+  p.step(0.0);
+  const auto v = p.values(p.signal("input.measured"));
+  EXPECT_EQ(v[0], 50.0);           // 0.25 * 1000 - 200
+  EXPECT_EQ(v[1], 2.0);            // 0.25 * 8 + 0
+  EXPECT_TRUE(std::isnan(v[2]));   // 0.25 * -1000 + 10 = -240 N: outside the range
+  EXPECT_EQ(p.implausible_counts()[0], 1u);
+}
+
+TEST(Pipeline, AWireMaySelectValuesOfASignal) {
+  // "[i]" and "[i:j]" (0-based, j excluded) pick values out of a vector signal, alone or
+  // concatenated with others.
+  const Json config = Json::parse(R"({
+    "sample_period_s": 0.01,
+    "inputs": {
+      "pos": {"columns": ["x", "y", "z"], "unit": "N"},
+      "model": {"columns": ["m1", "m2", "m3"], "unit": "N"}
+    },
+    "stages": [
+      {"name": "one", "plugin": "difference_residual",
+       "inputs": {"measured": "input.pos[2]", "virtual": "input.model[0]"}},
+      {"name": "three", "plugin": "difference_residual",
+       "inputs": {"measured": ["input.pos[1:3]", "input.pos[0]"], "virtual": "input.model"}}
+    ]
+  })");
+  Pipeline p = build(config);
+  const std::array<double, 3> pos{1.0, 2.0, 3.0};
+  const std::array<double, 3> model{0.5, 0.25, 0.125};
+  std::copy(model.begin(), model.end(), p.input_values(0).begin());  // inputs in name order
+  std::copy(pos.begin(), pos.end(), p.input_values(1).begin());
+  p.step(0.0);
+  ASSERT_EQ(p.signal("one.residual").dim, 1u);
+  EXPECT_EQ(p.values(p.signal("one.residual"))[0], 3.0 - 0.5);
+  const auto three = p.values(p.signal("three.residual"));
+  EXPECT_EQ(three[0], 2.0 - 0.5);
+  EXPECT_EQ(three[1], 3.0 - 0.25);
+  EXPECT_EQ(three[2], 1.0 - 0.125);
+}
+
+}  // namespace
+}  // namespace ftsense

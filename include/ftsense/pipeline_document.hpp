@@ -66,9 +66,12 @@ enum class DocumentSectionId : std::size_t { pipeline, input, stage, monitor, ti
 [[nodiscard]] const std::vector<DocumentSection>& pipeline_document_sections();
 [[nodiscard]] const DocumentSection& document_section(DocumentSectionId id);
 
-// One element of a wire: "input.<name>" or "<stage>.<port>".
+// One element of a wire: "input.<name>" or "<stage>.<port>", optionally followed by a selection
+// of its values, "[i]" or "[i:j]" (0-based, j excluded, as in Python): "imu.acc[2]".
 struct WireEnd {
   std::string text;          // as written
+  std::string signal;        // the text without the selection: "<node>.<port>"
+  std::optional<std::array<std::size_t, 2>> select;  // [first, last) of the signal's values
   std::string node;          // "input" or a stage name
   std::string port;          // input name or output port name
   std::string path;          // its JSON Pointer
