@@ -28,6 +28,11 @@ inline PlausibleRange foot_height_m() {
   return {1e-5, 0.2, "micrometres to a step height of tens of centimetres"};
 }
 
+// The height of the ground plane in the world frame [m].
+inline PlausibleRange ground_height_m() {
+  return {-10.0, 10.0, "the floor lies within metres of the world origin"};
+}
+
 // A force threshold that judges a sensor: above its noise, below the largest load [N].
 inline PlausibleRange force_threshold_N() {
   return {0.01, 1e4, "above sensor noise, below the landing impacts of a 300 kg robot (about 10 kN)"};

@@ -42,7 +42,7 @@ void UrdfKinematics::Params::describe(ParamSchema<Params>& schema) {
                     "lower foot's lowest sole point",
                     {{"plane", Params::GroundReference::plane}, {"lowest_sole", Params::GroundReference::lowest_sole}});
   schema.add("ground_height_m", &Params::ground_height_m, "height of the ground plane, world frame (ground_reference = plane)")
-      .unit("m").plausible(-10.0, 10.0, "the floor lies within metres of the world origin");
+      .unit("m").plausible(plausible::ground_height_m());
   schema.add("contact_height_m", &Params::contact_height_m,
              "a foot is in contact when its lowest sole point is below this height above the ground")
       .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());

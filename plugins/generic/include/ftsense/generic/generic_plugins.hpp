@@ -4,12 +4,14 @@
 #include "ftsense/generic/difference_residual.hpp"
 #include "ftsense/generic/fault_recovery.hpp"
 #include "ftsense/generic/low_pass.hpp"
+#include "ftsense/generic/orientation_to_rpy.hpp"
 #include "ftsense/generic/random_walk_fault_filter.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
 #include "ftsense/plugin_set.hpp"
 
 namespace ftsense::generic {
 
-using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery>;
+using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
+                                  OrientationToRpy>;
 
 }  // namespace ftsense::generic
