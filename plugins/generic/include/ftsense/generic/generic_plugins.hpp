@@ -1,6 +1,7 @@
 #pragma once
 // The generic plugins any fault detection problem needs, as one plugin set.
 
+#include "ftsense/generic/attitude_from_imu.hpp"
 #include "ftsense/generic/difference_residual.hpp"
 #include "ftsense/generic/fault_recovery.hpp"
 #include "ftsense/generic/low_pass.hpp"
@@ -12,6 +13,6 @@
 namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
-                                  OrientationToRpy>;
+                                  OrientationToRpy, AttitudeFromImu>;
 
 }  // namespace ftsense::generic
