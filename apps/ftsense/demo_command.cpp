@@ -134,7 +134,8 @@ int demo_command(const std::vector<std::string>& args) {
        "paper pipeline, centred bands calibrated on both gaits (configs/suralp.json, calibrate --band)", true, {},
        true},
       {"robust", configs + "/suralp_robust.json", "robust pipeline (configs/suralp_robust.json)", false, {}}};
-  const int total_steps = static_cast<int>(scenarios.size()) + 3;
+  // One step per scenario, then calibrate, run, endurance and the report.
+  const int total_steps = static_cast<int>(scenarios.size()) + 4;
   int step = 0;
   auto progress = [&](const std::string& what) {
     std::cout << "\n[" << ++step << "/" << total_steps << "] " << what << std::endl;
@@ -186,7 +187,8 @@ int demo_command(const std::vector<std::string>& args) {
   }
 
   // Endurance: fault-free walks of 60 s at both gaits and three seeds, both pipelines.
-  progress("fault-free endurance: 60 s walks, two gaits, three seeds");
+  const std::string endurance_s = quick ? "9" : "60";
+  progress("fault-free endurance: " + endurance_s + " s walks, two gaits, three seeds");
   std::ostringstream endurance;
   endurance << "\nFault-free walks of " << (quick ? 9 : 60)
             << " s (false alarms after the 2 s warm-up; paper pipeline / paper pipeline with centred bands / "
@@ -195,7 +197,7 @@ int demo_command(const std::vector<std::string>& args) {
     for (const std::string seed : {"1", "2", "3"}) {
       Json s = parse_json_text(read_text_file(configs + "/scenarios/" + gait + ".json", "scenario"), gait);
       s["duration_s"] = quick ? 9.0 : 60.0;
-      const std::string name = gait + "_60s_seed" + seed;
+      const std::string name = gait + "_" + endurance_s + "s_seed" + seed;
       std::ofstream(out + "/" + name + "_scenario.json") << s.dump(2) << '\n';
       if (int rc = simulate_command({"--scenario", out + "/" + name + "_scenario.json", "--out", out + "/" + name + ".csv",
                                      "--seed", seed, "--quiet"});

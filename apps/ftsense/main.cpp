@@ -28,8 +28,8 @@ constexpr const char* kHelp =
     "  plugins   list the plugins this program knows (--markdown: the config reference;\n"
     "            --fault-types: the fault type table)\n"
     "\n"
-    "'ftsense <verb> --help' describes a verb. Exit status: 0 success, 2 usage or\n"
-    "configuration error, 1 runtime failure.\n";
+    "'ftsense <verb> --help' describes a verb; 'ftsense --version' prints the version. Exit\n"
+    "status: 0 success, 2 usage or configuration error, 1 runtime failure.\n";
 
 }  // namespace
 
@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
   if (all.empty() || all.front() == "--help" || all.front() == "-h" || all.front() == "help") {
     std::cout << kHelp;
     return all.empty() ? kExitUsage : kExitOk;
+  }
+  if (all.front() == "--version" || all.front() == "-V") {
+    std::cout << "ftsense " << FTSENSE_VERSION << '\n';
+    return kExitOk;
   }
   const std::string verb = all.front();
   const std::vector<std::string> args(all.begin() + 1, all.end());

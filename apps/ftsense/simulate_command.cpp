@@ -1,7 +1,9 @@
 #include <charconv>
 #include <cstdio>
-#include <optional>
 #include <iostream>
+#include <optional>
+
+#include <unistd.h>
 
 #include "cli.hpp"
 #include "ftsense/io/output_file.hpp"
@@ -47,14 +49,16 @@ int simulate_command(const std::vector<std::string>& args) {
   }
   std::ostream& out = out_file->stream();
   sim::SimulationOptions sim_options;
-  if (!options.count("quiet")) {
+  // Progress overwrites one line with carriage returns: only on a terminal, never into a log file.
+  const bool show_progress = !options.count("quiet") && isatty(fileno(stderr)) == 1;
+  if (show_progress) {
     sim_options.progress = [](double t, double duration) {
       std::fprintf(stderr, "\rftsense simulate: %5.1f / %.1f s", t, duration);
       std::fflush(stderr);
     };
   }
   const sim::SimulationSummary summary = sim::simulate(scenario, seed, out, sim_options);
-  if (!options.count("quiet")) std::fprintf(stderr, "\n");
+  if (show_progress) std::fprintf(stderr, "\n");
   try {
     out_file->commit();
   } catch (const io::OutputError& e) {

@@ -28,6 +28,7 @@ awk 'BEGIN { print "time_s,cell/c1/force_N,cell/c2/force_N,cell/c3/force_N,model
 good="$here/good.json"
 
 "$ftsense" --help > "$work/out" 2> "$work/err"; check help 0 $? "run" "$work/out"
+"$ftsense" --version > "$work/out" 2> "$work/err"; check version 0 $? "^ftsense [0-9]+\.[0-9]+\.[0-9]+$" "$work/out"
 "$ftsense" > "$work/out" 2> "$work/err"; check no_verb 2 $?
 "$ftsense" rnu > "$work/out" 2> "$work/err"; check unknown_verb 2 $? "did you mean 'run'" "$work/err"
 "$ftsense" run --help > "$work/out" 2> "$work/err"; check run_help 0 $? "--config" "$work/out"

@@ -31,6 +31,12 @@ for ch in l_foot/p1 l_foot/p2 l_foot/p3 l_foot/p4 r_foot/p1 r_foot/p2 r_foot/p3 
   ok "columns of $ch in $run"
 done
 done
+# Progress counts to its total, walks are named by their length, and no carriage return reaches
+# a redirected log.
+last=$(grep -oE '^\[[0-9]+/[0-9]+\]' "$out/stdout" | tail -1)
+[ "$last" = "[11/11]" ] && ok "progress ends at [11/11]" || bad "progress ends at $last"
+[ -s "$out/clean_9s_seed1_scenario.json" ] && [ ! -e "$out/clean_60s_seed1_scenario.json" ] && ok "quick walks named 9s" || bad "quick walks not named by their length"
+if grep -q $'\r' "$out/stderr" "$out/stdout"; then bad "a carriage return in the redirected output"; else ok "no carriage return in redirected output"; fi
 rows=$(($(wc -l < "$out/paper_run_reference.csv") - 1))
 [ "$rows" -eq 9000 ] && ok "9000 rows" || bad "rows: $rows"
 # The terminal summary: the paper scenario per channel, then every scenario side by side.
