@@ -273,3 +273,52 @@ TEST(Pipeline, AWireMaySelectValuesOfASignal) {
 
 }  // namespace
 }  // namespace ftsense
+
+namespace ftsense {
+namespace {
+
+TEST(Pipeline, AQuadrupedByJsonSpreadsItsWeightOverTheFeetInContact) {
+  // A 13 kg quadruped standing on three feet (the front-left one lifted 3 cm), by JSON alone:
+  // F = m R f, contact from the feet's heights, F_z spread over the feet in contact about the
+  // CoM's projection. Oracle: at rest the three feet carry m g with the CoM at their barycentre
+  // (1/3 each), and conservation of force.
+  const Json config = Json::parse(R"({
+    "sample_period_s": 0.002,
+    "inputs": {
+      "imu_acc": {"columns": ["imu/ax", "imu/ay", "imu/az"], "unit": "m/s^2"},
+      "base_rpy": {"columns": ["base/roll", "base/pitch", "base/yaw"], "unit": "rad"},
+      "feet": {"columns": ["fl/x", "fl/y", "fl/z", "fr/x", "fr/y", "fr/z", "rl/x", "rl/y", "rl/z", "rr/x", "rr/y", "rr/z"],
+               "unit": "m"},
+      "com": {"columns": ["com/x", "com/y", "com/z"], "unit": "m"}
+    },
+    "stages": [
+      {"name": "weight", "plugin": "total_ground_force", "params": {"mass_kg": 13.0},
+       "inputs": {"imu_acc": "input.imu_acc", "base_rpy": "input.base_rpy"}},
+      {"name": "contact", "plugin": "contact_from_foot_height", "params": {"touchdown_height_m": 0.01},
+       "inputs": {"foot_pos": "input.feet"}},
+      {"name": "support", "plugin": "support_force_distribution",
+       "inputs": {"total_force": "weight.total_force", "cop": "input.com[0:2]", "foot_pos": "input.feet",
+                  "contact": "contact.contact"}}
+    ]
+  })");
+  Pipeline p = build(config);
+  const std::array<double, 3> acc{0.0, 0.0, 9.806};
+  const std::array<double, 3> rpy{0.0, 0.0, 0.0};
+  const std::array<double, 12> feet{0.25, 0.15, 0.03, 0.25, -0.15, 0.0, -0.25, 0.15, 0.0, -0.25, -0.15, 0.0};
+  // The barycentre of the three feet on the ground.
+  const std::array<double, 3> com{(0.25 - 0.25 - 0.25) / 3.0, (-0.15 + 0.15 - 0.15) / 3.0, 0.3};
+  std::copy(feet.begin(), feet.end(), p.input_values(2).begin());  // inputs in name order: base_rpy, com, feet, imu_acc
+  std::copy(rpy.begin(), rpy.end(), p.input_values(0).begin());
+  std::copy(com.begin(), com.end(), p.input_values(1).begin());
+  std::copy(acc.begin(), acc.end(), p.input_values(3).begin());
+  p.step(0.0);
+  const auto f = p.values(p.signal("support.forces"));
+  ASSERT_EQ(f.size(), 4u);
+  const double weight = 13.0 * 9.806;
+  EXPECT_EQ(f[0], 0.0);  // lifted
+  for (int i = 1; i < 4; ++i) EXPECT_NEAR(f[i], weight / 3.0, 1e-4 * weight);
+  EXPECT_NEAR(f[1] + f[2] + f[3], weight, 1e-9);
+}
+
+}  // namespace
+}  // namespace ftsense

@@ -106,9 +106,43 @@ struct ContractSetup<biped::ContactForceFdi> {
   static double sample_period_s() { return 1e-3; }
 };
 
+template <>
+struct ContractSetup<biped::SupportForceDistribution> {
+  static Json params() { return Json::object(); }
+  static std::size_t input_dim(std::string_view port) {
+    if (port == "foot_pos") return 12;  // four feet
+    return 0;
+  }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "total_force") v[2] = 130.0;  // a 13 kg quadruped
+    if (port == "cop") v[0] = 0.02, v[1] = -0.01;
+    if (port == "foot_pos") {
+      const double corners[4][2] = {{0.2, 0.1}, {0.2, -0.1}, {-0.2, 0.1}, {-0.2, -0.1}};
+      for (int i = 0; i < 4; ++i) v[3 * i] = corners[i][0], v[3 * i + 1] = corners[i][1];
+    }
+    if (port == "contact") std::fill(v.begin(), v.end(), 1.0);
+  }
+  static double sample_period_s() { return 1e-3; }
+  // Positions and forces walk by 1 mm and 1 mN per tick: the ZMP stays inside the support.
+  static double random_step() { return 0.001; }
+};
+
+template <>
+struct ContractSetup<biped::TotalGroundForce> {
+  static Json params() { return {{"mass_kg", 13.0}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "imu_acc") v[2] = 9.806;
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+
 using BipedPluginTypes = ::testing::Types<biped::LipmComEstimator, biped::LegForceSplit, biped::FootCop,
                                           biped::ContactForceDistribution, biped::ZmpFromContactForces,
-                                          biped::ContactForceFdi>;
+                                          biped::ContactForceFdi, biped::SupportForceDistribution,
+                                          biped::TotalGroundForce>;
 INSTANTIATE_TYPED_TEST_SUITE_P(Biped, PluginContract, BipedPluginTypes);
 
 }  // namespace ftsense::testing
@@ -515,6 +549,113 @@ TEST(ZmpFromContactForces, IsTheCentreOfPressureOfAllPads) {
   h.inputs()[1] = {0.0, 0.0, 0.0, 0.0};  // right foot unloaded: ZMP at the left foot's centre
   h.step(0.001);
   EXPECT_NEAR(h.outputs()[0][1], 0.1, 1e-12);
+}
+
+// support_force_distribution: N feet. Oracles: the lever rule (2 feet), barycentric coordinates
+// (3 feet), symmetry and the KKT conditions of the QP (4 feet), conservation of force always.
+struct SupportCase {
+  std::vector<std::array<double, 2>> feet;  // (x, y) world, m
+  std::vector<double> contact;
+  std::array<double, 2> cop;
+};
+
+std::vector<double> distribute(const SupportCase& c, double fz) {
+  PluginHarness<SupportForceDistribution> h;  // four feet (the contract setup)
+  h.plugin().reset();
+  h.fill_nominal();
+  auto& in = h.inputs();
+  for (std::size_t i = 0; i < 4; ++i) {
+    in[SupportForceDistribution::kFootPos][3 * i] = i < c.feet.size() ? c.feet[i][0] : 5.0;
+    in[SupportForceDistribution::kFootPos][3 * i + 1] = i < c.feet.size() ? c.feet[i][1] : 5.0;
+    in[SupportForceDistribution::kContact][i] = i < c.contact.size() ? c.contact[i] : 0.0;
+  }
+  in[SupportForceDistribution::kTotalForce] = {3.0, -2.0, fz};
+  in[SupportForceDistribution::kCop] = {c.cop[0], c.cop[1]};
+  h.step(0.0);
+  return h.outputs()[SupportForceDistribution::kForces];
+}
+
+TEST(SupportForceDistribution, TwoFeetFollowTheLeverRule) {
+  // Feet at y = +-0.1, the ZMP at y = 0.04: the lever rule gives f_left = F (0.04 + 0.1) / 0.2 =
+  // 0.7 F. Exactly, with f_left = F / 2 + d the QP minimises (0.2 d - 0.04 F)^2 + w (2 d^2 +
+  // F^2 / 2), so d = 0.2 * 0.04 F / (0.04 + 2 w): 199.990 N for w = 1e-6 m^2, 0.01 N short of
+  // the lever rule.
+  const auto f = distribute({{{0.0, 0.1}, {0.0, -0.1}}, {1.0, 1.0}, {0.0, 0.04}}, 1000.0);
+  const double d = 0.2 * 0.04 * 1000.0 / (0.04 + 2e-6);
+  EXPECT_NEAR(f[0], 500.0 + d, 1e-9);
+  EXPECT_NEAR(f[1], 500.0 - d, 1e-9);
+  EXPECT_NEAR(f[0], 700.0, 0.011);
+  EXPECT_NEAR(f[0] + f[1], 1000.0, 1e-9);
+  EXPECT_EQ(f[2], 0.0);  // feet in swing carry nothing
+  EXPECT_EQ(f[3], 0.0);
+}
+
+TEST(SupportForceDistribution, ThreeFeetTakeBarycentricShares) {
+  // Triangle (0,0), (0.4,0), (0,0.3); p = (0.1, 0.075) has barycentric coordinates (0.5, 0.25, 0.25).
+  const auto f = distribute({{{0.0, 0.0}, {0.4, 0.0}, {0.0, 0.3}, {9.0, 9.0}}, {1.0, 1.0, 1.0, 0.0}, {0.1, 0.075}}, 200.0);
+  EXPECT_NEAR(f[0], 100.0, 0.01);
+  EXPECT_NEAR(f[1], 50.0, 0.01);
+  EXPECT_NEAR(f[2], 50.0, 0.01);
+  EXPECT_EQ(f[3], 0.0);
+  EXPECT_NEAR(f[0] + f[1] + f[2], 200.0, 1e-9);
+}
+
+TEST(SupportForceDistribution, FourFeetMeetTheMomentAndTheKktConditions) {
+  const std::vector<std::array<double, 2>> feet{{10.2, 3.1}, {10.2, 2.9}, {9.8, 3.1}, {9.8, 2.9}};  // far from the origin
+  // At the centre: a quarter each (symmetry).
+  auto f = distribute({feet, {1, 1, 1, 1}, {10.0, 3.0}}, 130.0);
+  for (double v : f) EXPECT_NEAR(v, 32.5, 1e-9);
+  // Off-centre: sum, moments (to w / sum x^2 = 1e-6 / 0.2 relative) and the QP's KKT conditions.
+  const std::array<double, 2> p{10.07, 2.96};
+  f = distribute({feet, {1, 1, 1, 1}, p}, 130.0);
+  double sum = 0.0, mx = 0.0, my = 0.0;
+  ContactGeometry g;
+  g.points.resize(2, 4);
+  g.weights.setConstant(4, 1e-6);
+  ContactVector forces(4);
+  for (int i = 0; i < 4; ++i) {
+    sum += f[i];
+    mx += f[i] * (feet[i][0] - 10.0);
+    my += f[i] * (feet[i][1] - 3.0);
+    EXPECT_GE(f[i], 0.0);
+    g.points(0, i) = feet[i][0] - 10.0;
+    g.points(1, i) = feet[i][1] - 3.0;
+    forces(i) = f[i];
+  }
+  EXPECT_NEAR(sum, 130.0, 1e-9);
+  EXPECT_NEAR(mx, 130.0 * 0.07, 130.0 * 0.07 * 1e-4);
+  EXPECT_NEAR(my, 130.0 * -0.04, 130.0 * 0.04 * 1e-4);
+  const ContactQpKkt kkt = check_kkt(ContactQpProblem{g, 130.0, Eigen::Vector2d(0.07, -0.04)}, forces, 1e-8);
+  EXPECT_TRUE(kkt.satisfied()) << kkt.describe();
+}
+
+TEST(SupportForceDistribution, OutsideTheSupportTheNearestFootCarriesMost) {
+  const auto f = distribute({{{0.0, 0.1}, {0.0, -0.1}}, {1.0, 1.0}, {0.0, 0.5}}, 100.0);
+  EXPECT_NEAR(f[0], 100.0, 1e-6);  // all on the left foot, none pulling
+  EXPECT_NEAR(f[1], 0.0, 1e-6);
+}
+
+TEST(SupportForceDistribution, FlightIsZeroAndUnknownInputsAreNotReady) {
+  auto f = distribute({{{0.0, 0.1}, {0.0, -0.1}}, {0.0, 0.0}, {0.0, 0.0}}, 0.0);
+  for (double v : f) EXPECT_EQ(v, 0.0);
+  f = distribute({{{0.0, 0.1}, {0.0, -0.1}}, {1.0, std::nan("")}, {0.0, 0.0}}, 100.0);
+  for (double v : f) EXPECT_TRUE(std::isnan(v));
+  f = distribute({{{0.0, 0.1}, {std::nan(""), -0.1}}, {1.0, 1.0}, {0.0, 0.0}}, 100.0);
+  for (double v : f) EXPECT_TRUE(std::isnan(v));
+  f = distribute({{{0.0, 0.1}, {0.0, -0.1}}, {1.0, 1.0}, {0.0, 0.0}}, -50.0);  // pulled, not pushed
+  for (double v : f) EXPECT_TRUE(std::isnan(v));
+  // A foot in swing may have no position at all.
+  f = distribute({{{0.0, 0.1}, {std::nan(""), -0.1}}, {1.0, 0.0}, {0.0, 0.1}}, 100.0);
+  EXPECT_NEAR(f[0], 100.0, 1e-9);
+  EXPECT_EQ(f[1], 0.0);
+}
+
+TEST(SupportForceDistribution, FeetAreStackedInThreesAndAtMostEight) {
+  SupportForceDistribution::Params p;
+  EXPECT_THROW(SupportForceDistribution(p, StageContext(1e-3, "s", {{"foot_pos", 7}})), ConfigError);
+  EXPECT_THROW(SupportForceDistribution(p, StageContext(1e-3, "s", {{"foot_pos", 27}})), ConfigError);
+  const SupportForceDistribution six(p, StageContext(1e-3, "s", {{"foot_pos", 18}}));
+  EXPECT_EQ(six.ports().outputs()[0].dim, 6u);
 }
 
 }  // namespace
