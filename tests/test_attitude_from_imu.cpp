@@ -110,5 +110,16 @@ TEST(AttitudeFromImu, TheAccelerometerIsIgnoredThroughMotion) {
   EXPECT_NEAR(h.outputs()[0][2], 0.25, 1e-9);
 }
 
+TEST(AttitudeFromImu, AnAbsurdRateDoesNotLatchANaN) {
+  // 1e300 rad/s is finite but no gyro's (beyond half a turn per tick): the attitude holds.
+  PluginHarness<AttitudeFromImu> h;
+  h.plugin().reset();
+  feed(h, {0.0, 0.0, 0.0}, at_rest(0.1, 0.0, 0.0), 0.0);
+  feed(h, {1e300, 1e300, 0.0}, at_rest(0.1, 0.0, 0.0), 0.001);
+  feed(h, {0.0, 0.0, 0.0}, at_rest(0.1, 0.0, 0.0), 0.002);
+  EXPECT_NEAR(h.outputs()[0][0], 0.1, 1e-12);
+  EXPECT_NEAR(h.outputs()[0][1], 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace ftsense::generic

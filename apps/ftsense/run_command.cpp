@@ -161,13 +161,13 @@ int run_command(const std::vector<std::string>& args) {
     const std::size_t longest = summary.longest_unjudged_ticks[c];
     summary_out << "  " << names << ": not judged for " << n << " tick" << (n == 1 ? "" : "s") << " (" << seconds(n)
                 << " s), the longest stretch " << seconds(longest) << " s from t = "
-                << summary.longest_unjudged_start_s[c]
+                << format_number(summary.longest_unjudged_start_s[c])
                 << " s: the virtual sensor was not ready, so a fault there would go unseen\n";
   }
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {
     if (!std::isnan(summary.first_fault_time_s[c])) {
       summary_out << "  " << pipeline.monitor().channels[c] << ": fault first flagged at t = "
-                << summary.first_fault_time_s[c] << " s\n";
+                << format_number(summary.first_fault_time_s[c]) << " s\n";
     }
   }
   return kExitOk;

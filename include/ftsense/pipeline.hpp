@@ -23,7 +23,8 @@
 //
 // Per tick: write each input's values into input_values(i), call step(t), read values(ref).
 // step() first converts each input with a scale or offset (value = scale * logged + offset), then
-// replaces input values outside their input's plausible_range by NaN.
+// replaces input values outside their input's plausible_range by NaN. Both act in place on the
+// input values, so write the logged values before every step() (as `ftsense run` does).
 // step() runs the stages in dependency order over one preallocated buffer: no allocation, no
 // exception, no string lookup.
 

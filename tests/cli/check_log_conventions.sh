@@ -141,7 +141,9 @@ for r, g in zip(ref[1:], got[1:]):
         if name.endswith("/fault") or name.endswith("/fault_type"):
             if a != b:
                 problems.append(f"t = {r[0]}: {name} = {b}, not {a}")
-        elif not (math.isnan(a) and math.isnan(b)):
+        elif math.isnan(a) != math.isnan(b):
+            problems.append(f"t = {r[0]}: {name} = {b}, not {a}")
+        elif not math.isnan(a):
             worst = max(worst, abs(a - b))
 if len(ref) != len(got):
     problems.append(f"{len(got)} rows, not {len(ref)}")

@@ -57,9 +57,13 @@ while read -r name column value; do
        { if ($1 + 0 >= t0 && $1 + 0 < t1) for (k = 1; k <= found; k++) $(cols[k]) = val; print }' "$work/clean.csv" > "$work/bad.csv" \
     || { echo "FAIL $name: column $column not in the log"; failures=$((failures + 1)); continue; }
   for config in suralp suralp_robust; do
-    if ! run "$config" "$work/bad.csv" "$work/run.csv"; then
-      echo "FAIL $name/$config: exit $?"; cat "$work/err"; failures=$((failures + 1)); continue
+    run "$config" "$work/bad.csv" "$work/run.csv"
+    status=$?
+    if [ $status -ne 0 ]; then
+      echo "FAIL $name/$config: exit $status"; cat "$work/err"; failures=$((failures + 1)); continue
     fi
+    # The stretch must have reached the pipeline: the bad log differs from the clean one.
+    cmp -s "$work/bad.csv" "$work/clean.csv" && { echo "FAIL $name: the bad stretch changed nothing"; failures=$((failures + 1)); continue; }
     if /usr/bin/python3 - "$work/clean.csv" "$work/run.csv" "$work/reference_$config.csv" "$name/$config" <<'PY'
 import csv, math, sys
 log_path, run_path, reference_path, label = sys.argv[1:5]

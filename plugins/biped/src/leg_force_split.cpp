@@ -76,7 +76,9 @@ void LegForceSplit::step(const StepIO& io) noexcept {
   const auto beyond_friction = [&c](const Eigen::Vector3d& o) {
     return (c - o).head<2>().norm() > c.z() - o.z();
   };
-  const bool split_known = std::isfinite(c_lat) && !(left && beyond_friction(o_l)) && !(right && beyond_friction(o_r));
+  // In double support the split needs the CoM; in single support it is +-1 whatever the CoM.
+  const bool split_known = (!(left && right) || std::isfinite(c_lat)) && !(left && beyond_friction(o_l)) &&
+                           !(right && beyond_friction(o_r));
   if (was_double_support_ && left != right && std::isfinite(c_lat) && std::abs(c_lat) > 1e-3) {
     recorded_reach_m_ = std::abs(c_lat);
   }
@@ -91,7 +93,9 @@ void LegForceSplit::step(const StepIO& io) noexcept {
     alpha = split_known ? 1.0 : kNaN;
   } else if (right) {
     alpha = split_known ? -1.0 : kNaN;
-  } else if (all_finite(contact)) {
+  } else if (!all_finite(contact)) {
+    alpha = kNaN;  // the schedule is unknown, so is the split (total is NaN too)
+  } else {
     const double mass = params_.mass_source == Params::MassSource::input ? io.in(kMass)[0] : params_.mass_kg;
     // Flight: a free fall reads about 0, so a robot held up (about g) contradicts the schedule.
     const bool held = !(total.z() <= 0.5 * params_.gravity_m_s2 * mass);

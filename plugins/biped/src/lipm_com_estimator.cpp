@@ -74,6 +74,11 @@ LipmComEstimator::LipmComEstimator(const Params& params, const StageContext& con
   ports_.add_output({"ready", 1, "1",
                      "1 when the CoM's variance is within max_com_std_ratio^2 of its steady state on both axes"});
   steady_state_com_variance_ = solve_steady_state_com_variance();
+  // Valid parameters always give a positive, finite P_inf; should they not, readiness falls back
+  // on the starting variance rather than never (or always) being ready.
+  if (!(steady_state_com_variance_ > 0.0) || !std::isfinite(steady_state_com_variance_)) {
+    steady_state_com_variance_ = initial_covariance()(0, 0);
+  }
   reset();
 }
 
@@ -218,7 +223,7 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
       a.resets += 1.0;
     }
     a.last_good_com = a.s(0);
-    ready = ready && a.P(0, 0) <= ready_variance;
+    ready = ready && initialised_ && a.P(0, 0) <= ready_variance;  // never before a first ZMP
     com[i] = a.s(0);
     vel[i] = a.s(1);
     accel[i] = a.s(2);

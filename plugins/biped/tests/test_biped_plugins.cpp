@@ -281,6 +281,28 @@ TEST(LipmComEstimator, WithoutTheZmpTheCoMIsNotReadyAndReacquiresWhenItReturns) 
   EXPECT_LT(worst_error_once_ready, 0.01);
 }
 
+TEST(LipmComEstimator, NeverReadyBeforeAFirstZmp) {
+  // Even with a ratio so loose that the starting variance is within it, no ZMP means no CoM.
+  LipmComEstimator::Params p;
+  p.com_height_m = 0.8;
+  p.max_com_std_ratio = 100.0;
+  LipmComEstimator estimator(p, StageContext(1e-3, "com"));
+  std::vector<std::vector<double>> in{{0.0, 0.0, 9.806}, {0.0, 0.0, 0.0}, {std::nan(""), std::nan("")}};
+  std::vector<std::vector<double>> out{std::vector<double>(3), std::vector<double>(2), std::vector<double>(2),
+                                       std::vector<double>(2), std::vector<double>(2), std::vector<double>(1)};
+  std::vector<std::span<const double>> ins(in.begin(), in.end());
+  std::vector<std::span<double>> outs(out.begin(), out.end());
+  StepIO io;
+  io.inputs = ins;
+  io.outputs = outs;
+  for (int k = 0; k < 100; ++k) {
+    io.time_s = k * 1e-3;
+    estimator.step(io);
+    ASSERT_EQ(out[LipmComEstimator::kReady][0], 0.0) << "tick " << k;
+    ASSERT_TRUE(std::isnan(out[LipmComEstimator::kCom][0]));
+  }
+}
+
 TEST(LipmComEstimator, AZmpFartherThanTheCoMHeightIsDropped) {
   // |c - p| <= z_c (friction mu <= 1): a ZMP 2 m off (z_c = 0.8 m) is dropped, the CoM stays.
   PluginHarness<LipmComEstimator> h;
@@ -379,12 +401,21 @@ TEST(LegForceSplit, AScheduleOrCoMThePhysicsForbidsMakesItNotReady) {
   h.step(0.004);
   EXPECT_TRUE(all_nan(0) && all_nan(1) && all_nan(3));
   EXPECT_NEAR(h.outputs()[2][2], 114.0 * 9.806, 1e-9);
-  // In double support a CoM that is not ready (NaN) leaves the split unknown too.
+  // In double support a CoM that is not ready (NaN) leaves the split unknown too; in single
+  // support the split is +-1 whatever the CoM.
   in[5] = {1.0, 1.0};
   in[2] = {std::nan(""), std::nan(""), 0.8};
   h.step(0.005);
   EXPECT_TRUE(all_nan(0) && all_nan(1));
   EXPECT_NEAR(h.outputs()[2][2], 114.0 * 9.806, 1e-9);
+  in[5] = {0.0, 1.0};
+  h.step(0.006);
+  EXPECT_EQ(h.outputs()[3][0], -1.0);
+  EXPECT_NEAR(h.outputs()[1][2], 114.0 * 9.806, 1e-9);
+  // An unknown schedule: everything unknown, alpha too.
+  in[5] = {std::nan(""), std::nan("")};
+  h.step(0.007);
+  EXPECT_TRUE(all_nan(0) && all_nan(1) && all_nan(2) && all_nan(3));
 }
 
 TEST(LegForceSplit, RecordsTheLateralReachAtSingleSupportOnset) {

@@ -9,6 +9,8 @@ namespace ftsense::generic {
 
 namespace {
 
+constexpr double kHalfTurn = 3.14159265358979323846;
+
 bool finite3(std::span<const double> v) noexcept {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
@@ -78,8 +80,10 @@ void AttitudeFromImu::step(const StepIO& io) noexcept {
       rate[1] += gain * (az * vx - ax * vz);
       rate[2] += gain * (ax * vy - ay * vx);
     }
-    const double angle = period_s_ * std::sqrt(rate[0] * rate[0] + rate[1] * rate[1] + rate[2] * rate[2]);
-    if (angle > 0.0) {
+    const double angle = period_s_ * std::hypot(rate[0], rate[1], rate[2]);
+    // More than half a turn in one tick cannot be integrated (it aliases): such a rate is a
+    // broken reading, and the attitude holds as for a missing gyro.
+    if (angle > 0.0 && angle <= kHalfTurn) {
       const double c = std::cos(0.5 * angle);
       const double s = std::sin(0.5 * angle) * period_s_ / angle;  // sin(|w|T/2) / |w|
       const double dx = s * rate[0], dy = s * rate[1], dz = s * rate[2];
@@ -88,6 +92,8 @@ void AttitudeFromImu::step(const StepIO& io) noexcept {
       // Keep |q| = 1 against rounding over millions of ticks.
       const double n = std::sqrt(q_[0] * q_[0] + q_[1] * q_[1] + q_[2] * q_[2] + q_[3] * q_[3]);
       for (double& v : q_) v /= n;
+      // An absurd rate (1e300 rad/s is finite) must not latch a NaN attitude: start again.
+      if (!(std::isfinite(q_[0]) && std::isfinite(q_[1]) && std::isfinite(q_[2]) && std::isfinite(q_[3]))) reset();
     }
   }
   const auto rpy = io.out(kRpy);

@@ -22,7 +22,8 @@
 //     |c - o_i|_xy > c_z - o_{i,z}: its force along that line would need a friction coefficient
 //     above 1, which no sole has, so the CoM (or the foot's position) is wrong. The split is then
 //     unknown (l_force, r_force NaN); the total force F does not depend on c and stays.
-//     A CoM that is not ready (NaN) in double support leaves the split unknown as well.
+//     A CoM that is not ready (NaN) in double support leaves the split unknown as well (in single
+//     support alpha is +-1 whatever the CoM). In flight, a non-finite IMU gives NaN, not zero.
 // o_L, o_R are the foot frame origins (sole plane under the ankle) in the world frame [m].
 // m is `mass_kg`, or with mass_source = "input" the value of input `mass` (for example the URDF's
 // total mass from urdf_kinematics).

@@ -18,8 +18,9 @@
 // Start: the first tick whose f reads gravity alone (| |f| - g | <= accept_acc_fraction g) takes
 // roll and pitch from it,
 // roll = atan2(f_y, f_z), pitch = atan2(-f_x, hypot(f_y, f_z)) (exact for a robot at rest); until
-// then rpy is NaN (not ready). A non-finite gyro holds the attitude for that tick; a non-finite
-// f skips the correction. Output rpy in the convention of the biped plugins,
+// then rpy is NaN (not ready). A non-finite gyro, or one turning more than half a turn in a tick
+// (|w| T > pi: it would alias), holds the attitude for that tick; a non-finite f skips the
+// correction. Output rpy in the convention of the biped plugins,
 // R = Rz(yaw) Ry(pitch) Rx(roll) (orientation_to_rpy.hpp). Allocation-free.
 
 #include <array>
