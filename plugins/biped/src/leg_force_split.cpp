@@ -61,7 +61,7 @@ void LegForceSplit::step(const StepIO& io) noexcept {
   Eigen::Vector3d total = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   if (all_finite(io.in(kImuAcc)) && all_finite(io.in(kBaseRpy))) {
     const double mass = params_.mass_source == Params::MassSource::input ? io.in(kMass)[0] : params_.mass_kg;
-    total = mass * (rotation_from_rpy(io.in(kBaseRpy)) * vector3(io.in(kImuAcc)));
+    total = ground_reaction_force(mass, io.in(kBaseRpy), io.in(kImuAcc));
   }
   if (!all_finite(contact)) total.setConstant(std::numeric_limits<double>::quiet_NaN());
   const Eigen::Vector3d o_l = vector3(io.in(kLeftFootPos));

@@ -37,7 +37,7 @@ void TotalGroundForce::step(const StepIO& io) noexcept {
     return;
   }
   const double mass = params_.mass_source == Params::MassSource::input ? io.in(kMass)[0] : params_.mass_kg;
-  const Eigen::Vector3d f = mass * (rotation_from_rpy(io.in(kBaseRpy)) * vector3(io.in(kImuAcc)));
+  const Eigen::Vector3d f = ground_reaction_force(mass, io.in(kBaseRpy), io.in(kImuAcc));
   out[0] = f.x();
   out[1] = f.y();
   out[2] = f.z();

@@ -41,6 +41,13 @@ namespace ftsense::biped {
   return {v[0], v[1], v[2]};
 }
 
+// The total ground reaction force F = m R_wb f_imu [N], world frame (method.md section 2): the
+// IMU's specific force f_imu [m/s^2] includes gravity, limb inertia is neglected.
+[[nodiscard]] inline Eigen::Vector3d ground_reaction_force(double mass_kg, std::span<const double> base_rpy,
+                                                           std::span<const double> imu_acc) noexcept {
+  return mass_kg * (rotation_from_rpy(base_rpy) * vector3(imu_acc));
+}
+
 [[nodiscard]] inline bool all_finite(std::span<const double> v) noexcept {
   for (double x : v) {
     if (!std::isfinite(x)) return false;
