@@ -2,6 +2,7 @@
 // The generic plugins any fault detection problem needs, as one plugin set.
 
 #include "ftsense/generic/attitude_from_imu.hpp"
+#include "ftsense/generic/cusum_detector.hpp"
 #include "ftsense/generic/difference_residual.hpp"
 #include "ftsense/generic/fault_recovery.hpp"
 #include "ftsense/generic/low_pass.hpp"
@@ -13,6 +14,6 @@
 namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
-                                  OrientationToRpy, AttitudeFromImu>;
+                                  OrientationToRpy, AttitudeFromImu, CusumDetector>;
 
 }  // namespace ftsense::generic
