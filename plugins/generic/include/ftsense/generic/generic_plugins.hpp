@@ -8,12 +8,13 @@
 #include "ftsense/generic/low_pass.hpp"
 #include "ftsense/generic/orientation_to_rpy.hpp"
 #include "ftsense/generic/random_walk_fault_filter.hpp"
+#include "ftsense/generic/signal_validator.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
 #include "ftsense/plugin_set.hpp"
 
 namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
-                                  OrientationToRpy, AttitudeFromImu, CusumDetector>;
+                                  OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator>;
 
 }  // namespace ftsense::generic
