@@ -8,6 +8,7 @@ import math
 import os
 import sys
 import tempfile
+import threading
 import unittest
 import warnings
 
@@ -149,6 +150,31 @@ class SmallDictConfig(unittest.TestCase):
             self.p.run(inputs, time=[0.0, 0.001])
         with self.assertRaisesRegex(KeyError, "no signal named 'smooth.filterd'"):
             self.p.run(inputs, outputs=["smooth.filterd"])
+
+
+class Threads(unittest.TestCase):
+    def test_run_releases_the_gil_and_guards_its_pipeline(self):
+        """While one thread runs a long run, another runs Python (the GIL is released) and is
+        refused the same pipeline (its buffers are in use) but may step another."""
+        p = ftsense.Pipeline(small_config())
+        other = ftsense.Pipeline(small_config())
+        inputs = small_inputs(400000)
+        done = threading.Event()
+        worker = threading.Thread(target=lambda: (p.run(inputs, outputs=["detect.fault"]), done.set()))
+        refused = stepped = 0
+        worker.start()
+        while not done.is_set():
+            try:
+                p.reset()
+            except RuntimeError as e:
+                self.assertIn("in use by another thread", str(e))
+                refused += 1
+                other.step(0.0, {name: rows[0] for name, rows in inputs.items()})
+                stepped += 1
+        worker.join()
+        self.assertGreater(refused, 0)
+        self.assertEqual(stepped, refused)
+        p.reset()  # free again once the run is over
 
 
 class BadConfigs(unittest.TestCase):
