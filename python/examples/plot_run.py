@@ -40,7 +40,7 @@ def main():
     if unknown:
         sys.exit("plot_run.py: no channel %s; the config monitors %s" % (", ".join(unknown), ", ".join(pipeline.channels)))
 
-    fig, axes = plt.subplots(len(channels), 1, sharex=True, figsize=(10, 2.6 * len(channels)), squeeze=False)
+    fig, axes = plt.subplots(len(channels), 1, sharex=True, figsize=(10, 2.4 * len(channels) + 0.8), squeeze=False)
     for ax, ch in zip(axes[:, 0], channels):
         flagged = run[ch + "/fault"] != 0
         if flagged.any():
@@ -49,7 +49,7 @@ def main():
             first = int(numpy.argmax(flagged))
             kind = ftsense.fault_type_name(run[ch + "/fault_type"][first])
             ax.axvline(t[first], color="tab:red", lw=0.8)
-            ax.annotate("flagged at %.3f s: %s" % (t[first], kind), (t[first], 0.92), xycoords=("data", "axes fraction"),
+            ax.annotate("flagged at %.3f s: %s" % (t[first], kind), (t[first], 0.95), xycoords=("data", "axes fraction"), va="top",
                         xytext=(4, 0), textcoords="offset points", color="tab:red", fontsize=8)
         ax.plot(t, run["%s/measured_%s" % (ch, unit)], color="0.55", lw=0.8, label="measured")
         ax.plot(t, run["%s/virtual_%s" % (ch, unit)], color="tab:blue", lw=1.0, label="virtual")
@@ -59,10 +59,17 @@ def main():
             ax.plot(log["time_s"], log[truth], color="black", lw=1.0, ls="--", label="true")  # dashed, on top
         ax.set_ylabel("%s [%s]" % (ch, unit))
         ax.grid(alpha=0.3)
-    axes[0, 0].legend(loc="upper left", ncol=5, fontsize=8)
+    # One legend for every panel, under the title (a panel's own would hide its curves).
+    legend = {}
+    for ax in axes[:, 0]:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            legend.setdefault(label, handle)
+    height = fig.get_figheight()
+    fig.suptitle("%s on %s" % (os.path.basename(args.config), os.path.basename(args.log)), y=1 - 0.1 / height)
+    fig.legend(legend.values(), legend.keys(), loc="upper center", ncol=len(legend), fontsize=8,
+               bbox_to_anchor=(0.5, 1 - 0.32 / height), frameon=False)
     axes[-1, 0].set_xlabel("time [s]")
-    fig.suptitle("%s on %s" % (os.path.basename(args.config), os.path.basename(args.log)))
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.6 / height))
     fig.savefig(args.out, dpi=110)
     print("wrote", args.out, "(channels: %s)" % ", ".join(channels))
 
