@@ -228,6 +228,16 @@ class BadConfigs(unittest.TestCase):
             self.assertIn("/inputs/measured/columns/1", [p for p, _ in caught.exception.problems])
             self.assertIn("column 'cell/c2/force_N' is not in " + log, str(caught.exception))
 
+    def test_dict_warning_is_a_config_warning_with_its_path(self):
+        config = small_config()
+        config["stages"][1]["params"]["cutoff_hz"] = 1e-300  # within bounds, not plausible
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            p = ftsense.Pipeline(config)
+        self.assertEqual([w.category for w in caught], [ftsense.ConfigWarning])
+        self.assertIn("/stages/1/params/cutoff_hz = 1e-300 is outside the plausible range", str(caught[0].message))
+        self.assertEqual(p.warnings, [str(caught[0].message)])
+
     def test_not_a_config(self):
         with self.assertRaises(TypeError):
             ftsense.Pipeline(42)
