@@ -78,11 +78,11 @@ bool numeric(const std::string& s) {
   return digit;
 }
 
-constexpr const char* kStyle = R"(body{font-family:'DejaVu Sans',Arial,sans-serif;margin:24px auto;max-width:1480px;color:#222;line-height:1.4}
+constexpr const char* kStyle = R"(body{font-family:'DejaVu Sans',Arial,sans-serif;margin:16px auto;max-width:1400px;padding:0 12px;color:#222;line-height:1.4}
 h1{font-size:1.6em;border-bottom:2px solid #444;padding-bottom:4px}h2{font-size:1.3em;margin-top:1.6em;border-bottom:1px solid #bbb}
 table{border-collapse:collapse;margin:8px 0 16px;font-size:0.9em}th,td{border:1px solid #ccc;padding:3px 8px}
 th{background:#eef1f5;text-align:left}td.n{text-align:right;font-variant-numeric:tabular-nums}tr:nth-child(even) td{background:#fafafa}
-figure{margin:12px 0 24px}figure img{max-width:100%;border:1px solid #ddd}figcaption{font-size:0.9em;color:#444;max-width:1400px}
+figure{margin:12px 0 24px}figure img{max-width:100%;box-sizing:border-box;border:1px solid #ddd}figcaption{font-size:0.9em;color:#444;max-width:1400px}
 details{margin:8px 0;border:1px solid #ddd;border-radius:4px;padding:4px 12px}summary{font-weight:bold;cursor:pointer;padding:4px 0}
 code{background:#f2f2f2;padding:0 3px;border-radius:3px})";
 

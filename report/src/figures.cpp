@@ -341,19 +341,20 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
     gp << "set terminal pngcairo noenhanced size 1400," << 140 + 45 * n << " font 'DejaVu Sans,11'\n"
        << "set output " << quoted(out_dir + "/" + fig.file) << "\nset title " << quoted(fig.title) << " font ',14'\n"
        << "set ylabel ''\nset yrange [-0.5:" << n << "]\nset ytics (";
-    for (std::size_t c = 0; c < n; ++c) gp << (c ? ", " : "") << quoted(run.channels[c].name) << " " << c;
+    auto row_of = [n](std::size_t c) { return n - 1 - c; };  // channel 0 on top, as in Fig. 8
+    for (std::size_t c = 0; c < n; ++c) gp << (c ? ", " : "") << quoted(run.channels[c].name) << " " << row_of(c);
     gp << ")\nunset object\n";
     for (std::size_t c = 0; c < n; ++c) {
       fig.channels.push_back(run.channels[c].name);
       if (!truth) continue;
       for (const auto& [a, b] : shade[c]) {
-        gp << "set object rect from " << number(a) << ", " << c - 0.15 << " to " << number(std::max(b, a + 0.02)) << ", "
-           << c + 0.85 << " behind fc rgb '#fbe4e1' fs solid 1.0 noborder\n";
+        gp << "set object rect from " << number(a) << ", " << row_of(c) - 0.1 << " to " << number(std::max(b, a + 0.02))
+           << ", " << row_of(c) + 0.8 << " behind fc rgb '#fbe4e1' fs solid 1.0 noborder\n";
       }
     }
     gp << "set key off\nplot ";
     for (std::size_t c = 0; c < n; ++c) {
-      gp << (c ? ", " : "") << dat_q << " using 1:($" << 2 + panels.size() * per + c << "*0.7+" << c
+      gp << (c ? ", " : "") << dat_q << " using 1:($" << 2 + panels.size() * per + c << "*0.7+" << row_of(c)
          << ") with steps lw 2 lc rgb '#1f77b4'";
     }
     gp << "\nunset object\nset ytics autofreq\n";
@@ -361,17 +362,17 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
   }
 
   // Fig. 8: the fault types over time; types.dat has one box per stretch:
-  // x, y, x_low, x_high, y_low, y_high, colour.
+  // x, y, x_low, x_high, y_low, y_high, colour, strip (0 named, 1 injected).
   {
     RunFigure fig = new_figure(FigureKind::fault_types, truth);
     std::vector<bool> present(kFaultTypes.size(), false);
     std::ofstream f(types_dat);
     std::size_t boxes = 0;
-    auto put_box = [&](const Stretch& s, double y, double half_height) {
+    auto put_box = [&](const Stretch& s, double y, double half_height, int strip) {
       const double a = time[s.first], b = std::max(time[s.last], a + kMinStretchS);
       f << number((a + b) / 2) << ' ' << y << ' ' << number(a) << ' ' << number(b) << ' ' << y - half_height << ' '
         << y + half_height << ' ' << fault_type_colour(fault_type_from_code(s.code).value_or(FaultType::unclassified))
-        << '\n';
+        << ' ' << strip << '\n';
       present[static_cast<std::size_t>(fault_type_from_code(s.code).value_or(FaultType::unclassified))] = true;
       ++boxes;
     };
@@ -382,13 +383,13 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
       fig.channels.push_back(ch.name);
       for (const Stretch& s : stretches(ch[MonitorColumn::fault_type], ch[MonitorColumn::fault])) {
         // A flagged stretch whose type reads none is a fault of no known type.
-        put_box(s.code == 0 ? Stretch{s.first, s.last, 1} : s, row_y(c) + (truth ? 0.25 : 0.0), truth ? 0.2 : 0.18);
+        put_box(s.code == 0 ? Stretch{s.first, s.last, 1} : s, row_y(c) + (truth ? 0.25 : 0.0), truth ? 0.2 : 0.18, 0);
       }
       if (truth && ch.true_fault != nullptr) {
-        for (const Stretch& s : stretches(*ch.true_fault, {})) put_box(s, row_y(c) - 0.25, 0.2);
+        for (const Stretch& s : stretches(*ch.true_fault, {})) put_box(s, row_y(c) - 0.25, 0.2, 1);
       }
     }
-    if (boxes == 0) f << "NaN NaN NaN NaN NaN NaN 0\n";  // gnuplot needs a point; nothing is drawn
+    if (boxes == 0) f << "NaN NaN NaN NaN NaN NaN 0 0\n";  // gnuplot needs a point; nothing is drawn
     f.close();
     gp << "set terminal pngcairo noenhanced size 1400," << 160 + (truth ? 70 : 40) * n << " font 'DejaVu Sans,11'\n"
        << "set output " << quoted(out_dir + "/" + fig.file) << "\nset title " << quoted(fig.title) << " font ',14'\n"
@@ -402,8 +403,11 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
         gp << (c ? ", " : "") << quoted(run.channels[c].name) << " " << row_y(c);
       }
     }
+    // The named type solid, the injected one lighter beneath it.
     gp << ")\nset grid noytics\nset key outside right top vertical box opaque\nplot " << quoted(types_dat)
-       << " using 1:2:3:4:5:6:7 with boxxyerror fs solid 1.0 noborder lc rgb variable notitle";
+       << " using 1:($8 == 0 ? $2 : NaN):3:4:5:6:7 with boxxyerror fs solid 1.0 noborder lc rgb variable notitle, "
+       << quoted(types_dat) << " using 1:($8 == 1 ? $2 : NaN):3:4:5:6:7 with boxxyerror fs transparent solid 0.45 noborder "
+       << "lc rgb variable notitle";
     for (std::size_t t = 1; t < present.size(); ++t) {
       if (present[t]) {
         gp << ", keyentry with boxes fs solid 1.0 lc rgb '" << colour_text(kTypeColours[t]) << "' title "

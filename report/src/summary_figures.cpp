@@ -111,7 +111,7 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
       gp << "plot " << quoted(matrix_dat) << " index " << p << " using 1:2:3 with image, '' index " << p
          << " using 1:2:($3 > 0 ? sprintf('%d', $3) : '') with labels font ',12'\n";
     }
-    gp << "unset multiplot\nunset object\nset xtics norotate autofreq\nset ytics autofreq\nset tics scale default\n"
+    gp << "unset multiplot\nunset object\nset xtics norotate autojustify autofreq\nset ytics autofreq\nset tics scale default\n"
           "set xrange [*:*]\nset yrange [*:*]\nunset xlabel\nunset ylabel\n";
   }
 

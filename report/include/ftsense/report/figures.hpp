@@ -75,7 +75,7 @@ inline constexpr std::array<FigureKindInfo, 5> kFigureKinds{{
     {FigureKind::fault_types, "fault_types", "fig8_fault_types.png", "fig8_fault_types.png",
      "Fault types over time", "Fault types named over time (no truth)",
      "Per channel, the fault type the pipeline names while it flags the channel (upper strip) and the injected "
-     "fault type (lower strip), one colour per type; stretches shorter than 50 ms are widened to show.",
+     "fault type (lower strip, lighter), one colour per type; stretches shorter than 50 ms are widened to show.",
      "Per channel, the fault type the pipeline names while it flags the channel, one colour per type; "
      "stretches shorter than 50 ms are widened to show."},
 }};
