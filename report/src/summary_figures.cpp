@@ -144,13 +144,15 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
     d << "NaN NaN -1 -1\n";
     a << "NaN NaN -1\n";
     const double bar = width * 0.9;
-    gp << "set terminal pngcairo noenhanced size 1400,900 font 'DejaVu Sans,11'\nset output "
-       << quoted(out_dir + "/scenario_chart.png") << "\nset multiplot layout 2,1 title "
+    // The delays get two thirds of the height, the false alarms the rest.
+    gp << "set terminal pngcairo noenhanced size 1400,860 font 'DejaVu Sans,11'\nset output "
+       << quoted(out_dir + "/scenario_chart.png") << "\nset multiplot title "
        << quoted("Per scenario: detection delay of each faulty channel, type named right or wrong, and false alarms")
        << " font ',14'\nset grid\nset key outside right top vertical box opaque\nset lmargin 12\nset rmargin 58\n"
        << "set xrange [-0.5:" << scenarios.size() - 0.5 << "]\nset xtics (";
     for (std::size_t s = 0; s < scenarios.size(); ++s) gp << (s ? ", " : "") << quoted(scenarios[s]) << " " << s;
-    gp << ")\nset title 'Detection delay (filled: type named right; open: wrong type; cross: missed)'\n"
+    gp << ")\nset size 1,0.6\nset origin 0,0.34\n"
+       << "set title 'Detection delay (filled: type named right; open: wrong type; cross: missed)'\n"
        << "set logscale y\nset yrange [" << kZeroDelayS / 2 << ":" << kMissedRowS * 3 << "]\n"
        << "set ylabel 'delay [s] (0 drawn at 1 ms)'\nset xlabel ''\nunset arrow\nset arrow from graph 0, first "
        << kMissedRowS << " to graph 1, first " << kMissedRowS << " nohead dt 3 lc rgb '#888888'\n"
@@ -164,7 +166,7 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
       }
     }
     gp << "\nunset logscale y\nunset arrow\nunset label\nset title 'False alarms (after the warm-up, outside each fault "
-          "and its re-admission)'\nset ylabel 'false alarms'\nset yrange [0:1<*]\nset style fill solid 0.8 noborder\n"
+          "and its re-admission)'\nset size 1,0.34\nset origin 0,0\nset ylabel 'false alarms'\nset yrange [0:1<*]\nset style fill solid 0.8 noborder\n"
           "set boxwidth "
        << bar << "\nplot ";
     for (std::size_t p = 0; p < pipelines.size(); ++p) {
