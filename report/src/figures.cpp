@@ -261,6 +261,8 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
   const double t_last = time.empty() ? 1.0 : time.back();
   gp << "set xrange [" << number(t_first) << ":" << number(t_last) << "]\n";
 
+  // A mark in the last fifth of the time axis has its label on its left, inside the plot.
+  auto late = [&](double t) { return t > t_first + 0.8 * (t_last - t_first); };
   auto decorate_panel = [&](std::size_t c) {
     gp << "unset object\nunset arrow\nunset label\n";
     for (const auto& [a, b] : shade[c]) {
@@ -273,14 +275,14 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
       gp << "set arrow from " << number(m.onset_s) << ", graph 0 to " << number(m.onset_s)
          << ", graph 1 nohead front lc rgb '#c0392b' dt 2 lw 2\n"
          << "set label " << quoted("onset " + two_decimals(m.onset_s) + " s") << " at " << number(m.onset_s)
-         << ", graph 0.92 offset 0.4,0 front tc rgb '#c0392b'\n";
+         << ", graph 0.92 " << (late(m.onset_s) ? "right offset -0.4,0" : "offset 0.4,0") << " front tc rgb '#c0392b'\n";
     }
     if (std::isfinite(m.detection_delay_s)) {
       const double t = m.onset_s + m.detection_delay_s;
       gp << "set arrow from " << number(t) << ", graph 0 to " << number(t)
          << ", graph 1 nohead front lc rgb '#1e8449' dt 3 lw 2\n"
          << "set label " << quoted("flagged +" + two_decimals(m.detection_delay_s) + " s") << " at " << number(t)
-         << ", graph 0.08 offset 0.4,0 front tc rgb '#1e8449'\n";
+         << ", graph 0.08 " << (late(t) ? "right offset -0.4,0" : "offset 0.4,0") << " front tc rgb '#1e8449'\n";
     }
   };
 
@@ -303,6 +305,7 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
       bool first = true;
       for (const Series& s : series) {
         if (!truth && (s.offset == 2 || s.offset == 5)) continue;  // true force, injected fault
+        if (s.offset == 4 && run.channels[c].raw_fault_estimate == nullptr) continue;  // not written by the run
         gp << (first ? "" : ", ") << dat_q << " using 1:" << column(i, s.offset) << " with lines " << s.style
            << " title " << quoted(s.title);
         first = false;
@@ -403,8 +406,14 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
         gp << (c ? ", " : "") << quoted(run.channels[c].name) << " " << row_y(c);
       }
     }
+    gp << ")\n";
+    if (boxes == 0) {
+      gp << "set label " << quoted(truth ? "no channel flagged, no fault injected" : "no channel flagged")
+         << " at graph 0.5, graph 0.5 center front\n";
+    }
     // The named type solid, the injected one lighter beneath it.
-    gp << ")\nset grid noytics\nset key outside right top vertical box opaque\nplot " << quoted(types_dat)
+    gp << "set grid noytics\n" << (boxes == 0 ? "unset key" : "set key outside right top vertical box opaque") << "\nplot "
+       << quoted(types_dat)
        << " using 1:($8 == 0 ? $2 : NaN):3:4:5:6:7 with boxxyerror fs solid 1.0 noborder lc rgb variable notitle, "
        << quoted(types_dat) << " using 1:($8 == 1 ? $2 : NaN):3:4:5:6:7 with boxxyerror fs transparent solid 0.45 noborder "
        << "lc rgb variable notitle";
@@ -414,7 +423,7 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
            << quoted(std::string(kFaultTypes[t].name));
       }
     }
-    gp << "\nset yrange [*:*]\nset ytics autofreq\nset grid ytics\nset lmargin 12\n";
+    gp << "\nunset label\nset yrange [*:*]\nset ytics autofreq\nset grid ytics\nset lmargin 12\n";
     figures.push_back(std::move(fig));
   }
 
