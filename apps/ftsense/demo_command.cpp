@@ -1,13 +1,18 @@
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iomanip>
 #include <map>
 #include <iostream>
 #include <sstream>
 
 #include "cli.hpp"
+#include "ftsense/report/document.hpp"
+#include "ftsense/report/summary_figures.hpp"
+#include "ftsense/report/writers.hpp"
 #include "report.hpp"
 
 #ifndef FTSENSE_SOURCE_DIR
@@ -88,6 +93,26 @@ std::string cell(const Row& r) {
   return os.str();
 }
 
+// The same numbers as cell(), one per table column: detected, type right, median delay [s],
+// mean recovered RMSE [N], false alarms.
+std::vector<std::string> cells(const Row& r) {
+  std::vector<std::string> out(5, "-");
+  auto text = [](double v, int digits) {
+    std::ostringstream os;
+    if (std::isnan(v)) return std::string("-");
+    os << std::fixed << std::setprecision(digits) << v;
+    return os.str();
+  };
+  if (r.faulty > 0) {
+    out[0] = std::to_string(r.detected) + "/" + std::to_string(r.faulty);
+    out[1] = std::to_string(r.types) + "/" + std::to_string(r.faulty);
+    out[2] = text(r.median_delay_s, 3);
+    out[3] = text(r.recovered_rmse, 1);
+  }
+  out[4] = std::to_string(r.false_alarms);
+  return out;
+}
+
 // `ftsense run` without its per-run summary on stdout (the demo prints one table instead).
 int run_quietly(const std::vector<std::string>& args) {
   std::streambuf* saved = std::cout.rdbuf();
@@ -165,6 +190,10 @@ int demo_command(const std::vector<std::string>& args) {
   Json metrics = {{"quick", quick}, {"variants", Json::object()}};
   std::map<std::string, std::map<std::string, Row>> table;
   std::string paper_tables;
+  std::vector<report::ScoredScenario> scored;
+  std::deque<std::future<void>> drawing;  // figures being drawn
+  std::map<std::string, std::map<std::string, std::vector<report::RunFigure>>> run_figures;
+  std::map<std::string, std::vector<report::ChannelMetrics>> paper_metrics;
   for (const auto& v : variants) {
     for (const auto& s : scenarios) {
       if (!v.scenarios.empty() && std::find(v.scenarios.begin(), v.scenarios.end(), s) == v.scenarios.end()) continue;
@@ -177,8 +206,17 @@ int demo_command(const std::vector<std::string>& args) {
       if (int rc = run_quietly(run_args); rc != kExitOk) return rc;
       ReportOptions ro;
       ro.title = v.title + ", scenario " + s;
-      ro.figures = s == "paper" && v.name != "measured_zmp";
-      const Report r = make_report(run_out, out + "/" + s + ".csv", out + "/" + v.name + "_" + s, ro);
+      if (v.calibrate) ro.thresholds = out + "/thresholds_" + v.name + ".json";
+      ro.draw_in_background = true;  // gnuplot draws while the next run is scored
+      Report r = make_report(run_out, out + "/" + s + ".csv", out + "/" + v.name + "_" + s, ro);
+      scored.push_back({v.name, s, r.channels});
+      run_figures[v.name][s] = r.figures;
+      if (s == "paper") paper_metrics[v.name] = r.channels;
+      drawing.push_back(std::move(r.drawn));
+      if (drawing.size() > 2) {  // two at a time: the machine has few cores
+        drawing.front().get();
+        drawing.pop_front();
+      }
       metrics["variants"][v.name][s] = r.json;
       table[s][v.name] = summarise(r.json);
       if (s == "paper" && v.name != "measured_zmp") paper_tables += "\nThe paper's fault scenario, " + v.title + ":\n" + r.table;
@@ -190,6 +228,7 @@ int demo_command(const std::vector<std::string>& args) {
   const std::string endurance_s = quick ? "9" : "60";
   progress("fault-free endurance: " + endurance_s + " s walks, two gaits, three seeds");
   std::ostringstream endurance;
+  report::Table endurance_table{{"walk", "paper pipeline", "paper pipeline, centred bands", "robust pipeline"}, {}};
   endurance << "\nFault-free walks of " << (quick ? 9 : 60)
             << " s (false alarms after the 2 s warm-up; paper pipeline / paper pipeline with centred bands / "
                "robust pipeline):\n";
@@ -205,6 +244,7 @@ int demo_command(const std::vector<std::string>& args) {
         return rc;
       }
       endurance << "  " << std::left << std::setw(24) << name;
+      endurance_table.rows.push_back({name});
       for (const auto& v : variants) {
         if (v.name == "measured_zmp") continue;
         const std::string run_out = out + "/" + name + "_run_" + v.name + ".csv";
@@ -219,6 +259,7 @@ int demo_command(const std::vector<std::string>& args) {
         const Report r = make_report(run_out, out + "/" + name + ".csv", "", ro);
         metrics["endurance"][name][v.name] = r.json["summary"];
         endurance << std::setw(10) << (std::to_string(static_cast<int>(r.json["summary"]["false_alarms_after_warmup"])) + " FA");
+        endurance_table.rows.back().push_back(std::to_string(static_cast<int>(r.json["summary"]["false_alarms_after_warmup"])));
         std::filesystem::remove(run_out);  // keep out/ small: 60 s runs are large
       }
       endurance << '\n';
@@ -244,26 +285,74 @@ int demo_command(const std::vector<std::string>& args) {
     summary << "  " << std::left << std::setw(15) << s << cell(table[s]["reference_band"]) << '\n';
   }
 
+  for (auto& d : drawing) d.get();
   progress("writing the metrics and the report");
   std::ofstream(out + "/metrics.json") << metrics.dump(2) << '\n';
-  std::ofstream md(out + "/report.md");
-  md << "# ftsense demo: the paper's experiment, and beyond it\n\n"
-     << (quick ? "**Quick run (walks cut at 9 s): a smoke test, not the published numbers.**\n\n" : "")
-     << "Every scenario is in `configs/scenarios/`; each pipeline's report per scenario is in "
-        "`<pipeline>_<scenario>/report.md` beside this file.\n\n```\n"
-     << summary.str() << "```\n\n"
-     << "## The paper's figures, paper pipeline\n\n"
-     << "![Fig. 4](reference_paper/fig4_virtual_vs_true.png)\n\n![Fig. 5](reference_paper/fig5_fault_estimate.png)\n\n"
-     << "![Fig. 6](reference_paper/fig6_recovered.png)\n\n![Fig. 7](reference_paper/fig7_detection_flags.png)\n\n"
-     << "## The same figures, paper pipeline with centred bands\n\n"
-     << "![Fig. 4](reference_band_paper/fig4_virtual_vs_true.png)\n\n![Fig. 5](reference_band_paper/fig5_fault_estimate.png)\n\n"
-     << "![Fig. 6](reference_band_paper/fig6_recovered.png)\n\n![Fig. 7](reference_band_paper/fig7_detection_flags.png)\n\n"
-     << "## The same figures, robust pipeline\n\n"
-     << "![Fig. 4](robust_paper/fig4_virtual_vs_true.png)\n\n![Fig. 5](robust_paper/fig5_fault_estimate.png)\n\n"
-     << "![Fig. 6](robust_paper/fig6_recovered.png)\n\n![Fig. 7](robust_paper/fig7_detection_flags.png)\n";
-  std::cout << summary.str() << "\nftsense demo: wrote " << out << "/report.md and " << out
-            << "/metrics.json; figures in " << out << "/reference_paper/, " << out << "/reference_band_paper/ and " << out
-            << "/robust_paper/\n";
+  // report.md and report.html: one document, the same numbers as the summary above, as tables.
+  const std::vector<report::Pipeline> pipelines{
+      {"reference", "paper pipeline"}, {"reference_band", "paper pipeline, centred bands"}, {"robust", "robust pipeline"}};
+  const std::vector<report::Figure> summary_figures = report::write_summary_figures(scored, pipelines, scenarios, out);
+  report::Document doc;
+  doc.title = "ftsense demo: the paper's experiment, and beyond it";
+  if (quick) doc.paragraph("Quick run (walks cut at 9 s): a smoke test, not the published numbers.");
+  doc.paragraph("Every scenario is in `configs/scenarios/`; each pipeline's report per scenario is in "
+                "`<pipeline>_<scenario>/report.md` (and `report.html`) beside this file. Pipelines: " +
+                [&] {
+                  std::string list;
+                  for (const auto& v : variants) list += (list.empty() ? "" : "; ") + v.name + " = " + v.title;
+                  return list;
+                }() + ".");
+  doc.heading("Every scenario, side by side");
+  doc.paragraph("Detected: faulty channels detected; type right: the type shown most while faulty is the injected one; "
+                "median detection delay; mean recovered-signal RMSE on the faulty channels; false alarms after the 2 s "
+                "warm-up, outside each fault and its 1 s re-admission. The paper pipeline with centred bands is "
+                "`ftsense calibrate --band` on both fault-free walks: centre = mid-range of the filtered fault "
+                "estimate, threshold = 1.25 x half its range.");
+  report::Table side{{"scenario", "pipeline", "detected", "type right", "median delay [s]", "mean recovered RMSE [N]",
+                      "false alarms"},
+                     {}};
+  for (const auto& s : scenarios) {
+    for (const auto& v : variants) {
+      if (!table[s].count(v.name)) continue;
+      std::vector<std::string> row{s, v.name};
+      for (auto& c : cells(table[s][v.name])) row.push_back(std::move(c));
+      side.rows.push_back(std::move(row));
+    }
+  }
+  doc.table(std::move(side));
+  for (const auto& f : summary_figures) doc.figure(f);
+  doc.heading("The paper's fault scenario, per channel");
+  for (const auto& v : variants) {
+    if (v.name == "measured_zmp") continue;
+    const report::RunTotals t = report::totals(paper_metrics[v.name]);
+    doc.heading(v.title, 3);
+    doc.table(report::metrics_summary_table("N", paper_metrics[v.name]));
+    doc.paragraph("Detected " + std::to_string(t.detected) + " of " + std::to_string(t.faulty_channels) +
+                  " faulty channels; " + std::to_string(t.false_alarms) + " false alarms after the 2 s warm-up.");
+  }
+  doc.heading("Fault-free endurance");
+  doc.paragraph("Fault-free walks of " + endurance_s + " s at both gaits and three seeds: false alarms after the 2 s warm-up.");
+  doc.table(std::move(endurance_table));
+  doc.heading("Figures of every scenario");
+  doc.paragraph("Per scenario and pipeline: the paper's Figs. 4-7 (virtual vs true force, injected vs estimated fault with "
+                "the detector's band, recovered vs true signal, detection flags) and the fault types over time. The "
+                "true signal is dashed on top; shaded: the injected faults; red: onset; green: first flag.");
+  for (const auto& s : scenarios) {
+    doc.fold_begin("Scenario " + s, s == "paper");
+    for (const auto& v : variants) {
+      const auto figs = run_figures[v.name].find(s);
+      if (figs == run_figures[v.name].end()) continue;
+      doc.heading(v.title + ", scenario " + s, 4);
+      for (const auto& f : figs->second) {
+        doc.figure({v.name + "_" + s + "/" + f.file, f.title + ": " + v.name + ", " + s, f.caption});
+      }
+    }
+    doc.fold_end();
+  }
+  std::ofstream(out + "/report.md") << report::render_markdown(doc);
+  std::ofstream(out + "/report.html") << report::render_html(doc, out);
+  std::cout << summary.str() << "\nftsense demo: wrote " << out << "/report.md, " << out << "/report.html and " << out
+            << "/metrics.json; figures in " << out << "/<pipeline>_<scenario>/\n";
   return kExitOk;
 }
 

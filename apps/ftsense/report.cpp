@@ -18,15 +18,29 @@ Report make_report(const std::string& run_path, const std::string& truth_path, c
   Report r;
   for (const report::RunChannel& ch : run.channels) {
     r.channels.push_back(report::channel_metrics(ch.name, *run.time, ch.series(), options.metrics));
+    r.alarms.push_back(report::channel_alarms(ch.name, *run.time, ch[MonitorColumn::fault], ch[MonitorColumn::fault_type],
+                                              options.metrics));
   }
-  r.json = report::metrics_json(run, r.channels, options.metrics);
-  r.table = report::metrics_table(run.unit, r.channels, options.metrics);
+  r.json = report::metrics_json(run, r.channels, r.alarms, options.metrics);
+  r.table = report::metrics_table(run, r.channels, r.alarms, options.metrics);
   if (out_dir.empty()) return r;
   std::filesystem::create_directories(out_dir);
   std::ofstream(out_dir + "/metrics.json") << r.json.dump(2) << '\n';
-  const std::vector<std::string> figures =
-      options.figures ? report::write_figures(run, r.channels, out_dir) : std::vector<std::string>{};
-  std::ofstream(out_dir + "/report.md") << report::metrics_markdown(options.title, run, r.channels, options.metrics, figures);
+  if (options.figures) {
+    const report::DetectorBand band = options.thresholds.empty()
+                                          ? report::DetectorBand{}
+                                          : report::load_detector_band(options.thresholds, run.channels.size());
+    r.figures = report::prepare_figures(run, r.channels, r.alarms, band, options.metrics, out_dir);
+  }
+  report::Document doc = report::run_document(options.title, run, r.channels, r.alarms, options.metrics, r.figures);
+  std::ofstream(out_dir + "/report.md") << report::render_markdown(doc);
+  // The rest needs nothing of the run: gnuplot draws, the page embeds what it drew.
+  auto draw = [doc = std::move(doc), out_dir, figures = options.figures] {
+    if (figures) report::draw_figures(out_dir);
+    std::ofstream(out_dir + "/report.html") << report::render_html(doc, out_dir);
+  };
+  if (options.draw_in_background) r.drawn = std::async(std::launch::async, std::move(draw));
+  else draw();
   return r;
 }
 
@@ -36,13 +50,15 @@ int report_command(const std::vector<std::string>& args) {
       {"truth", true, false, "the log the run was made from, with truth/... columns (simulator logs)"},
       {"out", true, true, "folder for metrics.json, report.md and the figures"},
       {"warmup-s", true, false, "no false alarm is counted before this time (default 2)"},
+      {"thresholds", true, false, "the 'ftsense calibrate' file the run used: the figures draw its band"},
       {"no-figures", false, false, "skip the gnuplot figures"}};
   const auto options = parse_options("report", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("report",
                             "Computes detection delays, fault estimate errors, recovered-signal RMSE,\n"
                             "false alarms and virtual sensor errors of a run against the truth, and\n"
-                            "writes metrics.json, report.md and the paper's four figures (PNG).",
+                            "writes metrics.json, report.md, report.html (figures embedded) and the\n"
+                            "figures (PNG). Without --truth (a real log) the alarms are listed, not scored.",
                             specs);
     return kExitOk;
   }
@@ -55,6 +71,7 @@ int report_command(const std::vector<std::string>& args) {
     }
   }
   report_options.figures = !options.count("no-figures");
+  if (options.count("thresholds")) report_options.thresholds = options.at("thresholds");
   const std::string truth = options.count("truth") ? options.at("truth") : std::string();
   std::error_code ec;
   if (std::filesystem::exists(options.at("out"), ec) && !std::filesystem::is_directory(options.at("out"), ec)) {
@@ -63,7 +80,7 @@ int report_command(const std::vector<std::string>& args) {
   }
   try {
     const Report r = make_report(options.at("run"), truth, options.at("out"), report_options);
-    std::cout << r.table << "wrote " << options.at("out") << "/report.md\n";
+    std::cout << r.table << "wrote " << options.at("out") << "/report.md and " << options.at("out") << "/report.html\n";
   } catch (const io::LogError& e) {
     throw UsageError{std::string("error: ") + e.what()};
   }

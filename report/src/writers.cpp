@@ -13,7 +13,41 @@ namespace ftsense::report {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+std::string delay_text(const ChannelMetrics& m) {
+  if (!m.faulty()) return "-";
+  return std::isfinite(m.detection_delay_s) ? fixed(m.detection_delay_s, 3) : "missed";
+}
+
+std::size_t alarm_count(const std::vector<std::vector<Alarm>>& alarms, std::size_t* channels_flagged) {
+  std::size_t count = 0;
+  *channels_flagged = 0;
+  for (const auto& a : alarms) {
+    count += a.size();
+    *channels_flagged += !a.empty();
+  }
+  return count;
+}
+
+std::string alarm_end_text(const Alarm& a) { return a.open ? "end of log" : fixed(a.end_s, 3); }
+
+// The closing line without truth: how many alarms, on how many channels, or "no channel flagged".
+std::string alarms_sentence(const std::vector<std::vector<Alarm>>& alarms, const MetricOptions& options) {
+  std::size_t flagged = 0;
+  const std::size_t count = alarm_count(alarms, &flagged);
+  std::ostringstream os;
+  if (count == 0) {
+    os << "No channel flagged after the " << options.warmup_s << " s warm-up (" << alarms.size() << " channels).";
+  } else {
+    os << count << " alarm" << (count > 1 ? "s" : "") << " on " << flagged << " of " << alarms.size()
+       << " channels after the " << options.warmup_s << " s warm-up; not scored: without truth no fault is known, "
+       << "so none is called a detection or a false alarm.";
+  }
+  return os.str();
+}
+
+}  // namespace
 
 std::string fixed(double v, int digits) {
   if (std::isnan(v)) return "-";
@@ -22,34 +56,10 @@ std::string fixed(double v, int digits) {
   return os.str();
 }
 
-Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-
-std::string delay_text(const ChannelMetrics& m) {
-  if (!m.faulty()) return "-";
-  return std::isfinite(m.detection_delay_s) ? fixed(m.detection_delay_s, 3) : "missed";
-}
-
-// Writes `columns` (time first) as a whitespace data file, decimated to at most ~4000 rows.
-void write_data(const std::string& path, const std::vector<const std::vector<double>*>& columns) {
-  std::ofstream f(path);
-  const std::size_t n = columns.front()->size();
-  const std::size_t stride = std::max<std::size_t>(1, n / 4000);
-  for (std::size_t k = 0; k < n; k += stride) {
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      const double v = (*columns[c])[k];
-      f << (c ? " " : "");
-      if (std::isfinite(v)) f << v;
-      else f << "NaN";
-    }
-    f << '\n';
-  }
-}
-
-}  // namespace
-
 std::string type_label(FaultType type) { return type == FaultType::none ? "-" : std::string(to_string(type)); }
 
-Json metrics_json(const ScoredRun& run, const std::vector<ChannelMetrics>& channels, const MetricOptions& options) {
+Json metrics_json(const ScoredRun& run, const std::vector<ChannelMetrics>& channels,
+                  const std::vector<std::vector<Alarm>>& alarms, const MetricOptions& options) {
   const auto& time = *run.time;
   const double duration = time.empty() ? 0.0 : time.back() - time.front();
   Json j = {{"run", run.run.path},
@@ -60,6 +70,27 @@ Json metrics_json(const ScoredRun& run, const std::vector<ChannelMetrics>& chann
             {"duration_s", duration},
             {"unit", run.unit},
             {"channels", Json::array()}};
+  if (!run.has_truth()) {
+    j["alarms"] = Json::array();
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      double flagged_s = 0.0;
+      for (const Alarm& a : alarms[c]) {
+        flagged_s += a.end_s - a.start_s;
+        j["alarms"].push_back({{"channel", a.channel},
+                               {"start_s", a.start_s},
+                               {"end_s", a.end_s},
+                               {"open", a.open},
+                               {"type", std::string(to_string(a.type))}});
+      }
+      j["channels"].push_back({{"channel", channels[c].channel},
+                               {"alarms", alarms[c].size()},
+                               {"flagged_time_s", flagged_s}});
+    }
+    std::size_t flagged = 0;
+    const std::size_t count = alarm_count(alarms, &flagged);
+    j["summary"] = {{"scored", false}, {"alarms", count}, {"channels_flagged", flagged}};
+    return j;
+  }
   for (const auto& m : channels) {
     j["channels"].push_back({{"channel", m.channel},
                              {"injected_type", type_label(m.injected_type)},
@@ -86,9 +117,23 @@ Json metrics_json(const ScoredRun& run, const std::vector<ChannelMetrics>& chann
   return j;
 }
 
-std::string metrics_table(const std::string& unit, const std::vector<ChannelMetrics>& channels,
-                          const MetricOptions& options) {
+std::string metrics_table(const ScoredRun& run, const std::vector<ChannelMetrics>& channels,
+                          const std::vector<std::vector<Alarm>>& alarms, const MetricOptions& options) {
   std::ostringstream table;
+  const std::string& unit = run.unit;
+  if (!run.has_truth()) {
+    table << "No truth given: the alarms are listed, not scored.\n";
+    table << std::left << std::setw(12) << "channel" << std::right << std::setw(12) << "alarm from s" << std::setw(12)
+          << "to s" << "  " << "type named\n";
+    for (const auto& a : alarms) {
+      for (const Alarm& x : a) {
+        table << std::left << std::setw(12) << x.channel << std::right << std::setw(12) << fixed(x.start_s, 3)
+              << std::setw(12) << alarm_end_text(x) << "  " << to_string(x.type) << '\n';
+      }
+    }
+    table << alarms_sentence(alarms, options) << '\n';
+    return table.str();
+  }
   table << std::left << std::setw(12) << "channel" << std::setw(12) << "injected" << std::right << std::setw(9)
         << "onset s" << std::setw(10) << "delay s" << std::setw(12) << "est.err " + unit << std::setw(12)
         << "recov " + unit << std::setw(12) << "meas " + unit << std::setw(8) << "alarms" << std::setw(12)
@@ -106,114 +151,73 @@ std::string metrics_table(const std::string& unit, const std::vector<ChannelMetr
   return table.str();
 }
 
-std::string metrics_markdown(const std::string& title, const ScoredRun& run, const std::vector<ChannelMetrics>& channels,
-                             const MetricOptions& options, const std::vector<std::string>& figures) {
-  std::ostringstream md;
-  md << "# " << title << "\n\nRun: `" << run.run.path << "`"
-     << (run.has_truth() ? ", truth: `" + run.truth.path + "`" : "") << ". Warm-up " << options.warmup_s
-     << " s (no false alarm is counted before it, nor within " << options.readmit_s
-     << " s after a fault ends); fault estimate error "
-     << "measured from " << options.settle_s << " s after onset. Units: " << run.unit << ".\n\n";
-  md << "| channel | injected | onset [s] | detection delay [s] | type shown | re-admitted after [s] | "
-        "fault estimate RMSE | recovered RMSE | measured RMSE | false alarms | false-alarm time [s] | VFS RMSE | "
-        "VFS p95 |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+Table metrics_summary_table(const std::string& unit, const std::vector<ChannelMetrics>& channels) {
+  Table t{{"channel", "injected", "onset [s]", "delay [s]", "est. err [" + unit + "]", "recovered [" + unit + "]",
+           "measured [" + unit + "]", "false alarms", "VFS RMS [" + unit + "]", "VFS p95 [" + unit + "]"},
+          {}};
   for (const auto& m : channels) {
-    md << "| " << m.channel << " | " << type_label(m.injected_type) << " | " << fixed(m.onset_s, 2) << " | "
-       << delay_text(m) << " | " << type_label(m.shown_type) << " | " << fixed(m.readmission_s, 2) << " | "
-       << fixed(m.fault_estimate_rmse, 1) << " | " << fixed(m.recovered_rmse, 1) << " | "
-       << fixed(m.measured_rmse, 1) << " | " << m.false_alarms << " | " << fixed(m.false_alarm_time_s, 2) << " | "
-       << fixed(m.vfs_rmse, 1) << " | " << fixed(m.vfs_p95, 1) << " |\n";
+    t.rows.push_back({m.channel, type_label(m.injected_type), fixed(m.onset_s, 2), delay_text(m),
+                      fixed(m.fault_estimate_rmse, 1), fixed(m.recovered_rmse, 1), fixed(m.measured_rmse, 1),
+                      std::to_string(m.false_alarms), fixed(m.vfs_rmse, 1), fixed(m.vfs_p95, 1)});
   }
-  const RunTotals t = totals(channels);
-  md << "\nDetected " << t.detected << " of " << t.faulty_channels << " faulty channels; " << t.false_alarms
-     << " false alarms after the warm-up.\n";
-  for (const auto& f : figures) md << "\n![" << f << "](" << f << ")\n";
-  return md.str();
+  return t;
 }
 
-std::vector<std::string> write_figures(const ScoredRun& run, const std::vector<ChannelMetrics>& channels,
-                                       const std::string& out_dir) {
-  const auto& time = *run.time;
-  // The faulty channels, or the first four when none is.
-  std::vector<const RunChannel*> shown;
-  for (std::size_t c = 0; c < channels.size(); ++c) {
-    if (channels[c].faulty()) shown.push_back(&run.channels[c]);
-  }
-  if (shown.empty()) {
-    for (std::size_t i = 0; i < std::min<std::size_t>(4, run.channels.size()); ++i) shown.push_back(&run.channels[i]);
-  }
-  // One data file for the channels shown: t, then per channel measured, virtual, truth,
-  // fault_estimate, fault_estimate_raw, injected, recovered; then every channel's flag.
-  std::vector<std::vector<double>> derived;
-  derived.reserve(shown.size());
-  std::vector<const std::vector<double>*> cols{&time};
-  const std::vector<double> nan_column(time.size(), kNaN);
-  for (const RunChannel* ch : shown) {
-    const auto& measured = (*ch)[MonitorColumn::measured];
-    cols.push_back(&measured);
-    cols.push_back(&(*ch)[MonitorColumn::virtual_value]);
-    cols.push_back(ch->true_force != nullptr ? ch->true_force : &nan_column);
-    cols.push_back(&(*ch)[MonitorColumn::fault_estimate]);
-    cols.push_back(ch->raw_fault_estimate != nullptr ? ch->raw_fault_estimate : &nan_column);
-    derived.emplace_back(time.size(), kNaN);
-    if (ch->true_force != nullptr) {
-      for (std::size_t k = 0; k < time.size(); ++k) derived.back()[k] = measured[k] - (*ch->true_force)[k];
+Document run_document(const std::string& title, const ScoredRun& run, const std::vector<ChannelMetrics>& channels,
+                      const std::vector<std::vector<Alarm>>& alarms, const MetricOptions& options,
+                      const std::vector<RunFigure>& figures) {
+  Document doc;
+  doc.title = title;
+  std::ostringstream intro;
+  if (run.has_truth()) {
+    intro << "Run: `" << run.run.path << "`, truth: `" << run.truth.path << "`. Warm-up " << options.warmup_s
+          << " s (no false alarm is counted before it, nor within " << options.readmit_s
+          << " s after a fault ends); fault estimate error measured from " << options.settle_s
+          << " s after onset. Units: " << run.unit << ".";
+    doc.paragraph(intro.str());
+    Table t{{"channel", "injected", "onset [s]", "detection delay [s]", "type shown", "re-admitted after [s]",
+             "fault estimate RMSE", "recovered RMSE", "measured RMSE", "false alarms", "false-alarm time [s]",
+             "VFS RMSE", "VFS p95"},
+            {}};
+    for (const auto& m : channels) {
+      t.rows.push_back({m.channel, type_label(m.injected_type), fixed(m.onset_s, 2), delay_text(m),
+                        type_label(m.shown_type), fixed(m.readmission_s, 2), fixed(m.fault_estimate_rmse, 1),
+                        fixed(m.recovered_rmse, 1), fixed(m.measured_rmse, 1), std::to_string(m.false_alarms),
+                        fixed(m.false_alarm_time_s, 2), fixed(m.vfs_rmse, 1), fixed(m.vfs_p95, 1)});
     }
-    cols.push_back(&derived.back());
-    cols.push_back(&(*ch)[MonitorColumn::recovered]);
-  }
-  for (const RunChannel& ch : run.channels) cols.push_back(&ch[MonitorColumn::fault]);
-  write_data(out_dir + "/figures.dat", cols);
-
-  std::vector<std::string> figures;
-  const std::size_t per = 7;
-  auto column = [&](std::size_t channel_index, std::size_t offset) { return 2 + channel_index * per + offset; };
-  std::ostringstream gp;
-  gp << "set datafile missing 'NaN'\nset grid\nset key top right box opaque\nset xlabel 'time [s]'\n"
-     << "set terminal pngcairo noenhanced size 1400," << 330 * shown.size() << " font 'DejaVu Sans,11'\n";
-  auto multiplot = [&](const std::string& file, const std::string& title, const std::string& ylabel,
-                       const std::vector<std::pair<std::size_t, std::string>>& series) {
-    gp << "set output '" << out_dir << "/" << file << "'\n"
-       << "set multiplot layout " << shown.size() << ",1 title '" << title << "'\n"
-       << "set ylabel '" << ylabel << "'\n";
-    for (std::size_t i = 0; i < shown.size(); ++i) {
-      gp << "set title '" << shown[i]->name << "'\nplot ";
-      for (std::size_t s = 0; s < series.size(); ++s) {
-        gp << (s ? ", " : "") << "'" << out_dir << "/figures.dat' using 1:" << column(i, series[s].first)
-           << " with lines lw 1.5 title '" << series[s].second << "'";
+    doc.table(std::move(t));
+    const RunTotals totals_ = totals(channels);
+    doc.paragraph("Detected " + std::to_string(totals_.detected) + " of " + std::to_string(totals_.faulty_channels) +
+                  " faulty channels; " + std::to_string(totals_.false_alarms) + " false alarms after the warm-up.");
+  } else {
+    intro << "Run: `" << run.run.path << "`. No truth was given (a real log): no fault is known to have happened, "
+          << "so the alarms are listed, not scored; none is called a detection or a false alarm. Alarms that end "
+          << "within the " << options.warmup_s << " s warm-up are not listed. Units: " << run.unit << ".";
+    doc.paragraph(intro.str());
+    Table t{{"channel", "alarm from [s]", "to [s]", "duration [s]", "type named"}, {}};
+    for (const auto& a : alarms) {
+      for (const Alarm& x : a) {
+        t.rows.push_back({x.channel, fixed(x.start_s, 3), alarm_end_text(x), fixed(x.end_s - x.start_s, 3),
+                          std::string(to_string(x.type))});
       }
-      gp << '\n';
     }
-    gp << "unset multiplot\n";
-    figures.push_back(file);
-  };
-  const std::string unit = run.unit;
-  multiplot("fig4_virtual_vs_true.png", "Virtual vs true contact force (paper Fig. 4)", "force [" + unit + "]",
-            {{0, "measured"}, {2, "true"}, {1, "virtual (VFS)"}});
-  multiplot("fig5_fault_estimate.png", "Injected vs estimated fault (paper Fig. 5)", "fault [" + unit + "]",
-            {{5, "injected (measured - true)"}, {4, "estimate, unfiltered"}, {3, "estimate, filtered"}});
-  multiplot("fig6_recovered.png", "Recovered vs true signal (paper Fig. 6)", "force [" + unit + "]",
-            {{0, "measured"}, {2, "true"}, {6, "recovered"}});
-  const std::size_t n = run.channels.size();
-  gp << "set terminal pngcairo noenhanced size 1400," << 120 + 40 * n << " font 'DejaVu Sans,11'\n"
-     << "set output '" << out_dir << "/fig7_detection_flags.png'\n"
-     << "set title 'Detection flags (paper Fig. 7): raised = channel flagged as faulty'\nset ylabel ''\n"
-     << "set ytics (";
-  for (std::size_t c = 0; c < n; ++c) gp << (c ? ", " : "") << "'" << run.channels[c].name << "' " << c;
-  gp << ")\nset yrange [-0.5:" << n << "]\nset key off\nplot ";
-  for (std::size_t c = 0; c < n; ++c) {
-    gp << (c ? ", " : "") << "'" << out_dir << "/figures.dat' using 1:($" << 2 + shown.size() * per + c << "*0.7+" << c
-       << ") with steps lw 2";
+    if (!t.rows.empty()) doc.table(std::move(t));
+    doc.paragraph(alarms_sentence(alarms, options));
   }
-  gp << '\n';
-  figures.push_back("fig7_detection_flags.png");
-  const std::string script = out_dir + "/figures.gp";
-  std::ofstream(script) << gp.str();
-  const std::string command = "gnuplot '" + script + "' 2> '" + out_dir + "/gnuplot.log'";
-  if (std::system(command.c_str()) != 0) {
-    throw std::runtime_error("gnuplot failed (see " + out_dir + "/gnuplot.log); install gnuplot-nox, or use --no-figures");
+  if (figures.empty()) return doc;
+  doc.heading("Figures");
+  const RunFigure& first = figures.front();
+  std::string which = run.has_truth() ? "The per-channel figures draw the faulty channels, then those with false alarms"
+                                      : "The per-channel figures draw the flagged channels";
+  which += " (at most " + std::to_string(kMaxPanels) + "); when fewer than " + std::to_string(kMinPanels) +
+           ", the channels whose fault estimate came nearest to the detector's band fill up the figure. Drawn: ";
+  for (std::size_t i = 0; i < first.channels.size(); ++i) {
+    which += (i ? "; " : "") + first.channels[i] + (i < first.why.size() ? " (" + first.why[i] + ")" : "");
   }
-  return figures;
+  which += ".";
+  doc.paragraph(which);
+  for (const RunFigure& f : figures) doc.figure({f.file, f.title, f.caption});
+  return doc;
 }
 
 }  // namespace ftsense::report

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The paper's experiment end to end on short walks: simulate (MuJoCo), calibrate, run the
-# reference pipeline and the measured-ZMP variant, report. Checks the artefacts and the columns.
+# reference pipeline and the measured-ZMP variant, report. Checks the artefacts, the columns and
+# the HTML report's figures (issue 16 acceptance 4).
 set -u
 ftsense=$1
 out=$(mktemp -d)
@@ -18,7 +19,8 @@ for f in report.md metrics.json clean.csv clean_fast.csv paper.csv mixed.csv thr
          reference_paper/fig6_recovered.png reference_paper/fig7_detection_flags.png reference_paper/report.md \
          robust_paper/fig4_virtual_vs_true.png robust_paper/fig7_detection_flags.png robust_paper/report.md \
          robust_gains_bursts/report.md measured_zmp_paper/report.md thresholds_reference_band.json \
-         reference_band_paper/fig7_detection_flags.png reference_band_paper/report.md; do
+         reference_band_paper/fig7_detection_flags.png reference_band_paper/report.md report.html \
+         confusion_matrix.png scenario_chart.png robust_gains_bursts/fig8_fault_types.png robust_clean/report.html; do
   [ -s "$out/$f" ] && ok "$f written" || bad "$f missing"
 done
 # The output columns of design.md, for all 8 SURALP channels.
@@ -47,6 +49,49 @@ grep -E "^paper .*4/4 det, 4/4 type" "$out/stdout" > /dev/null && ok "robust: pa
 # The centred-band calibration wrote a centre per channel, and the demo printed that pipeline's rows.
 grep -q '"centers"' "$out/thresholds_reference_band.json" && ok "band thresholds have centres" || bad "band thresholds have no centres"
 grep -q "paper pipeline with centred bands" "$out/stdout" && ok "band pipeline summary" || bad "band pipeline summary"
+# The report: real tables, not console text in a code block; report.html self-contained, every
+# image it embeds a non-empty PNG, and every figure kind there for every scenario.
+grep -q '^```' "$out/report.md" && bad "report.md has a code block" || ok "report.md has no code block"
+grep -q '^| scenario | pipeline | detected | type right |' "$out/report.md" && ok "report.md side-by-side table" || bad "report.md table"
+/usr/bin/python3 - "$out" <<'PY' && ok "report.html: every embedded image a PNG, every figure kind" || bad "report.html figures"
+import base64, json, re, sys
+out = sys.argv[1]
+html = open(f"{out}/report.html").read()
+fail = []
+imgs = re.findall(r'<img alt="([^"]*)" src="([^"]*)"', html)
+if re.search(r'(src|href)="(?!data:)', html): fail.append("a reference to an external file")
+for alt, src in imgs:
+    if not src.startswith("data:image/png;base64,"): fail.append(f"{alt}: not a base64 PNG"); continue
+    png = base64.b64decode(src.split(",", 1)[1], validate=True)
+    if len(png) < 1000 or png[:8] != b"\x89PNG\r\n\x1a\n": fail.append(f"{alt}: {len(png)} bytes, not a PNG")
+alts = [a for a, _ in imgs]
+kinds = ["Virtual vs true contact force", "Injected vs estimated fault", "Recovered vs true signal",
+         "Detection flags", "Fault types over time"]
+for pipeline in ("reference", "reference_band", "robust"):
+    for scenario in ("clean", "clean_fast", "paper", "mixed", "offsets", "drifts_frozen", "gains_bursts"):
+        for k in kinds:
+            if not any(a.startswith(k) and a.endswith(f": {pipeline}, {scenario}") for a in alts):
+                fail.append(f"missing: {k} of {pipeline}, {scenario}")
+for k in ("Injected vs named fault types", "Detection delay, type and false alarms per scenario"):
+    if k not in alts: fail.append(f"missing: {k}")
+# Truth dashed and drawn last (on top) in Figs. 4-6; the band drawn for the band variant only.
+for run in ("reference_paper", "reference_band_paper", "robust_mixed"):
+    script = open(f"{out}/{run}/figures.gp").read()
+    plots = re.findall(r"^plot .*title '(?:virtual \(VFS\)|recovered)'.*$", script, re.M)
+    if not plots: fail.append(f"{run}: no Fig. 4 or 6 plot in figures.gp")
+    for plot in plots:
+        if not re.search(r"dt \(6,4\) lw 2 title 'true'$", plot): fail.append(f"{run}: truth not dashed on top: {plot[-80:]}")
+band = open(f"{out}/reference_band_paper/figures.gp").read()
+plain = open(f"{out}/reference_paper/figures.gp").read()
+if "title 'band " not in band: fail.append("the band variant draws no band")
+if "title 'threshold +-" not in plain: fail.append("the paper pipeline draws no threshold")
+if open(f"{out}/reference_band_paper/fig5_fault_estimate.png", "rb").read() == open(f"{out}/reference_paper/fig5_fault_estimate.png", "rb").read():
+    fail.append("band and plain Fig. 5 are the same image")
+if "set object rect" not in plain or "onset 5.00 s" not in plain: fail.append("no shaded fault or onset mark")
+print(len(imgs), "images embedded")
+print("\n".join(fail))
+sys.exit(1 if fail else 0)
+PY
 # Every number in the metrics is finite or null (never NaN text).
 grep -qi "nan" "$out/metrics.json" && bad "NaN in metrics.json" || ok "metrics.json has no NaN"
 echo "$passes passed, $failures failed"

@@ -47,9 +47,11 @@ def metrics(name):
 failed = []
 clean = metrics("clean")
 # Measured on the clean log: 0 alarms after the 2 s warm-up (the thresholds come from this log,
-# margin 1.25, so this is the in-sample check calibrate promises).
-alarms = clean["summary"]["false_alarms_after_warmup"]
-print(f"icub clean: {alarms} false alarms after the 2 s warm-up")
+# margin 1.25, so this is the in-sample check calibrate promises). Reported without truth, the
+# alarms are listed, not scored as false alarms.
+assert clean["summary"]["scored"] is False
+alarms = clean["summary"]["alarms"]
+print(f"icub clean: {alarms} alarms after the 2 s warm-up")
 if alarms != 0: failed.append("clean log: false alarms")
 # Measured delays: offset +60 N 1.718 s, drift 15 N/s 2.613 s, frozen 0.724 s. Bounds: +20 %.
 bounds = {"offset": ("l_foot", 1.2 * 1.718), "drift": ("r_foot", 1.2 * 2.613), "frozen": ("r_foot", 1.2 * 0.724)}
