@@ -10,11 +10,13 @@
 #include "ftsense/generic/random_walk_fault_filter.hpp"
 #include "ftsense/generic/signal_validator.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
+#include "ftsense/generic/unloaded_reading_residual.hpp"
 #include "ftsense/plugin_set.hpp"
 
 namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
-                                  OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator>;
+                                  OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
+                                  UnloadedReadingResidual>;
 
 }  // namespace ftsense::generic
