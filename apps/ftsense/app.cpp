@@ -107,6 +107,10 @@ int main(const std::vector<std::string>& all, const PluginRegistry& registry, co
   }
   const std::string& verb = all.front();
   const std::vector<std::string> args(all.begin() + 1, all.end());
+  if (args.size() == 1 && (args.front() == "--version" || args.front() == "-V")) {  // "<name> run --version"
+    std::cout << info.name << ' ' << info.version << '\n';
+    return kExitOk;
+  }
   const Context context{registry, info.name};
   try {
     for (const Verb& v : verbs) {

@@ -29,6 +29,7 @@ good="$here/good.json"
 
 "$ftsense" --help > "$work/out" 2> "$work/err"; check help 0 $? "run" "$work/out"
 "$ftsense" --version > "$work/out" 2> "$work/err"; check version 0 $? "^ftsense [0-9]+\.[0-9]+\.[0-9]+$" "$work/out"
+"$ftsense" run --version > "$work/out" 2> "$work/err"; check verb_version 0 $? "^ftsense [0-9]+\.[0-9]+\.[0-9]+$" "$work/out"
 "$ftsense" > "$work/out" 2> "$work/err"; check no_verb 2 $?
 "$ftsense" rnu > "$work/out" 2> "$work/err"; check unknown_verb 2 $? "did you mean 'run'" "$work/err"
 "$ftsense" run --help > "$work/out" 2> "$work/err"; check run_help 0 $? "--config" "$work/out"
