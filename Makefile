@@ -7,7 +7,8 @@ BUILD_DIR := build
 JOBS ?= 2
 # Debian packages the build needs (checked with dpkg; installed with apt-get when missing).
 PACKAGES := cmake ninja-build g++ make pkg-config libeigen3-dev libceres-dev libboost-dev \
-            nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libmujoco-dev liburdfdom-dev python3 gnuplot-nox
+            nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libmujoco-dev liburdfdom-dev python3 gnuplot-nox \
+            pybind11-dev python3-dev python3-numpy
 
 .PHONY: all deps configure build test demo docs sanitize clean
 

@@ -217,6 +217,7 @@ void read_sensors(const json& j, const std::string& path, SensorParams& s, std::
   if (const json* f = r.object("force", false)) {
     ObjectReader rf(*f, r.at("force"), e);
     rf.number("noise_std_N", s.force_noise_std_N, false, closed(0.0, 1000.0));
+    rf.number("resolution_N", s.force_resolution_N, false, closed(0.0, 1000.0));
     rf.finish();
   }
   if (const json* f = r.object("imu", false)) {
@@ -276,9 +277,13 @@ std::optional<FaultSpec> read_fault(const json& j, const std::string& path, doub
                 fmt(f.start_s) + ")");
   if (type) {
     switch (f.type) {
-      case FaultType::offset: r.number("offset_N", f.offset_N, true, closed(-1e5, 1e5)); break;
+      // Up to 1e13 N: a corrupted reading (a burst of 1e12 N) is an offset too.
+      case FaultType::offset: r.number("offset_N", f.offset_N, true, closed(-1e13, 1e13)); break;
       case FaultType::drift: r.number("slope_N_s", f.slope_N_s, true, closed(-1e4, 1e4)); break;
-      case FaultType::frozen: r.number("value_N", f.value_N, closed(-1e5, 1e5)); break;
+      case FaultType::frozen:
+        r.number("value_N", f.value_N, closed(-1e5, 1e5));
+        r.number("std_N", f.std_N, false, closed(0.0, 1e5));
+        break;
       case FaultType::gain: r.number("gain", f.gain, true, closed(-100.0, 100.0)); break;
       case FaultType::noise: r.number("std_N", f.std_N, true, positive(1e5)); break;
       case FaultType::spikes:
@@ -349,6 +354,7 @@ Scenario parse_scenario(const json& doc) {
   std::int64_t seed = 1;
   r.integer("seed", seed, false, 0, std::numeric_limits<std::int64_t>::max());
   s.seed = static_cast<std::uint64_t>(seed);
+  r.number("log_period_s", s.log_period_s, Range{0.0, 1.0, false, true});
   if (const json* g = r.object("gait", true)) read_gait(*g, r.at("gait"), s.gait, e);
   if (const json* se = r.object("sensors", false)) read_sensors(*se, r.at("sensors"), s.sensors, e);
   if (const json* fa = r.array("faults", true)) {

@@ -34,8 +34,12 @@ double Rng::normal() {
 }
 
 ForceChannelModel::ForceChannelModel(int channel, double noise_std, std::vector<FaultSpec> faults,
-                                     double dt, std::uint64_t seed)
-    : noise_std_(noise_std), dt_(dt), rng_(seed, 100 + static_cast<std::uint64_t>(channel)) {
+                                     double dt, std::uint64_t seed, double sample_period, double resolution)
+    : noise_std_(noise_std),
+      dt_(dt),
+      sample_period_(sample_period > 0.0 ? sample_period : dt),
+      resolution_(resolution),
+      rng_(seed, 100 + static_cast<std::uint64_t>(channel)) {
   std::uint64_t stream = 1000 + 100 * static_cast<std::uint64_t>(channel);
   std::sort(faults.begin(), faults.end(),
             [](const FaultSpec& a, const FaultSpec& b) { return a.start_s < b.start_s; });
@@ -57,7 +61,7 @@ double apply_fault(const FaultSpec& f, double elapsed_s, double tick_s, double y
         state.frozen_value = f.value_N ? *f.value_N : previous.value_or(y);
         state.frozen_set = true;
       }
-      return state.frozen_value;
+      return f.std_N > 0.0 ? state.frozen_value + f.std_N * state.rng.normal() : state.frozen_value;
     case FaultType::gain: return y * f.gain;
     case FaultType::noise: return y + f.std_N * state.rng.normal();
     case FaultType::spikes:
@@ -77,10 +81,12 @@ ForceChannelModel::Output ForceChannelModel::step(std::int64_t k, double true_fo
   for (auto& a : faults_) {
     if (k < a.start_tick || k >= a.end_tick) continue;
     code = a.spec.type;
-    y = apply_fault(a.spec, static_cast<double>(k - a.start_tick) * dt_, dt_, y,
+    y = apply_fault(a.spec, static_cast<double>(k - a.start_tick) * dt_, sample_period_, y,
                     has_last_ ? std::optional<double>(last_output_) : std::nullopt, a.state);
     break;  // faults on one channel never overlap (checked when loading the scenario)
   }
+  // + 0.0 turns the -0 of a small negative reading into 0 (printed "0", not "-0").
+  if (resolution_ > 0.0 && std::isfinite(y)) y = resolution_ * std::round(y / resolution_) + 0.0;
   last_output_ = y;
   has_last_ = true;
   return {y, code};

@@ -168,6 +168,16 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
   MjDataPtr scratch(mj_makeData(m));
   mjData* d = data.get();
   const double dt = m->opt.timestep;
+  // The sensors sample every log_every ticks (the scenario's log period).
+  std::int64_t log_every = 1;
+  if (sc.log_period_s) {
+    log_every = std::llround(*sc.log_period_s / dt);
+    if (log_every < 1 || std::abs(static_cast<double>(log_every) * dt - *sc.log_period_s) > 1e-9) {
+      throw ScenarioError({"/log_period_s = " + std::to_string(*sc.log_period_s) +
+                           " s is not a whole multiple of the simulation tick " + std::to_string(dt) +
+                           " s; give a multiple such as 0.002 or 0.005"});
+    }
+  }
 
   const int trunk = require_id(m, mjOBJ_BODY, "trunk");
   const int acc_adr = m->sensor_adr[require_id(m, mjOBJ_SENSOR, "imu_acc")];
@@ -260,7 +270,8 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
     std::vector<FaultSpec> fs;
     for (const auto& f : sc.faults)
       if (f.channel == c) fs.push_back(f);
-    force.emplace_back(c, sc.sensors.force_noise_std_N, std::move(fs), dt, seed);
+    force.emplace_back(c, sc.sensors.force_noise_std_N, std::move(fs), dt, seed, log_every * dt,
+                       sc.sensors.force_resolution_N);
   }
   Rng imu_rng(seed, 1), enc_rng(seed, 2), base_rng(seed, 3);
   const SensorParams& sp = sc.sensors;
@@ -344,68 +355,70 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
       ++stance_n;
     }
 
-    // Measurements.
-    row.first(t);
-    std::array<FaultType, 8> codes{};
-    for (std::size_t c = 0; c < 8; ++c) {
-      const auto out = force[c].step(k, fn[c]);
-      codes[c] = out.fault;
-      row.num(out.value);
+    // Measurements, on the logged ticks only (the sensors sample at the log's rate).
+    if (k % log_every == 0) {
+      row.first(t);
+      std::array<FaultType, 8> codes{};
+      for (std::size_t c = 0; c < 8; ++c) {
+        const auto out = force[c].step(k, fn[c]);
+        codes[c] = out.fault;
+        row.num(out.value);
+      }
+      const bool acc_fault = sp.acc_fault_start_s && t >= *sp.acc_fault_start_s &&
+                             (!sp.acc_fault_end_s || t < *sp.acc_fault_end_s);
+      for (int i = 0; i < 3; ++i)
+        row.num(d->sensordata[acc_adr + i] + sp.acc_bias_m_s2[static_cast<std::size_t>(i)] +
+                sp.acc_noise_std_m_s2 * imu_rng.normal() +
+                (acc_fault ? sp.acc_fault_offset_m_s2[static_cast<std::size_t>(i)] : 0.0));
+      for (int i = 0; i < 3; ++i)
+        row.num(d->sensordata[gyro_adr + i] + sp.gyro_bias_rad_s[static_cast<std::size_t>(i)] +
+                sp.gyro_noise_std_rad_s * imu_rng.normal());
+      Eigen::Matrix3d Rb;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) Rb(i, j) = bm[3 * i + j];
+      Eigen::Vector3d rpy = matrix_to_rpy(Rb);
+      if (sp.base_rpy_noise_std_rad > 0.0)
+        for (int i = 0; i < 3; ++i) rpy[i] += sp.base_rpy_noise_std_rad * base_rng.normal();
+      for (int i = 0; i < 3; ++i) row.num(rpy[i]);
+      std::array<double, 12> qm{};
+      for (std::size_t j = 0; j < 12; ++j) {
+        qm[j] = qpre[j] + (sp.encoder_noise_std_rad > 0.0 ? sp.encoder_noise_std_rad * enc_rng.normal() : 0.0);
+        row.num(qm[j]);
+      }
+      // Foot frames as the robot's kinematics sees them: measured base pose and encoders.
+      const Eigen::Matrix3d Rm = rpy_to_matrix(rpy[0], rpy[1], rpy[2]);
+      const Eigen::Vector3d base(bx[0], bx[1], bx[2]);
+      for (int leg = 0; leg < 2; ++leg) {
+        Pose hip;
+        hip.R = Rm;
+        hip.p = base + Rm * Eigen::Vector3d(0.0, leg == 0 ? rp.hip_half_width_m : -rp.hip_half_width_m, 0.0);
+        LegAngles q{};
+        for (std::size_t j = 0; j < 6; ++j) q[j] = qm[6 * static_cast<std::size_t>(leg) + j];
+        const Pose sole = leg_forward(lg, hip, q);
+        for (int i = 0; i < 3; ++i) row.num(sole.p[i]);
+        const Eigen::Vector3d frpy = matrix_to_rpy(sole.R);
+        for (int i = 0; i < 3; ++i) row.num(frpy[i]);
+      }
+      for (int i = 0; i < 3; ++i) row.num(bx[i]);
+      row.num(s.zmp.x());
+      row.num(s.zmp.y());
+      row.num(com_plan.x());
+      row.num(com_plan.y());
+      row.num(zc);
+      row.num(s.contact[0] ? 1.0 : 0.0);
+      row.num(s.contact[1] ? 1.0 : 0.0);
+      for (double f : fn) row.num(f);
+      for (int i = 0; i < 3; ++i) row.num(tc[i]);
+      row.num(tzx);
+      row.num(tzy);
+      row.num(contact[0] ? 1.0 : 0.0);
+      row.num(contact[1] ? 1.0 : 0.0);
+      row.num(height);
+      row.num(tilt);
+      for (FaultType c : codes) row.num(fault_code(c));
+      row.flush(csv);
+      ++sum.ticks;
     }
-    const bool acc_fault = sp.acc_fault_start_s && t >= *sp.acc_fault_start_s &&
-                           (!sp.acc_fault_end_s || t < *sp.acc_fault_end_s);
-    for (int i = 0; i < 3; ++i)
-      row.num(d->sensordata[acc_adr + i] + sp.acc_bias_m_s2[static_cast<std::size_t>(i)] +
-              sp.acc_noise_std_m_s2 * imu_rng.normal() +
-              (acc_fault ? sp.acc_fault_offset_m_s2[static_cast<std::size_t>(i)] : 0.0));
-    for (int i = 0; i < 3; ++i)
-      row.num(d->sensordata[gyro_adr + i] + sp.gyro_bias_rad_s[static_cast<std::size_t>(i)] +
-              sp.gyro_noise_std_rad_s * imu_rng.normal());
-    Eigen::Matrix3d Rb;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) Rb(i, j) = bm[3 * i + j];
-    Eigen::Vector3d rpy = matrix_to_rpy(Rb);
-    if (sp.base_rpy_noise_std_rad > 0.0)
-      for (int i = 0; i < 3; ++i) rpy[i] += sp.base_rpy_noise_std_rad * base_rng.normal();
-    for (int i = 0; i < 3; ++i) row.num(rpy[i]);
-    std::array<double, 12> qm{};
-    for (std::size_t j = 0; j < 12; ++j) {
-      qm[j] = qpre[j] + (sp.encoder_noise_std_rad > 0.0 ? sp.encoder_noise_std_rad * enc_rng.normal() : 0.0);
-      row.num(qm[j]);
-    }
-    // Foot frames as the robot's kinematics sees them: measured base pose and encoders.
-    const Eigen::Matrix3d Rm = rpy_to_matrix(rpy[0], rpy[1], rpy[2]);
-    const Eigen::Vector3d base(bx[0], bx[1], bx[2]);
-    for (int leg = 0; leg < 2; ++leg) {
-      Pose hip;
-      hip.R = Rm;
-      hip.p = base + Rm * Eigen::Vector3d(0.0, leg == 0 ? rp.hip_half_width_m : -rp.hip_half_width_m, 0.0);
-      LegAngles q{};
-      for (std::size_t j = 0; j < 6; ++j) q[j] = qm[6 * static_cast<std::size_t>(leg) + j];
-      const Pose sole = leg_forward(lg, hip, q);
-      for (int i = 0; i < 3; ++i) row.num(sole.p[i]);
-      const Eigen::Vector3d frpy = matrix_to_rpy(sole.R);
-      for (int i = 0; i < 3; ++i) row.num(frpy[i]);
-    }
-    for (int i = 0; i < 3; ++i) row.num(bx[i]);
-    row.num(s.zmp.x());
-    row.num(s.zmp.y());
-    row.num(com_plan.x());
-    row.num(com_plan.y());
-    row.num(zc);
-    row.num(s.contact[0] ? 1.0 : 0.0);
-    row.num(s.contact[1] ? 1.0 : 0.0);
-    for (double f : fn) row.num(f);
-    for (int i = 0; i < 3; ++i) row.num(tc[i]);
-    row.num(tzx);
-    row.num(tzy);
-    row.num(contact[0] ? 1.0 : 0.0);
-    row.num(contact[1] ? 1.0 : 0.0);
-    row.num(height);
-    row.num(tilt);
-    for (FaultType c : codes) row.num(fault_code(c));
-    row.flush(csv);
-    ++sum.ticks;
     sum.simulated_s = t;
 
     if (opt.progress && t >= next_progress) {

@@ -83,3 +83,26 @@ TEST(Cli, FallIsARuntimeFailure) {
   fs::remove(sc);
   fs::remove(out);
 }
+
+TEST(Cli, LogPeriodWritesEveryNthTickAndRefusesAFraction) {
+  const fs::path sc = tmp("rate.json"), out = tmp("rate.csv");
+  std::ofstream(sc) << R"({"duration_s": 2.0, "log_period_s": 0.005, "gait": {"step_length_m": 0.15,
+      "step_time_s": 1.0, "double_support_ratio": 0.2}, "faults": []})";
+  const Result r = cli("--quiet --scenario " + sc.string() + " --out " + out.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::ifstream in(out);
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> times;
+  while (std::getline(in, line)) times.push_back(std::stod(line.substr(0, line.find(','))));
+  ASSERT_EQ(times.size(), 400u);  // 2 s at 200 Hz
+  for (std::size_t i = 0; i < times.size(); ++i) EXPECT_NEAR(times[i], 0.005 * static_cast<double>(i), 1e-12);
+  std::ofstream(sc) << R"({"duration_s": 2.0, "log_period_s": 0.0025, "gait": {"step_length_m": 0.15,
+      "step_time_s": 1.0, "double_support_ratio": 0.2}, "faults": []})";
+  const Result bad = cli("--quiet --scenario " + sc.string() + " --out " + out.string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.err.find("log_period_s = 0.0025"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("whole multiple"), std::string::npos) << bad.err;
+  fs::remove(sc);
+  fs::remove(out);
+}

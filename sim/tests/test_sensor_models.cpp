@@ -183,3 +183,37 @@ TEST(ForceChannel, SameSeedSameOutputDifferentSeedDifferent) {
   ForceChannelModel other(f.channel, 2.0, {f}, kDt, kSeed + 1);
   EXPECT_NE(other.step(0, truth(0)).value, a.y[0]);
 }
+
+TEST(ForceChannel, FrozenWithNoiseKeepsItsValueAsTheMeanAndTheNoiseAsTheSpread) {
+  auto f = fault(FaultType::frozen, 1.0, 3.0);
+  f.value_N = 250.0;
+  f.std_N = 5.0;
+  const Trace tr = run(f);
+  double sum = 0.0, sum2 = 0.0;
+  for (std::int64_t k = 1000; k < 3000; ++k) {
+    sum += tr.y[k] - 250.0;
+    sum2 += (tr.y[k] - 250.0) * (tr.y[k] - 250.0);
+    EXPECT_EQ(tr.code[k], FaultType::frozen);
+  }
+  const double mean = sum / 2000.0, std = std::sqrt(sum2 / 2000.0 - mean * mean);
+  // 2000 samples of N(0, 5^2): the mean within 4 standard errors (0.45 N), the spread within 10 %.
+  EXPECT_LT(std::abs(mean), 4.0 * 5.0 / std::sqrt(2000.0));
+  EXPECT_NEAR(std, 5.0, 0.5);
+  EXPECT_NE(tr.y[1500], tr.y[1501]);  // not an exact repeat
+}
+
+TEST(ForceChannel, ResolutionQuantisesEveryReadingFaultsIncluded) {
+  FaultSpec f = fault(FaultType::offset, 1.0, 2.0);
+  f.offset_N = 12.3;
+  ForceChannelModel ch(f.channel, 2.0, {f}, kDt, kSeed, kDt, 5.0);
+  ForceChannelModel exact(f.channel, 2.0, {f}, kDt, kSeed);  // the same noise, not quantised
+  for (std::int64_t k = 0; k < 3000; ++k) {
+    const double y = ch.step(k, truth(k)).value;
+    const double x = exact.step(k, truth(k)).value;
+    EXPECT_EQ(y, 5.0 * std::round(x / 5.0)) << k;
+    EXPECT_FALSE(std::signbit(y) && y == 0.0) << k;  // never -0
+  }
+  FaultSpec dropout = fault(FaultType::invalid, 0.0);
+  ForceChannelModel nan_channel(dropout.channel, 2.0, {dropout}, kDt, kSeed, kDt, 5.0);
+  EXPECT_TRUE(std::isnan(nan_channel.step(0, 100.0).value));
+}

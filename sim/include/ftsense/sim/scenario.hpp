@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,9 @@ struct Scenario {
   std::string name;
   std::string description;
   double duration_s = 30.0;
+  /// Period of the logged rows (the sensors' sample period): a multiple of the simulation tick;
+  /// absent: every tick.
+  std::optional<double> log_period_s;
   std::uint64_t seed = 1;  ///< default seed; a command-line --seed overrides it
   GaitParams gait;
   SensorParams sensors;

@@ -13,12 +13,16 @@
 //   sensor fault type of include/ftsense/fault_type.hpp (every type but none and unclassified):
 //     offset      y + offset_N
 //     drift       y + slope_N_s (t - t_start)
-//     frozen      value_N, or (no value given) the channel's output at the tick before t_start
+//     frozen      value_N, or (no value given) the channel's output at the tick before t_start,
+//                 plus std_N m_k (0: an exact repeat; > 0: a frozen output that still carries
+//                 electrical noise, m_k ~ N(0,1) from the fault's stream)
 //     gain        gain y
 //     noise       y + std_N m_k            (burst noise, m_k ~ N(0,1) from the fault's stream)
 //     spikes      y + s_k amplitude_N with probability rate_hz dt per tick, s_k = +-1 equally
 //     invalid     NaN (dropout)
 //     saturation  clamp(y, min_N, max_N)
+//   y = q round(y / q) with the resolution q > 0 (an ADC quantises whatever reaches it, faults
+//   included; NaN stays NaN).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -60,7 +64,7 @@ struct FaultSpec {
   double slope_N_s = 0.0;          ///< drift
   std::optional<double> value_N;   ///< frozen; absent: last value
   double gain = 1.0;               ///< gain
-  double std_N = 0.0;              ///< noise
+  double std_N = 0.0;              ///< noise; frozen: the noise it keeps
   double rate_hz = 0.0;            ///< spikes
   double amplitude_N = 0.0;        ///< spikes
   double min_N = -1e300;           ///< saturation
@@ -69,6 +73,7 @@ struct FaultSpec {
 
 struct SensorParams {
   double force_noise_std_N = 2.0;
+  double force_resolution_N = 0.0;  ///< quantisation step of the force readings; 0: none
   double acc_noise_std_m_s2 = 0.05;
   std::array<double, 3> acc_bias_m_s2 = {0.02, -0.015, 0.03};
   double gyro_noise_std_rad_s = 0.002;
@@ -101,8 +106,10 @@ struct FaultState {
 /// One force channel: noise plus the faults scheduled on it (non-overlapping in time).
 class ForceChannelModel {
  public:
+  /// `dt` is the simulation tick (k counts them); `sample_period` the sensor's (a multiple of dt:
+  /// step is then called every sample_period / dt ticks); `resolution` the quantisation step.
   ForceChannelModel(int channel, double noise_std, std::vector<FaultSpec> faults, double dt,
-                    std::uint64_t seed);
+                    std::uint64_t seed, double sample_period = 0.0, double resolution = 0.0);
   struct Output {
     double value;
     FaultType fault;
@@ -119,6 +126,8 @@ class ForceChannelModel {
   };
   double noise_std_;
   double dt_;
+  double sample_period_;
+  double resolution_;
   Rng rng_;
   std::vector<Active> faults_;
   double last_output_ = 0.0;
