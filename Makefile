@@ -35,7 +35,7 @@ test: build
 	ctest --preset default -j $(JOBS)
 
 demo: build
-	./$(BUILD_DIR)/bin/ftsense demo --out out/demo
+	./$(BUILD_DIR)/bin/ftsense demo --output out/demo
 
 docs: build
 	./$(BUILD_DIR)/bin/ftsense plugins --markdown > docs/config_reference.md

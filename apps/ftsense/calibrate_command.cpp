@@ -10,18 +10,21 @@
 
 namespace ftsense::cli {
 
-int calibrate_command(const std::vector<std::string>& args) {
+int calibrate_command(const std::vector<std::string>& args, const Context& context) {
+  const std::string command = context.command("calibrate");
   const std::vector<OptionSpec> specs{
-      {"config", true, true, "pipeline config (JSON) with threshold_detector stage(s)"},
-      {"input", true, true, "a fault-free log (CSV); several, comma-separated, to cover several gaits"},
-      {"output", true, true, "where to write the thresholds (JSON), for 'ftsense run --thresholds'"},
+      {"config", true, true, "pipeline config (JSON) with threshold_detector stage(s)", 'c', {}, FileArg::input},
+      {"input", true, true, "a fault-free log (CSV); several, comma-separated, to cover several gaits", 'i', {},
+       FileArg::input_list},
+      {"output", true, true, "where to write the thresholds (JSON), for '" + context.program + " run --thresholds'", 'o',
+       {"out"}, FileArg::output},
       {"margin", true, false, "threshold = margin x the largest |signal| seen (default 1.25; 1 to 1000)"},
       {"band", false, false,
        "centre each channel's band: centre = (min + max) / 2 and threshold = margin x (max - min) / 2 "
        "of the signal seen, instead of margin x max |signal|"}};
-  const auto options = parse_options("calibrate", args, specs);
+  const auto options = parse_options(command, args, specs);
   if (options.count("help")) {
-    std::cout << usage_text("calibrate",
+    std::cout << usage_text(command,
                             "Runs the pipeline over a fault-free log and sets each threshold_detector's\n"
                             "per-channel threshold to margin x max |signal| seen after the detector's\n"
                             "warm-up (the paper's section III: thresholds from a fault-free run). With\n"
@@ -37,11 +40,12 @@ int calibrate_command(const std::vector<std::string>& args) {
     margin = std::strtod(m->second.c_str(), &end);
     // Above 1000 the detector would be deaf to anything but a burst.
     if (end == m->second.c_str() || *end != '\0' || !(margin >= 1.0 && margin <= 1000.0)) {
-      throw UsageError{"ftsense calibrate: --margin = '" + m->second + "' violates >= 1 and <= 1000"};
+      throw UsageError{command + ": --margin = '" + m->second + "' violates >= 1 and <= 1000"};
     }
   }
   const std::string& config_path = options.at("config");
-  Pipeline pipeline = load_pipeline(config_path);
+  require_existing_files(command, options, specs, {"config"});
+  Pipeline pipeline = load_pipeline(context, config_path);
 
   struct Detector {
     std::string name;
@@ -80,8 +84,9 @@ int calibrate_command(const std::vector<std::string>& args) {
     throw UsageError{std::string("error: ") + e.what()};
   }
   for (const std::string& input : inputs) {
-    if (input.empty()) throw UsageError{"ftsense calibrate: --input = '" + options.at("input") + "' has an empty log path"};
+    if (input.empty()) throw UsageError{command + ": --input = '" + options.at("input") + "' has an empty log path"};
   }
+  require_existing_files(command, options, specs, {"input"});
   std::size_t ticks = 0;
   for (const std::string& input : inputs) {
     std::optional<io::CsvLogReader> log;
@@ -127,7 +132,7 @@ int calibrate_command(const std::vector<std::string>& args) {
   std::vector<std::string> refusals;
   for (auto& d : detectors) {
     for (std::size_t j = 0; j < d.magnitudes.size(); ++j) {
-      const std::string what = "ftsense calibrate: " + d.name + " channel " + std::to_string(j) + ": ";
+      const std::string what = command + ": " + d.name + " channel " + std::to_string(j) + ": ";
       auto& m = d.magnitudes[j];
       if (m.empty()) {
         refusals.push_back(what + "no finite sample after the " + format_number(d.warmup_s) +
@@ -158,7 +163,7 @@ int calibrate_command(const std::vector<std::string>& args) {
   }
   if (!refusals.empty()) {
     for (const auto& r : refusals) std::cerr << "error: " << r << '\n';
-    std::cerr << "ftsense calibrate: nothing written\n";
+    std::cerr << command << ": nothing written\n";
     return kExitRuntime;
   }
 
@@ -191,7 +196,7 @@ int calibrate_command(const std::vector<std::string>& args) {
       entry["centers"] = centers;
     }
     out["stages"][d.name] = entry;
-    std::cout << "ftsense calibrate: " << d.name << ": thresholds";
+    std::cout << command << ": " << d.name << ": thresholds";
     for (double t : thresholds) std::cout << ' ' << std::round(t * 10.0) / 10.0;
     if (band) {
       std::cout << "; centres";

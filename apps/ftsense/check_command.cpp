@@ -2,23 +2,24 @@
 #include <iostream>
 
 #include "cli.hpp"
-#include "ftsense/reference_plugins.hpp"
 #include "log_runner.hpp"
 
 namespace ftsense::cli {
 
-int check_command(const std::vector<std::string>& args) {
-  const std::vector<OptionSpec> specs{{"config", true, true, "pipeline config (JSON) to check"}};
-  const auto options = parse_options("check", args, specs);
+int check_command(const std::vector<std::string>& args, const Context& context) {
+  const std::string command = context.command("check");
+  const std::vector<OptionSpec> specs{{"config", true, true, "pipeline config (JSON) to check", 'c', {}, FileArg::input}};
+  const auto options = parse_options(command, args, specs);
   if (options.count("help")) {
-    std::cout << usage_text("check",
+    std::cout << usage_text(command,
                             "Builds the pipeline of --config without running it and lists every\n"
                             "problem (exit 2) or says ok (exit 0).",
                             specs);
     return kExitOk;
   }
   const std::string& path = options.at("config");
-  const Pipeline pipeline = load_pipeline(path);
+  require_existing_files(command, options, specs, {"config"});
+  const Pipeline pipeline = load_pipeline(context, path);
   std::cout << "ok: " << path << ": " << pipeline.inputs().size() << " inputs, " << pipeline.stage_count()
             << " stages";
   if (pipeline.has_monitor()) std::cout << ", " << pipeline.monitor().channels.size() << " monitored channels";
@@ -26,14 +27,14 @@ int check_command(const std::vector<std::string>& args) {
   return kExitOk;
 }
 
-Pipeline load_pipeline(const std::string& config_path, const std::string& thresholds_path) {
+Pipeline load_pipeline(const Context& context, const std::string& config_path, const std::string& thresholds_path) {
   try {
     Json config = parse_json_text(read_text_file(config_path, "config file"), config_path);
     if (!thresholds_path.empty()) {
       apply_thresholds(config, parse_json_text(read_text_file(thresholds_path, "thresholds file"), thresholds_path),
                        thresholds_path);
     }
-    Pipeline pipeline = Pipeline::build(config, reference_plugins::registry(),
+    Pipeline pipeline = Pipeline::build(config, context.registry,
                                         std::filesystem::path(config_path).parent_path());
     for (const auto& w : pipeline.warnings()) std::cerr << "warning: " << config_path << ":" << w.text() << '\n';
     return pipeline;

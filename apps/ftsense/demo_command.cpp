@@ -114,25 +114,25 @@ std::vector<std::string> cells(const Row& r) {
 }
 
 // `ftsense run` without its per-run summary on stdout (the demo prints one table instead).
-int run_quietly(const std::vector<std::string>& args) {
+int run_quietly(const std::vector<std::string>& args, const Context& context) {
   std::streambuf* saved = std::cout.rdbuf();
   std::ostringstream quiet;
   std::cout.rdbuf(quiet.rdbuf());
-  const int rc = run_command(args);
+  const int rc = cli::run_command(args, context);
   std::cout.rdbuf(saved);
   return rc;
 }
 
 }  // namespace
 
-int demo_command(const std::vector<std::string>& args) {
+int demo_command(const std::vector<std::string>& args, const Context& context) {
   const std::vector<OptionSpec> specs{
-      {"out", true, false, "output folder (default out/demo)"},
+      {"output", true, false, "output folder (default out/demo)", 'o', {"out"}, FileArg::output_folder},
       {"configs", true, false, "the configs folder (default: the source tree's configs/)"},
       {"quick", false, false, "short walks (9 s) for a smoke test; the numbers are not the published ones"}};
-  const auto options = parse_options("demo", args, specs);
+  const auto options = parse_options(context.command("demo"), args, specs);
   if (options.count("help")) {
-    std::cout << usage_text("demo",
+    std::cout << usage_text(context.command("demo"),
                             "The paper's experiment end to end, and beyond it: simulate fault-free walks at\n"
                             "two gaits, the paper's fault scenario and four scenarios of other faults\n"
                             "(MuJoCo); calibrate the paper pipeline's thresholds on the fault-free walk; run\n"
@@ -142,7 +142,7 @@ int demo_command(const std::vector<std::string>& args) {
                             specs);
     return kExitOk;
   }
-  const std::string out = options.count("out") ? options.at("out") : "out/demo";
+  const std::string out = options.count("output") ? options.at("output") : "out/demo";
   const std::string configs = options.count("configs") ? options.at("configs") : FTSENSE_SOURCE_DIR "/configs";
   const bool quick = options.count("quick") > 0;
   std::filesystem::create_directories(out);
@@ -183,7 +183,7 @@ int demo_command(const std::vector<std::string>& args) {
     } else {
       calibrate_args.push_back(out + "/clean.csv");
     }
-    if (int rc = calibrate_command(calibrate_args); rc) return rc;
+    if (int rc = cli::calibrate_command(calibrate_args, context); rc) return rc;
   }
 
   progress("running every pipeline on every scenario and writing the reports");
@@ -203,7 +203,7 @@ int demo_command(const std::vector<std::string>& args) {
         run_args.push_back("--thresholds");
         run_args.push_back(out + "/thresholds_" + v.name + ".json");
       }
-      if (int rc = run_quietly(run_args); rc != kExitOk) return rc;
+      if (int rc = run_quietly(run_args, context); rc != kExitOk) return rc;
       ReportOptions ro;
       ro.title = v.title + ", scenario " + s;
       if (v.calibrate) ro.thresholds = out + "/thresholds_" + v.name + ".json";
@@ -253,7 +253,7 @@ int demo_command(const std::vector<std::string>& args) {
           run_args.push_back("--thresholds");
           run_args.push_back(out + "/thresholds_" + v.name + ".json");
         }
-        if (int rc = run_quietly(run_args); rc != kExitOk) return rc;
+        if (int rc = run_quietly(run_args, context); rc != kExitOk) return rc;
         ReportOptions ro;
         ro.figures = false;
         const Report r = make_report(run_out, out + "/" + name + ".csv", "", ro);

@@ -79,23 +79,27 @@ InjectionPlan load_plan(const std::string& path) {
 
 }  // namespace
 
-int inject_command(const std::vector<std::string>& args) {
+int inject_command(const std::vector<std::string>& args, const Context& context) {
+  const std::string command = context.command("inject");
   const std::vector<OptionSpec> specs{
-      {"input", true, true, "a recorded log (CSV, first column time_s)"},
-      {"faults", true, true, "faults (JSON): {\"seed\", \"channels\": {name: column}, \"faults\": [...]}"},
-      {"output", true, true, "where to write the log with the faults (CSV)"}};
-  const auto options = parse_options("inject", args, specs);
+      {"input", true, true, "a recorded log (CSV, first column time_s)", 'i', {}, FileArg::input},
+      {"faults", true, true, "faults (JSON): {\"seed\", \"channels\": {name: column}, \"faults\": [...]}", 0, {},
+       FileArg::input},
+      {"output", true, true, "where to write the log with the faults (CSV)", 'o', {"out"}, FileArg::output}};
+  const auto options = parse_options(command, args, specs);
   if (options.count("help")) {
-    std::cout << usage_text("inject",
+    std::cout << usage_text(command,
                             "Applies the simulator's sensor fault models (sim/README.md) to named\n"
                             "columns of a recorded log, at the log's own time stamps, and writes the\n"
                             "log with the faulty columns plus truth/<channel>/force_N (the recorded\n"
                             "value) and truth/<channel>/fault (the fault type code) for\n"
-                            "'ftsense report --truth'.\nFault types: " + sensor_fault_type_list() + ".",
+                            "'" + context.program + " report --truth'.\nFault types: " + sensor_fault_type_list() + ".",
                             specs);
     return kExitOk;
   }
+  require_existing_files(command, options, specs, {"faults"});
   const InjectionPlan plan = load_plan(options.at("faults"));
+  require_existing_files(command, options, specs, {"input"});
   io::CsvLogReader log(options.at("input"));
   std::vector<std::size_t> column;
   std::vector<Diagnostic> problems;
@@ -189,7 +193,7 @@ int inject_command(const std::vector<std::string>& args) {
   }
   if (!problems.empty()) throw ConfigError(std::move(problems));  // nothing written
   out.commit();
-  std::cout << "ftsense inject: " << rows << " rows, " << plan.faults.size() << " fault(s)";
+  std::cout << command << ": " << rows << " rows, " << plan.faults.size() << " fault(s)";
   for (std::size_t c = 0; c < plan.channels.size(); ++c) {
     std::cout << "; " << plan.channels[c] << " (" << plan.columns[c] << ") faulty on " << faulty_rows[c] << " rows";
   }

@@ -168,6 +168,7 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
   const std::size_t channels = m.channels.size();
   RunSummary summary;
   summary.first_fault_time_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
+  summary.fault_types_seen.assign(channels, 0);
   summary.unjudged_ticks.assign(channels, 0);
   summary.longest_unjudged_start_s.assign(channels, std::numeric_limits<double>::quiet_NaN());
   summary.longest_unjudged_ticks.assign(channels, 0);
@@ -236,12 +237,16 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
     std::array<std::span<const double>, kMonitorColumnCount> columns;
     for (std::size_t i = 0; i < kMonitorColumnCount; ++i) columns[i] = pipeline.values(m.columns[i]);
     const auto fault = pipeline.values(m[MonitorColumn::fault]);
+    const auto fault_type = pipeline.values(m[MonitorColumn::fault_type]);
     out_row[0] = t;
     for (std::size_t c = 0; c < channels; ++c) {
       double* o = &out_row[1 + per_channel * c];
       for (std::size_t i = 0; i < kMonitorColumnCount; ++i) o[i] = columns[i][c];
       for (std::size_t e = 0; e < m.extra.size(); ++e) o[kMonitorColumnCount + e] = pipeline.values(m.extra[e].signal)[c];
-      if (fault[c] != 0.0 && std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
+      if (fault[c] != 0.0) {
+        if (std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
+        if (const auto type = fault_type_from_code(fault_type[c])) summary.fault_types_seen[c] |= fault_type_bit(*type);
+      }
       if (std::isfinite(columns[static_cast<std::size_t>(MonitorColumn::virtual_value)][c])) {
         stretch_ticks[c] = 0;
       } else {

@@ -2,10 +2,12 @@
 // Runs a built pipeline over a CSV log, row by row, and writes the monitored channels.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "ftsense/fault_type.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/pipeline.hpp"
 
@@ -36,6 +38,8 @@ struct RunSummary {
   std::size_t first_gap_line = 0;
   double first_gap_s = 0.0;
   std::vector<double> first_fault_time_s;  // per channel; NaN when never flagged
+  // Per channel: the fault types shown while flagged, one bit per type (fault_type_bit).
+  std::vector<std::uint32_t> fault_types_seen;
   // Per channel: ticks whose virtual value was not finite (the virtual sensor not ready: the
   // channel could not be judged, so "no fault" says nothing), and the longest unbroken stretch of
   // them (its first time and length; the first one of that length).
@@ -43,6 +47,12 @@ struct RunSummary {
   std::vector<double> longest_unjudged_start_s;
   std::vector<std::size_t> longest_unjudged_ticks;
 };
+
+// The bit of a fault type in RunSummary::fault_types_seen.
+[[nodiscard]] constexpr std::uint32_t fault_type_bit(FaultType type) noexcept {
+  return std::uint32_t{1} << static_cast<unsigned>(type);
+}
+static_assert(kFaultTypes.size() <= 32, "fault_types_seen holds one bit per fault type");
 
 // How the runner treats the log's clock (documented in docs/reliability.md):
 // - the median time step of the first rows (up to `rate_check_rows`) must be within 10 % of the

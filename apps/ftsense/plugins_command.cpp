@@ -4,30 +4,30 @@
 #include "cli.hpp"
 #include "ftsense/config_reference.hpp"
 #include "ftsense/fault_type.hpp"
-#include "ftsense/reference_plugins.hpp"
 
 namespace ftsense::cli {
 
-int plugins_command(const std::vector<std::string>& args) {
+int plugins_command(const std::vector<std::string>& args, const Context& context) {
+  const std::string command = context.command("plugins");
   const std::vector<OptionSpec> specs{
       {"markdown", false, false, "print the full configuration reference (docs/config_reference.md)"},
       {"only", true, false, "with --markdown: only these plugins' sections (comma-separated names)"},
       {"fault-types", false, false, "print the fault type table: code, name, model (docs/architecture.md)"}};
-  const auto options = parse_options("plugins", args, specs);
+  const auto options = parse_options(command, args, specs);
   if (options.count("help")) {
-    std::cout << usage_text("plugins", "Lists the plugins compiled into this program.", specs);
+    std::cout << usage_text(command, "Lists the plugins compiled into this program.", specs);
     return kExitOk;
   }
   if (options.count("fault-types")) {
     std::cout << fault_type_table_markdown();
     return kExitOk;
   }
-  const PluginRegistry registry = reference_plugins::registry();
+  const PluginRegistry& registry = context.registry;
   if (options.count("markdown") && options.count("only")) {
     bool first = true;
     for (const std::string& name : split_list(options.at("only"))) {
       const PluginInfo* info = registry.find(name);
-      if (info == nullptr) throw UsageError{"ftsense plugins: unknown plugin '" + name + "'; " + suggest(name, registry.names())};
+      if (info == nullptr) throw UsageError{command + ": unknown plugin '" + name + "'; " + suggest(name, registry.names())};
       std::cout << (first ? "" : "\n") << plugin_reference_markdown(*info);
       first = false;
     }

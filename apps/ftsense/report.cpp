@@ -44,17 +44,20 @@ Report make_report(const std::string& run_path, const std::string& truth_path, c
   return r;
 }
 
-int report_command(const std::vector<std::string>& args) {
+int report_command(const std::vector<std::string>& args, const Context& context) {
+  const std::string command = context.command("report");
   const std::vector<OptionSpec> specs{
-      {"run", true, true, "output of 'ftsense run' (CSV)"},
-      {"truth", true, false, "the log the run was made from, with truth/... columns (simulator logs)"},
-      {"out", true, true, "folder for metrics.json, report.md and the figures"},
+      {"run", true, true, "output of '" + context.program + " run' (CSV)", 0, {}, FileArg::input},
+      {"truth", true, false, "the log the run was made from, with truth/... columns (simulator logs)", 't', {},
+       FileArg::input},
+      {"output", true, true, "folder for metrics.json, report.md and the figures", 'o', {"out"}, FileArg::output_folder},
       {"warmup-s", true, false, "no false alarm is counted before this time (default 2)"},
-      {"thresholds", true, false, "the 'ftsense calibrate' file the run used: the figures draw its band"},
+      {"thresholds", true, false, "the '" + context.program + " calibrate' file the run used: the figures draw its band",
+       0, {}, FileArg::input},
       {"no-figures", false, false, "skip the gnuplot figures"}};
-  const auto options = parse_options("report", args, specs);
+  const auto options = parse_options(command, args, specs);
   if (options.count("help")) {
-    std::cout << usage_text("report",
+    std::cout << usage_text(command,
                             "Computes detection delays, fault estimate errors, recovered-signal RMSE,\n"
                             "false alarms and virtual sensor errors of a run against the truth, and\n"
                             "writes metrics.json, report.md, report.html (figures embedded) and the\n"
@@ -67,20 +70,22 @@ int report_command(const std::vector<std::string>& args) {
     char* end = nullptr;
     report_options.metrics.warmup_s = std::strtod(w->second.c_str(), &end);
     if (end == w->second.c_str() || *end != '\0' || !(report_options.metrics.warmup_s >= 0.0)) {
-      throw UsageError{"ftsense report: --warmup-s = '" + w->second + "' violates >= 0"};
+      throw UsageError{command + ": --warmup-s = '" + w->second + "' violates >= 0"};
     }
   }
   report_options.figures = !options.count("no-figures");
   if (options.count("thresholds")) report_options.thresholds = options.at("thresholds");
   const std::string truth = options.count("truth") ? options.at("truth") : std::string();
   std::error_code ec;
-  if (std::filesystem::exists(options.at("out"), ec) && !std::filesystem::is_directory(options.at("out"), ec)) {
-    throw UsageError{"error: " + options.at("out") + ": --out is a folder for metrics.json, report.md and the "
+  if (std::filesystem::exists(options.at("output"), ec) && !std::filesystem::is_directory(options.at("output"), ec)) {
+    throw UsageError{"error: " + options.at("output") + ": --output is a folder for metrics.json, report.md and the "
                      "figures, and this is a file; give a folder name"};
   }
+  require_existing_files(command, options, specs, {"run", "truth", "thresholds"});
   try {
-    const Report r = make_report(options.at("run"), truth, options.at("out"), report_options);
-    std::cout << r.table << "wrote " << options.at("out") << "/report.md and " << options.at("out") << "/report.html\n";
+    const Report r = make_report(options.at("run"), truth, options.at("output"), report_options);
+    std::cout << r.table << "wrote " << options.at("output") << "/report.md and " << options.at("output")
+              << "/report.html\n";
   } catch (const io::LogError& e) {
     throw UsageError{std::string("error: ") + e.what()};
   }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ftsense/app/app.hpp"
 #include "ftsense/params.hpp"
 #include "ftsense/report/alarms.hpp"
 #include "ftsense/report/figures.hpp"
@@ -36,6 +37,6 @@ struct Report {
 Report make_report(const std::string& run_path, const std::string& truth_path, const std::string& out_dir,
                    const ReportOptions& options);
 
-int report_command(const std::vector<std::string>& args);
+int report_command(const std::vector<std::string>& args, const app::Context& context);
 
 }  // namespace ftsense::cli

@@ -5,23 +5,25 @@
 #include <iostream>
 
 #include "cli.hpp"
-#include "ftsense/reference_plugins.hpp"
+#include "ftsense/fault_type.hpp"
 #include "log_runner.hpp"
 
 namespace ftsense::cli {
 
-int run_command(const std::vector<std::string>& args) {
+int run_command(const std::vector<std::string>& args, const Context& context) {
+  const std::string command = context.command("run");
   const std::vector<OptionSpec> specs{
-      {"config", true, true, "pipeline config (JSON); see docs/config_reference.md"},
-      {"input", true, true, "input log (CSV, first column time_s); - for standard input"},
+      {"config", true, true, "pipeline config (JSON); see docs/config_reference.md", 'c', {}, FileArg::input},
+      {"input", true, true, "input log (CSV, first column time_s); - for standard input", 'i', {}, FileArg::input},
       {"output", true, false, "where to write the monitored channels (CSV; - for standard output, the summary then on "
-                              "standard error); without it only the summary is printed"},
-      {"thresholds", true, false, "thresholds from 'ftsense calibrate' (JSON), applied to the config"},
+                              "standard error); without it only the summary is printed", 'o', {"out"}, FileArg::output},
+      {"thresholds", true, false, "thresholds from '" + context.program + " calibrate' (JSON), applied to the config", 0, {},
+       FileArg::input},
       {"record", true, false, "further signals to write, comma-separated \"<stage>.<port>\" or \"input.<name>\""},
       {"gap-reset", true, false, "a time step longer than this many sample periods resets the pipeline (default 10)"}};
-  const auto options = parse_options("run", args, specs);
+  const auto options = parse_options(command, args, specs);
   if (options.count("help")) {
-    std::cout << usage_text("run",
+    std::cout << usage_text(command,
                             "Runs the pipeline of --config over every row of --input and writes, per\n"
                             "monitored channel, measured, virtual, fault estimate, recovered, fault and\n"
                             "fault type to --output. The config is checked completely before the log is\n"
@@ -40,21 +42,23 @@ int run_command(const std::vector<std::string>& args) {
     clock.gap_reset_periods = std::strtod(g->second.c_str(), &end);
     if (end == g->second.c_str() || *end != '\0' || !(clock.gap_reset_periods >= 1.5) ||
         !std::isfinite(clock.gap_reset_periods)) {
-      throw UsageError{"ftsense run: --gap-reset " + g->second +
+      throw UsageError{command + ": --gap-reset " + g->second +
                        ": give a number of sample periods >= 1.5 (a step of 1 T is no gap)"};
     }
   }
 
   // 1. The config, completely, before any data file is touched.
-  Pipeline pipeline = options.count("thresholds") ? load_pipeline(config_path, options.at("thresholds"))
-                                                  : load_pipeline(config_path);
+  require_existing_files(command, options, specs, {"config", "thresholds"});
+  Pipeline pipeline = options.count("thresholds") ? load_pipeline(context, config_path, options.at("thresholds"))
+                                                  : load_pipeline(context, config_path);
   if (!pipeline.has_monitor()) {
     throw ConfigError(config_path + ":/monitor",
-                      "missing; 'ftsense run' writes the monitored channels, so the config needs a "
+                      "missing; '" + command + "' writes the monitored channels, so the config needs a "
                       "\"monitor\" section (docs/config_reference.md)");
   }
 
   // 2. The log: open, map columns (all missing ones reported together).
+  require_existing_files(command, options, specs, {"input"});
   std::optional<io::CsvLogReader> log;
   try {
     if (input_path == "-") log.emplace(std::cin, "standard input", time_column_of(pipeline));
@@ -81,7 +85,7 @@ int run_command(const std::vector<std::string>& args) {
       try {
         ref = pipeline.signal(name);
       } catch (const ConfigError& e) {
-        throw UsageError{"ftsense run: --record: " + std::string(e.what())};
+        throw UsageError{command + ": --record: " + std::string(e.what())};
       }
       std::string unit;
       for (const auto& [n, u] : units) {
@@ -101,7 +105,7 @@ int run_command(const std::vector<std::string>& args) {
   for (std::size_t i = 1; i < columns.size(); ++i) {
     if (std::find(columns.begin(), columns.begin() + static_cast<std::ptrdiff_t>(i), columns[i]) !=
         columns.begin() + static_cast<std::ptrdiff_t>(i)) {
-      throw UsageError{"ftsense run: the output would have the column '" + columns[i] +
+      throw UsageError{command + ": the output would have the column '" + columns[i] +
                        "' twice; record each signal once (--record)"};
     }
   }
@@ -128,7 +132,7 @@ int run_command(const std::vector<std::string>& args) {
   std::cerr << clock_warnings(input_path, summary, pipeline.sample_period_s(), clock);
   // With the rows on standard output, the summary goes to standard error.
   std::ostream& summary_out = output_path == "-" ? std::cerr : std::cout;
-  summary_out << "ftsense run: " << summary.ticks << " ticks, " << pipeline.monitor().channels.size()
+  summary_out << command << ": " << summary.ticks << " ticks, " << pipeline.monitor().channels.size()
             << " channels -> " << (write_output ? output_path : std::string("(no --output: nothing written)")) << '\n';
   for (std::size_t i = 0; i < pipeline.inputs().size(); ++i) {
     if (const std::size_t n = pipeline.implausible_counts()[i]; n > 0) {
@@ -164,12 +168,23 @@ int run_command(const std::vector<std::string>& args) {
                 << format_number(summary.longest_unjudged_start_s[c])
                 << " s: the virtual sensor was not ready, so a fault there would go unseen\n";
   }
+  bool any_flagged = false;
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {
-    if (!std::isnan(summary.first_fault_time_s[c])) {
-      summary_out << "  " << pipeline.monitor().channels[c] << ": fault first flagged at t = "
-                << format_number(summary.first_fault_time_s[c]) << " s\n";
+    if (std::isnan(summary.first_fault_time_s[c])) continue;
+    any_flagged = true;
+    summary_out << "  " << pipeline.monitor().channels[c] << ": fault first flagged at t = "
+                << format_number(summary.first_fault_time_s[c]) << " s";
+    // The types the channel's fault_type column showed while flagged, in code order.
+    std::string types;
+    for (const FaultTypeInfo& type : kFaultTypes) {
+      if (type.type != FaultType::none && (summary.fault_types_seen[c] & fault_type_bit(type.type)) != 0) {
+        types += (types.empty() ? "" : ", ") + std::string(type.name);
+      }
     }
+    if (!types.empty()) summary_out << "; fault type" << (types.find(',') == std::string::npos ? " " : "s ") << types;
+    summary_out << '\n';
   }
+  if (!any_flagged) summary_out << "  no channel flagged\n";
   return kExitOk;
 }
 

@@ -13,19 +13,21 @@ namespace ftsense::cli {
 
 int simulate_command(const std::vector<std::string>& args) {
   const std::vector<OptionSpec> specs{
-      {"scenario", true, true, "scenario (JSON): gait, sensor noise, injected faults; see sim/README.md"},
-      {"out", true, true, "where to write the log (CSV)"},
+      {"scenario", true, true, "scenario (JSON): gait, sensor noise, injected faults; see sim/README.md", 0, {},
+       FileArg::input},
+      {"output", true, true, "where to write the log (CSV)", 'o', {"out"}, FileArg::output},
       {"seed", true, false, "seed of the sensor noise and faults (default: the scenario's \"seed\")"},
       {"quiet", false, false, "no progress line on stderr"}};
-  const auto options = parse_options("simulate", args, specs);
+  const auto options = parse_options("ftsense simulate", args, specs);
   if (options.count("help")) {
-    std::cout << usage_text("simulate",
+    std::cout << usage_text("ftsense simulate",
                             "Simulates the SURALP-like biped (MuJoCo) walking the scenario, with sensor\n"
                             "models and injected faults, and writes the measured signals and the\n"
                             "ground truth (truth/... columns) as a CSV log. Exit 1 if the robot falls.",
                             specs);
     return kExitOk;
   }
+  require_existing_files("ftsense simulate", options, specs, {"scenario"});
   sim::Scenario scenario;
   try {
     scenario = sim::load_scenario(options.at("scenario"));
@@ -43,7 +45,7 @@ int simulate_command(const std::vector<std::string>& args) {
   }
   std::optional<io::OutputFile> out_file;
   try {
-    out_file.emplace(options.at("out"), std::vector<std::string>{options.at("scenario")}, "log");
+    out_file.emplace(options.at("output"), std::vector<std::string>{options.at("scenario")}, "log");
   } catch (const io::OutputError& e) {
     throw UsageError{std::string("error: ") + e.what()};
   }
@@ -66,7 +68,7 @@ int simulate_command(const std::vector<std::string>& args) {
     return kExitRuntime;
   }
   std::cout << "ftsense simulate: " << summary.message << " (seed " << seed << ", " << summary.ticks
-            << " rows, " << summary.cpu_s << " s CPU) -> " << options.at("out") << '\n';
+            << " rows, " << summary.cpu_s << " s CPU) -> " << options.at("output") << '\n';
   return summary.fell ? kExitRuntime : kExitOk;
 }
 

@@ -44,6 +44,13 @@ namespace py = pybind11;
 namespace ftsense::python {
 namespace {
 
+// The verbs as `ftsense` runs them: the reference plugins, messages naming "ftsense".
+const cli::Context& reference_context() {
+  static const PluginRegistry registry = reference_plugins::registry();
+  static const cli::Context context{registry, "ftsense"};
+  return context;
+}
+
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // One port of the pipeline as Python sees it: a pipeline input ("input.<name>", with the log
@@ -85,7 +92,7 @@ class PyPipeline {
 
   // The loader of `ftsense run`: a config file, and optionally a thresholds file from calibrate.
   static std::unique_ptr<PyPipeline> from_file(const std::string& path, const std::string& thresholds_path) {
-    return std::make_unique<PyPipeline>(cli::load_pipeline(path, thresholds_path), path);
+    return std::make_unique<PyPipeline>(cli::load_pipeline(reference_context(), path, thresholds_path), path);
   }
 
   // A config as JSON text (a Python dict dumped); `thresholds_text` as written by calibrate.
@@ -468,7 +475,7 @@ py::tuple calibrate(const std::vector<std::string>& args) {
   std::pair<std::string, std::string> text;
   {
     const py::gil_scoped_release unlocked;
-    text = captured([&] { status = cli::calibrate_command(args); });
+    text = captured([&] { status = cli::calibrate_command(args, reference_context()); });
   }
   return py::make_tuple(status, text.first, text.second);
 }

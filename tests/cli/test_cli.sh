@@ -29,6 +29,7 @@ good="$here/good.json"
 
 "$ftsense" --help > "$work/out" 2> "$work/err"; check help 0 $? "run" "$work/out"
 "$ftsense" --version > "$work/out" 2> "$work/err"; check version 0 $? "^ftsense [0-9]+\.[0-9]+\.[0-9]+$" "$work/out"
+"$ftsense" run --version > "$work/out" 2> "$work/err"; check verb_version 0 $? "^ftsense [0-9]+\.[0-9]+\.[0-9]+$" "$work/out"
 "$ftsense" > "$work/out" 2> "$work/err"; check no_verb 2 $?
 "$ftsense" rnu > "$work/out" 2> "$work/err"; check unknown_verb 2 $? "did you mean 'run'" "$work/err"
 "$ftsense" run --help > "$work/out" 2> "$work/err"; check run_help 0 $? "--config" "$work/out"
@@ -57,10 +58,42 @@ printf '{"sample_period_s": 0.001,\n "inputs": {,}\n' > "$work/syntax.json"
 "$ftsense" run --config "$work/syntax.json" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
 check config_not_json 2 $? "syntax.json:2:13: not valid JSON" "$work/err"
 "$ftsense" run --config "$work/nope.json" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
-check config_missing 2 $? "nope.json: cannot open the config file" "$work/err"
+check config_missing 2 $? "^error: ftsense run: --config \(-c\) .*/nope.json: no such file; check the path \(--config wants: pipeline config" "$work/err"
+# A missing input file is named with its option once the config is known good.
+"$ftsense" run --config "$good" --input "$work/missing.csv" > "$work/out" 2> "$work/err"
+check input_missing 2 $? "^error: ftsense run: --input \(-i\) .*/missing.csv: no such file; check the path" "$work/err"
+"$ftsense" calibrate --config "$good" --input "$work/log.csv,$work/missing.csv" --output "$work/x.json" > "$work/out" 2> "$work/err"
+check calibrate_input_missing 2 $? "^error: ftsense calibrate: --input \(-i\) .*/missing.csv: no such file" "$work/err"
+[ ! -e "$work/x.json" ] && { passes=$((passes + 1)); echo "ok   calibrate_input_missing_writes_nothing"; } \
+  || { failures=$((failures + 1)); echo "FAIL calibrate_input_missing_writes_nothing"; }
+"$ftsense" report --run "$work/missing.csv" --output "$work/rep" > "$work/out" 2> "$work/err"
+check report_run_missing 2 $? "^error: ftsense report: --run .*/missing.csv: no such file" "$work/err"
 
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
-check run_ok 0 $? "3000 ticks, 3 channels" "$work/out" "c2: fault first flagged at t = 1\.0[0-9]* s" "$work/out"
+check run_ok 0 $? "3000 ticks, 3 channels" "$work/out" "c2: fault first flagged at t = 1\.0[0-9]* s; fault type unclassified$" "$work/out"
+grep -q "no channel flagged" "$work/out" && { failures=$((failures + 1)); echo "FAIL run_ok_says_no_channel_flagged"; } \
+  || { passes=$((passes + 1)); echo "ok   run_ok_flagged_is_not_no_channel_flagged"; }
+
+# One spelling per option, short flags for the common ones, the old spelling a silent alias.
+"$ftsense" run -c "$good" -i "$work/log.csv" -o "$work/short.csv" > "$work/out" 2> "$work/err"
+check short_flags 0 $? "3000 ticks, 3 channels -> .*short.csv" "$work/out"
+cmp -s "$work/o.csv" "$work/short.csv" && { passes=$((passes + 1)); echo "ok   short_flags_same_output"; } \
+  || { failures=$((failures + 1)); echo "FAIL short_flags_same_output"; }
+"$ftsense" run --config="$good" --input "$work/log.csv" --out "$work/alias.csv" > "$work/out" 2> "$work/err"
+status=$?; [ -s "$work/err" ] && status=98  # 98: the alias printed something
+check out_is_a_silent_alias_of_output 0 $status "3000 ticks, 3 channels -> .*alias.csv" "$work/out"
+"$ftsense" run -c "$good" -i "$work/log.csv" -o "$work/a.csv" --output "$work/b.csv" > "$work/out" 2> "$work/err"
+check option_and_its_short_flag_twice 2 $? "option --output is given twice" "$work/err"
+"$ftsense" run -c "$good" -x 1 > "$work/out" 2> "$work/err"
+check unknown_short_flag 2 $? "unknown option -x; its short flags are -c \(--config\), -i \(--input\), -o \(--output\)" "$work/err"
+verbs="run check calibrate report plugins"
+"$ftsense" --help | grep -q "^  inject " && verbs="$verbs inject"  # with the simulator's fault models
+for verb in $verbs; do
+  "$ftsense" $verb --help > "$work/out" 2> "$work/err"
+  check help_$verb 0 $? "^  -h, --help" "$work/out"
+done
+"$ftsense" run --help > "$work/out"; check help_shows_short_flags 0 $? "^  -c, --config" "$work/out" "^  -i, --input" "$work/out" "^  -o, --output" "$work/out"
+"$ftsense" report --help > "$work/out"; check help_report_flags 0 $? "^  -t, --truth" "$work/out" "^  -o, --output" "$work/out" "usage: ftsense report --run FILE \[--truth FILE\] --output DIR" "$work/out"
 head -1 "$work/o.csv" > "$work/header"
 check run_output_header 0 0 "^time_s,c1/measured_N,c1/virtual_N,c1/fault_estimate_N,c1/recovered_N,c1/fault,c1/fault_type,c2/measured_N" "$work/header"
 rows=$(($(wc -l < "$work/o.csv") - 1))
@@ -143,7 +176,7 @@ check calibrate_plain 0 $? "detector|detect: thresholds 4[0-9]\.[0-9]" "$work/ou
 check calibrate_band_two_logs 0 $? "detect: thresholds [0-9.]+ .*; centres 30" "$work/out" '"ticks": 6000' "$work/band.json"
 "$ftsense" run --config "$good" --input "$work/faulty.csv" --output "$work/o.csv" --thresholds "$work/plain.json" > "$work/out" 2> "$work/err"
 status=$?; grep -q "fault first flagged" "$work/out" && status=99  # 99: a channel was flagged
-check plain_threshold_hides_the_negative_fault 0 $status "3000 ticks, 3 channels" "$work/out"
+check plain_threshold_hides_the_negative_fault 0 $status "3000 ticks, 3 channels" "$work/out" "^  no channel flagged$" "$work/out"
 "$ftsense" run --config "$good" --input "$work/faulty.csv" --output "$work/o.csv" --thresholds "$work/band.json" > "$work/out" 2> "$work/err"
 check band_shows_the_negative_fault 0 $? "c1: fault first flagged at t = 1\.[0-9]* s" "$work/out"
 "$ftsense" calibrate --config "$good" --input "$work/clean_a.csv," --output "$work/x.json" > "$work/out" 2> "$work/err"

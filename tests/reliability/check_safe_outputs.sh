@@ -99,7 +99,7 @@ row inject_fault_after_the_end 2 "/faults/0/start_s = 50 is after the log's last
 row output_is_dev_stdout 2 "/dev/stdout: output is not a regular file .* or '-' for standard output" "$work/log.csv" \
     "$ftsense" run --config "$cfg" --input "$work/log.csv" --output /dev/stdout
 "$ftsense" run --config "$cfg" --input "$work/log.csv" --output "$work/previous.csv" > /dev/null
-row report_out_is_a_file 2 "previous.csv: --out is a folder .* and this is a file" "$work/previous.csv" \
+row report_out_is_a_file 2 "previous.csv: --output is a folder .* and this is a file" "$work/previous.csv" \
     "$ftsense" report --run "$work/previous.csv" --out "$work/previous.csv" --no-figures
 : > "$work/empty.csv"
 row run_empty_log 2 "empty.csv:1: the file is empty" "$work/empty.csv" \

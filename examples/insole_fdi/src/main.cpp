@@ -1,9 +1,13 @@
 // insole_fdi: fault detection on a real pressure-insole walk with a virtual sensor of our own.
 //
-//   insole_fdi fit --config config/insole_fdi.json --data data/GaCo01_01.csv [--write]
+// The program is ftsense's verbs (the ftsense::app library) with this example's plugin set, the
+// reference plugins plus the insole virtual sensor: `insole_fdi run`, `check`, `calibrate`,
+// `inject`, `report` and `plugins` behave as `ftsense <verb>` does. Its own verbs:
+//
+//   insole_fdi fit --config config/insole_fdi.json --input data/GaCo01_01.csv [--write]
 //       fits the virtual sensor's coefficients on the healthy stretch [0, 40) s, prints the fit,
 //       and checks them against the config (exit 1 when they differ); --write stores them.
-//   insole_fdi run --config config/insole_fdi.json --data data/GaCo01_01.csv
+//   insole_fdi evaluate --config config/insole_fdi.json --input data/GaCo01_01.csv
 //       runs the pipeline over the walk twice: as recorded (virtual-sensor error, false alarms)
 //       and with the fault schedule below injected (detection delay, false alarms). Exit 1 when
 //       an injected fault is missed or an alarm is raised outside the faults.
@@ -23,6 +27,7 @@
 
 #include <Eigen/Core>
 
+#include "ftsense/app/app.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/pipeline.hpp"
@@ -170,7 +175,7 @@ int fit_command(const std::string& config_path, const std::string& data_path, bo
 }
 
 // ---------------------------------------------------------------------------------------------
-// run
+// evaluate
 
 struct ChannelStats {
   // healthy (as recorded) run, held-out part t >= kFitEndS
@@ -221,7 +226,7 @@ void run_pipeline(ftsense::Pipeline& pipeline, const Log& log, const std::vector
   }
 }
 
-int run_command(const std::string& config_path, const std::string& data_path) {
+int evaluate_command(const std::string& config_path, const std::string& data_path) {
   const auto registry = insole::plugins::registry();
   ftsense::Pipeline pipeline =
       ftsense::Pipeline::build(ftsense::parse_json_text(read_text(config_path), config_path), registry);
@@ -357,50 +362,74 @@ int run_command(const std::string& config_path, const std::string& data_path) {
   return 0;
 }
 
-void print_usage(std::ostream& out) {
-  out << "usage: insole_fdi fit --config C.json --data LOG.csv [--write]\n"
-         "       insole_fdi run --config C.json --data LOG.csv\n";
+// The option conventions of ftsense's verbs (ftsense/app/options.hpp).
+const std::vector<ftsense::app::OptionSpec> kFitOptions{
+    {"config", true, true, "the pipeline config (JSON) whose insole_virtual_sensor stages are fitted", 'c', {},
+     ftsense::app::FileArg::input},
+    {"input", true, true, "the walk (CSV); its healthy stretch [0, 40) s is fitted", 'i', {}, ftsense::app::FileArg::input},
+    {"write", false, false, "store the fitted coefficients in the config"}};
+const std::vector<ftsense::app::OptionSpec> kEvaluateOptions{
+    {"config", true, true, "the pipeline config (JSON)", 'c', {}, ftsense::app::FileArg::input},
+    {"input", true, true, "the recorded walk (CSV)", 'i', {}, ftsense::app::FileArg::input}};
+
+// A verb of this program: its options parsed as ftsense's are, and this file's errors (usage,
+// data, fit) reported as usage or data errors (exit 2), as ftsense reports its own.
+template <class Body>
+int own_verb(const std::string& command, const std::vector<std::string>& args,
+             const std::vector<ftsense::app::OptionSpec>& specs, std::string_view summary, Body&& body) {
+  const auto options = ftsense::app::parse_options(command, args, specs);
+  if (options.count("help")) {
+    std::cout << ftsense::app::usage_text(command, summary, specs);
+    return 0;
+  }
+  ftsense::app::require_existing_files(command, options, specs, {"config", "input"});
+  const std::string& config_path = options.at("config");
+  try {
+    return body(options);
+  } catch (const UsageError& e) {
+    throw ftsense::app::UsageError{command + ": " + e.what()};
+  } catch (const ftsense::ConfigError& e) {
+    std::string message;
+    for (const auto& p : e.problems()) message += (message.empty() ? "" : "\n") + config_path + ": " + p.text();
+    throw ftsense::app::UsageError{message};
+  } catch (const ftsense::io::LogError& e) {
+    throw ftsense::app::UsageError{e.what()};
+  } catch (const insole::FitError& e) {
+    throw ftsense::app::UsageError{e.what()};
+  } catch (const ftsense::Json::exception& e) {
+    throw ftsense::app::UsageError{config_path + ": " + e.what()};
+  }
 }
 
 }  // namespace
 
+// [snippet:app_main]
 int main(int argc, char** argv) {
-  std::string config_path;
-  std::string data_path;
-  try {
-    if (argc < 2) throw UsageError("missing verb");
-    const std::string verb = argv[1];
-    if (verb == "--help" || verb == "-h") {
-      print_usage(std::cout);
-      return 0;
-    }
-    bool write = false;
-    for (int i = 2; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (arg == "--config" && i + 1 < argc) config_path = argv[++i];
-      else if (arg == "--data" && i + 1 < argc) data_path = argv[++i];
-      else if (arg == "--write" && verb == "fit") write = true;
-      else throw UsageError("unknown or incomplete argument '" + arg + "'");
-    }
-    if (config_path.empty() || data_path.empty()) throw UsageError("--config and --data are required");
-    if (verb == "fit") return fit_command(config_path, data_path, write);
-    if (verb == "run") return run_command(config_path, data_path);
-    throw UsageError("unknown verb '" + verb + "'");
-  } catch (const UsageError& e) {
-    std::cerr << "insole_fdi: " << e.what() << '\n';
-    print_usage(std::cerr);
-    return 2;
-  } catch (const ftsense::ConfigError& e) {
-    for (const auto& p : e.problems()) std::cerr << config_path << ": " << p.text() << '\n';
-    return 2;
-  } catch (const ftsense::io::LogError& e) {
-    std::cerr << e.what() << '\n';
-    return 2;
-  } catch (const insole::FitError& e) {
-    std::cerr << e.what() << '\n';
-    return 2;
-  } catch (const ftsense::Json::exception& e) {
-    std::cerr << config_path << ": " << e.what() << '\n';
-    return 2;
-  }
+  const ftsense::PluginRegistry registry = insole::plugins::registry();
+  const std::vector<ftsense::app::Verb> own_verbs{
+      {"fit", "fit the virtual sensor's coefficients on the healthy stretch and check the config's",
+       [](const std::vector<std::string>& args, const ftsense::app::Context& context) {
+         return own_verb(context.command("fit"), args, kFitOptions,
+                         "Fits each insole_virtual_sensor stage's coefficients on the healthy stretch [0, 40) s\n"
+                         "of --input, prints the fit and checks the config's coefficients against it\n"
+                         "(exit 1 when they differ); --write stores the fitted ones in --config.",
+                         [](const ftsense::app::Options& o) {
+                           return fit_command(o.at("config"), o.at("input"), o.count("write") > 0);
+                         });
+       }},
+      {"evaluate", "detection delays and false alarms with a fault schedule injected into the walk",
+       [](const std::vector<std::string>& args, const ftsense::app::Context& context) {
+         return own_verb(context.command("evaluate"), args, kEvaluateOptions,
+                         "Runs the pipeline over the walk as recorded (virtual-sensor error on the held-out\n"
+                         "part, false alarms) and with a fixed fault schedule injected (offset, drift,\n"
+                         "frozen: detection delay, false and cross alarms). Exit 1 when an injected fault\n"
+                         "is missed or an alarm is raised outside the faults.",
+                         [](const ftsense::app::Options& o) { return evaluate_command(o.at("config"), o.at("input")); });
+       }}};
+  return ftsense::app::main(argc, argv, registry,
+                            {"insole_fdi", "0.1",
+                             "Fault detection on pressure insoles (8 sensors per foot) with a leave-one-out virtual\n"
+                             "sensor: ftsense's verbs with this example's plugins, and the example's own."},
+                            own_verbs);
 }
+// [end-snippet]
