@@ -68,6 +68,8 @@ class UrdfKinematics {
   };
 
   UrdfKinematics(const Params& params, const StageContext& context);
+  // The ports, without reading the URDF (the config reference lists them without one).
+  [[nodiscard]] static Ports declare_ports(const Params& params);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
   void reset() noexcept {}
   void step(const StepIO& io) noexcept;
