@@ -117,6 +117,8 @@ std::string config_reference_markdown(const PluginRegistry& plugins) {
      << "parameters (\"len(params.points)\"); unit *any* is the unit of what is wired in; *frame* is the\n"
      << "frame a vector is expressed in (\"foot in world\": an orientation of the foot relative to the\n"
      << "world); *role* is what the independence rule knows of a port (docs/method.md section 0).\n\n"
+     << "`docs/ftsense-config.schema.json` (`ftsense plugins --schema`) is the same as a JSON Schema\n"
+     << "(draft-07) for editors: start a config with `\"$schema\": \"<path to it>\"`.\n\n"
      << pipeline_document_markdown()
      << "## Plugins\n";
   for (const auto& plugin : plugins.plugins()) os << '\n' << plugin_reference_markdown(plugin);
