@@ -81,6 +81,8 @@ Json value_schema(const DocumentKey& k, std::string_view section_path) {
     for (const auto& [unit, seconds] : kTimeUnits) units.push_back(unit);
     out["enum"] = units;
   }
+  // Draft-07 ignores the siblings of a $ref: wrap it to keep the description and default.
+  if (out.contains("$ref")) out = {{"allOf", Json::array({out})}};
   out["description"] = key_description(k);
   if (!k.default_value.empty()) out["default"] = Json::parse(k.default_value);
   return out;
@@ -174,7 +176,6 @@ Json plugin_stage_rule(const PluginInfo& plugin) {
 
 Json config_json_schema(const PluginRegistry& plugins) {
   Json definitions = Json::object();
-  definitions["identifier"] = {{"type", "string"}, {"pattern", kIdentifierPattern}};
   definitions["wire_end"] = {
       {"type", "string"},
       {"pattern", kWireEndPattern},
