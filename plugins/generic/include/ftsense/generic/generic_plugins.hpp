@@ -2,17 +2,19 @@
 // The generic plugins any fault detection problem needs, as one plugin set.
 
 #include "ftsense/generic/attitude_from_imu.hpp"
+#include "ftsense/generic/cusum_detector.hpp"
 #include "ftsense/generic/difference_residual.hpp"
 #include "ftsense/generic/fault_recovery.hpp"
 #include "ftsense/generic/low_pass.hpp"
 #include "ftsense/generic/orientation_to_rpy.hpp"
 #include "ftsense/generic/random_walk_fault_filter.hpp"
+#include "ftsense/generic/signal_validator.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
 #include "ftsense/plugin_set.hpp"
 
 namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
-                                  OrientationToRpy, AttitudeFromImu>;
+                                  OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator>;
 
 }  // namespace ftsense::generic

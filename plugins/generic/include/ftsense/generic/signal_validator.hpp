@@ -1,0 +1,125 @@
+#pragma once
+// Per-channel signal validator: invalid, saturated, frozen, spiky and noisy readings, each judged
+// against the sensor's own noise and resolution, with thresholds from a false-alarm target.
+//
+// Sensor model (unit U of the signal): a healthy reading is x = s + n + quantisation, n white
+// with standard deviation sigma (`noise_std`), quantised in steps of q (`resolution`, 0: none),
+// within [lower_limit, upper_limit] when those are given. With a `reference` input (a virtual
+// sensor of the same quantity, noise sigma_r = `reference_noise_std`), x follows it. All tests
+// run on every tick of period T; windows hold n = round(window_s / T) ticks; alpha, the chance of
+// a false alarm per test, is T / false_alarm_interval_s, so the flags keep their false-alarm rate
+// at any rate.
+//
+//   invalid     x is NaN or Inf: flagged on that tick.
+//   saturation  x >= upper_limit - q / 2 or x <= lower_limit + q / 2: flagged on that tick.
+//   frozen      (a) the reading has less tick-to-tick variation than its own noise allows: with
+//               d2 = x_t - 2 x_{t-1} + x_{t-2} (6 sigma^2 in variance, slow motion removed),
+//               sum(d2^2 over n) < 6 sigma^2 chi2_nu(alpha) / nu, nu = 36 n / 70 (Satterthwaite:
+//               overlapping d2 are correlated). Only when sigma >= q / 2: a sensor quantised
+//               coarser than its noise repeats itself when healthy (an unloaded foot reads 0).
+//               (b) with a reference: over the window, the low-passed reference moved by
+//               |dr| >= `min_reference_change` (default 10 sqrt(sigma^2 + sigma_r^2)) while the
+//               low-passed reading moved by less than `follow_ratio` |dr|: a frozen output that
+//               still carries electrical noise. Low-pass time constant n T / 8.
+//   spikes      one reading off both neighbours and back: D = x_{t-1} - (x_{t-2} + x_t) / 2 with
+//               |D| > z sqrt(1.5 s^2) (z: the two-sided normal quantile of alpha; s^2 = sigma^2 +
+//               q^2 / 4 (the worst case: a value on a level boundary
+//               reads either level), plus sigma_r^2 on the residual x - r when a reference is given) and
+//               |x_t - x_{t-2}| < |D|. Seen one tick late; the flag holds for window_s.
+//   noise       more |d2| > 2 sqrt(6 s^2) in the window than healthy noise gives: healthy, each
+//               is over with p0 = P(|Z| > 2) = 4.55 %; the count's bound is n p0 + 2 z_alpha
+//               sqrt(p0 (1 - p0) n / 2) + 3 (overlapping d2 are correlated: n / 2 draws; the 3
+//               let one spike or step pass, which puts up to 3 large d2 in the window). On x - r
+//               with a reference, whose slow motion then cancels; without one, the signal's own
+//               motion at the tick rate must be small against its noise.
+// The type reported is the first that fires in the order above. A flag clears as soon as its
+// test passes again (frozen and noise: the window no longer shows it; spikes: window_s after the
+// last spike). Non-finite readings are left out of the windows.
+
+#include <string_view>
+#include <vector>
+
+#include "ftsense/plugin.hpp"
+
+namespace ftsense::generic {
+
+class SignalValidator {
+ public:
+  static constexpr std::string_view name = "signal_validator";
+  static constexpr std::string_view summary =
+      "invalid, saturated, frozen, spiky or noisy readings per channel, against the sensor's noise and resolution";
+
+  struct Params {
+    std::vector<double> noise_std{1.0};
+    std::vector<double> resolution{0.0};
+    std::vector<double> upper_limit{};
+    std::vector<double> lower_limit{};
+    double window_s = 0.1;
+    double false_alarm_interval_s = 86400.0;
+    bool reference = false;
+    std::vector<double> reference_noise_std{0.0};
+    std::vector<double> min_reference_change{0.0};
+    double follow_ratio = 0.25;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kSignal, kReference };
+  enum Output : std::size_t { kFault, kFaultType };
+
+  SignalValidator(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept;
+  void step(const StepIO& io) noexcept;
+
+  [[nodiscard]] std::size_t window_ticks() const noexcept { return window_; }
+
+ private:
+  // What channel j is judged against (set once from the parameters).
+  struct Limits {
+    double half_step = 0.0;          // q / 2
+    double upper = 0.0, lower = 0.0;  // saturation limits (+-inf: none)
+    bool stale_test = true;           // sigma >= q / 2
+    double stale_below = 0.0;         // sum(d2^2) of the reading below this: frozen (a)
+    double noise_level = 0.0;         // |d2| of the tested quantity above this counts for noise
+    double spike_above = 0.0;         // |D| above this: spike
+    double min_reference_change = 0.0;
+  };
+  // A window of n values with its running sum; the storage is a slice of a preallocated vector.
+  struct Window {
+    std::size_t offset = 0;  // into the shared storage
+    std::size_t head = 0;
+    std::size_t filled = 0;
+    double sum = 0.0;
+  };
+  struct State {
+    double y1 = 0.0, y2 = 0.0;  // previous two tested values (x, or x - r with a reference)
+    double x1 = 0.0, x2 = 0.0;  // previous two readings
+    int y_history = 0, x_history = 0;  // consecutive finite values seen, up to 2
+    Window tested_d2;    // 1 where |d2| of the tested quantity > noise_level, else 0
+    Window reading_d2;   // d2^2 of the reading
+    Window lp_signal;    // low-passed reading, n + 1 values (only its ends are used)
+    Window lp_reference;
+    double lp_x = 0.0, lp_r = 0.0;
+    bool lp_started = false;
+    double spike_hold_s = 0.0;  // > 0: the spikes flag holds this much longer
+  };
+
+  static void push(Window& w, std::vector<double>& storage, std::size_t size, double value) noexcept;
+  static double oldest(const Window& w, const std::vector<double>& storage, std::size_t size) noexcept;
+  static void clear(Window& w) noexcept;
+
+  Ports ports_;
+  std::vector<Limits> limits_;
+  std::vector<State> states_;
+  std::vector<double> sums_storage_;  // channels x 2 windows of n
+  std::vector<double> lp_storage_;    // channels x 2 windows of n + 1
+  std::size_t window_ = 10;
+  double sample_period_s_;
+  double window_s_;
+  double lp_gain_ = 0.0;
+  double noise_count_above_ = 0.0;  // more such |d2| in a window: noise
+  double follow_ratio_ = 0.25;
+  bool reference_ = false;
+};
+
+}  // namespace ftsense::generic

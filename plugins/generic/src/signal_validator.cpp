@@ -1,0 +1,294 @@
+#include "ftsense/generic/signal_validator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "ftsense/fault_type.hpp"
+#include "ftsense/generic/chi_square.hpp"
+
+namespace ftsense::generic {
+
+void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
+  schema
+      .add("noise_std", &Params::noise_std,
+           "standard deviation sigma of a healthy reading's noise, in the signal's unit; one value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+  schema
+      .add("resolution", &Params::resolution,
+           "quantisation step q of the reading, in its unit (0: continuous); one value applies to all")
+      .at_least(0.0)
+      .count_at_least(1);
+  schema.add("upper_limit", &Params::upper_limit,
+             "upper end of the measuring range (saturation at it); empty: none; one value applies to all");
+  schema.add("lower_limit", &Params::lower_limit,
+             "lower end of the measuring range (saturation at it); empty: none (a force sensor's 0 N is "
+             "a healthy unloaded reading, not a limit); one value applies to all");
+  schema.add("window_s", &Params::window_s, "window of the frozen, noise and spike tests")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(0.005, 10.0, "tens of samples: milliseconds to seconds");
+  schema.add("false_alarm_interval_s", &Params::false_alarm_interval_s,
+             "mean time between false alarms of one test on one healthy channel (sets the quantiles)")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(1.0, 1e9, "from a second (tests) to decades");
+  schema.add("reference", &Params::reference,
+             "adds input reference (a virtual sensor of the same quantity): the frozen test (b), and the "
+             "spike and noise tests on reading - reference");
+  schema
+      .add("reference_noise_std", &Params::reference_noise_std,
+           "standard deviation sigma_r of the reference's noise at the tick rate, in the signal's unit; "
+           "one value applies to all")
+      .at_least(0.0)
+      .count_at_least(1);
+  schema
+      .add("min_reference_change", &Params::min_reference_change,
+           "the low-passed reference must move this much over the window for frozen test (b) (0: "
+           "10 sqrt(sigma^2 + sigma_r^2)); one value applies to all")
+      .at_least(0.0)
+      .count_at_least(1);
+  schema.add("follow_ratio", &Params::follow_ratio,
+             "frozen (b) when the reading moved less than this fraction of the reference's move")
+      .greater_than(0.0)
+      .at_most(1.0);
+}
+
+namespace {
+
+std::vector<double> per_channel(const std::vector<double>& values, std::size_t dim, const std::string& key,
+                                bool may_be_empty) {
+  if (values.empty() && may_be_empty) return std::vector<double>(dim, std::nan(""));
+  if (values.size() != 1 && values.size() != dim) {
+    throw ConfigError("/params/" + key, "has " + std::to_string(values.size()) + " entries but the signal has " +
+                                            std::to_string(dim) +
+                                            " channels; give one value per channel or one for all");
+  }
+  for (std::size_t j = 0; j < values.size(); ++j) {
+    if (!std::isfinite(values[j])) {
+      throw ConfigError("/params/" + key + "/" + std::to_string(j), "is not a finite number");
+    }
+  }
+  return values.size() == dim ? values : std::vector<double>(dim, values.front());
+}
+
+}  // namespace
+
+SignalValidator::SignalValidator(const Params& params, const StageContext& context)
+    : sample_period_s_(context.sample_period_s()),
+      window_s_(params.window_s),
+      follow_ratio_(params.follow_ratio),
+      reference_(params.reference) {
+  const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
+  const auto noise_std = per_channel(params.noise_std, dim, "noise_std", false);
+  const auto resolution = per_channel(params.resolution, dim, "resolution", false);
+  const auto upper = per_channel(params.upper_limit, dim, "upper_limit", true);
+  const auto lower = per_channel(params.lower_limit, dim, "lower_limit", true);
+  const auto reference_noise = per_channel(params.reference_noise_std, dim, "reference_noise_std", false);
+  const auto min_change = per_channel(params.min_reference_change, dim, "min_reference_change", false);
+
+  const double ticks = std::round(params.window_s / sample_period_s_);
+  if (!(ticks >= 10.0 && ticks <= 1e6)) {
+    throw ConfigError("/params/window_s", " = " + format_number(params.window_s) + " s is " + format_number(ticks) +
+                                              " ticks of " + format_number(sample_period_s_) +
+                                              " s; the variance tests need 10 to 1e6 ticks");
+  }
+  window_ = static_cast<std::size_t>(ticks);
+  const double alpha = sample_period_s_ / params.false_alarm_interval_s;
+  if (!(alpha < 0.5)) {
+    throw ConfigError("/params/false_alarm_interval_s",
+                      " = " + format_number(params.false_alarm_interval_s) + " s is not longer than two ticks");
+  }
+  // Overlapping second differences: nu = 36 n / 70 degrees of freedom (Satterthwaite).
+  const double nu = 36.0 * static_cast<double>(window_) / 70.0;
+  const double low_quantile = chi_square_quantile(nu, alpha) / nu;
+  const double spike_z = -normal_quantile(0.5 * alpha);
+  // Noise: the count of |d2| > 2 sqrt(6) s in the window. Healthy, each is over with p0 =
+  // P(|Z| > 2); overlapping d2 are correlated, so the count's spread is taken as that of n / 2
+  // independent draws (normal approximation of the binomial), and 3 more are allowed: one spike
+  // or step puts up to 3 large d2 in the window, which is not noise.
+  const double p0 = std::erfc(std::numbers::sqrt2);
+  const double independent = 0.5 * static_cast<double>(window_);
+  noise_count_above_ = static_cast<double>(window_) * p0 +
+                       (-normal_quantile(alpha)) * std::sqrt(p0 * (1.0 - p0) * independent) * 2.0 + 3.0;
+  limits_.resize(dim);
+  for (std::size_t j = 0; j < dim; ++j) {
+    Limits& l = limits_[j];
+    const double q = resolution[j];
+    const double sigma2 = noise_std[j] * noise_std[j];
+    // Worst case of quantisation: a value on a level boundary reads either level, a fair coin of
+    // variance q^2 / 4 (q^2 / 12 is only the average over values).
+    const double quantisation2 = q * q / 4.0;
+    const double tested2 = sigma2 + quantisation2 + (reference_ ? reference_noise[j] * reference_noise[j] : 0.0);
+    l.half_step = 0.5 * q;
+    if (std::isfinite(upper[j]) && std::isfinite(lower[j]) && !(upper[j] - lower[j] > q)) {
+      throw ConfigError("/params/upper_limit/" + std::to_string(j),
+                        " = " + format_number(upper[j]) + " is not above lower_limit + resolution (" +
+                            format_number(lower[j] + q) + ")");
+    }
+    l.upper = std::isfinite(upper[j]) ? upper[j] : std::numeric_limits<double>::infinity();
+    l.lower = std::isfinite(lower[j]) ? lower[j] : -std::numeric_limits<double>::infinity();
+    l.stale_test = noise_std[j] >= 0.5 * q;
+    l.stale_below = 6.0 * sigma2 * static_cast<double>(window_) * low_quantile;
+    l.noise_level = 2.0 * std::sqrt(6.0 * tested2);
+    l.spike_above = spike_z * std::sqrt(1.5 * tested2);
+    l.min_reference_change =
+        min_change[j] > 0.0 ? min_change[j]
+                            : 10.0 * std::sqrt(sigma2 + reference_noise[j] * reference_noise[j]);
+  }
+  // Low-pass of time constant n T / 8 for frozen test (b): its noise is small against a move.
+  lp_gain_ = -std::expm1(-8.0 / static_cast<double>(window_));
+
+  ports_.add_input({"signal", dim, std::string(kAnyUnit), "the readings x to validate"});
+  if (reference_) {
+    ports_.add_input({"reference", dim, std::string(kAnyUnit), "a virtual sensor of the same quantity",
+                      PortRole::virtual_estimate});
+  }
+  ports_.add_output({"fault", dim, std::string(kDimensionless), "1 while a test fails, else 0"});
+  ports_.add_output({"fault_type", dim, std::string(kDimensionless),
+                     "fault type code (fault_type.hpp): none, invalid, saturation, frozen, spikes or noise"});
+  states_.resize(dim);
+  sums_storage_.assign(2 * dim * window_, 0.0);
+  lp_storage_.assign(2 * dim * (window_ + 1), 0.0);
+  for (std::size_t j = 0; j < dim; ++j) {
+    states_[j].tested_d2.offset = (2 * j) * window_;
+    states_[j].reading_d2.offset = (2 * j + 1) * window_;
+    states_[j].lp_signal.offset = (2 * j) * (window_ + 1);
+    states_[j].lp_reference.offset = (2 * j + 1) * (window_ + 1);
+  }
+}
+
+void SignalValidator::push(Window& w, std::vector<double>& storage, std::size_t size, double value) noexcept {
+  double& slot = storage[w.offset + w.head];
+  if (w.filled == size) {
+    w.sum -= slot;
+  } else {
+    ++w.filled;
+  }
+  slot = value;
+  w.sum += value;
+  w.head = (w.head + 1) % size;
+  if (w.head == 0) {
+    // Once a window, the exact sum: a running sum of millions of ticks would drift.
+    double exact = 0.0;
+    for (std::size_t i = 0; i < size; ++i) exact += storage[w.offset + i];
+    w.sum = exact;
+  }
+}
+
+double SignalValidator::oldest(const Window& w, const std::vector<double>& storage, std::size_t size) noexcept {
+  // Full ring: the slot at head is the oldest (it is overwritten next).
+  return storage[w.offset + (w.filled == size ? w.head : 0)];
+}
+
+void SignalValidator::clear(Window& w) noexcept {
+  w.head = 0;
+  w.filled = 0;
+  w.sum = 0.0;
+}
+
+void SignalValidator::reset() noexcept {
+  for (State& s : states_) {
+    State fresh;
+    fresh.tested_d2.offset = s.tested_d2.offset;
+    fresh.reading_d2.offset = s.reading_d2.offset;
+    fresh.lp_signal.offset = s.lp_signal.offset;
+    fresh.lp_reference.offset = s.lp_reference.offset;
+    s = fresh;
+  }
+  std::fill(sums_storage_.begin(), sums_storage_.end(), 0.0);
+  std::fill(lp_storage_.begin(), lp_storage_.end(), 0.0);
+}
+
+void SignalValidator::step(const StepIO& io) noexcept {
+  const auto x = io.in(kSignal);
+  const auto fault = io.out(kFault);
+  const auto type = io.out(kFaultType);
+  const std::size_t n = window_;
+  for (std::size_t j = 0; j < limits_.size(); ++j) {
+    const Limits& l = limits_[j];
+    State& s = states_[j];
+    const double r = reference_ ? io.in(kReference)[j] : 0.0;
+    FaultType found = FaultType::none;
+
+    if (!std::isfinite(x[j])) {
+      // Nothing of this tick enters a window; the differences restart after the gap.
+      s.x_history = s.y_history = 0;
+      s.lp_started = false;
+      clear(s.lp_signal);
+      clear(s.lp_reference);
+      fault[j] = 1.0;
+      type[j] = fault_code(FaultType::invalid);
+      continue;
+    }
+    if (x[j] >= l.upper - l.half_step || x[j] <= l.lower + l.half_step) found = FaultType::saturation;
+
+    // Frozen (a): the reading's own second differences.
+    if (s.x_history == 2) {
+      const double d2 = x[j] - 2.0 * s.x1 + s.x2;
+      push(s.reading_d2, sums_storage_, n, d2 * d2);
+    }
+    s.x2 = s.x1;
+    s.x1 = x[j];
+    s.x_history = std::min(s.x_history + 1, 2);
+    if (found == FaultType::none && l.stale_test && s.reading_d2.filled == n && s.reading_d2.sum < l.stale_below) {
+      found = FaultType::frozen;
+    }
+
+    // Frozen (b): the reading does not follow the reference's move over the window.
+    if (reference_ && std::isfinite(r)) {
+      if (!s.lp_started) {
+        s.lp_x = x[j];
+        s.lp_r = r;
+        s.lp_started = true;
+      } else {
+        s.lp_x += lp_gain_ * (x[j] - s.lp_x);
+        s.lp_r += lp_gain_ * (r - s.lp_r);
+      }
+      push(s.lp_signal, lp_storage_, n + 1, s.lp_x);
+      push(s.lp_reference, lp_storage_, n + 1, s.lp_r);
+      if (found == FaultType::none && s.lp_reference.filled == n + 1) {
+        const double reference_move = std::abs(s.lp_r - oldest(s.lp_reference, lp_storage_, n + 1));
+        const double reading_move = std::abs(s.lp_x - oldest(s.lp_signal, lp_storage_, n + 1));
+        if (reference_move >= l.min_reference_change && reading_move < follow_ratio_ * reference_move) {
+          found = FaultType::frozen;
+        }
+      }
+    } else if (reference_) {
+      s.lp_started = false;
+      clear(s.lp_signal);
+      clear(s.lp_reference);
+    }
+
+    // Spikes and noise: on x, or on x - r with a reference.
+    const double y = x[j] - r;
+    if (std::isfinite(y)) {
+      if (s.y_history == 2) {
+        const double d2 = y - 2.0 * s.y1 + s.y2;
+        push(s.tested_d2, sums_storage_, n, std::abs(d2) > l.noise_level ? 1.0 : 0.0);
+        const double off_neighbours = s.y1 - 0.5 * (s.y2 + y);
+        if (std::abs(off_neighbours) > l.spike_above && std::abs(y - s.y2) < std::abs(off_neighbours)) {
+          s.spike_hold_s = window_s_;
+        }
+      }
+      s.y2 = s.y1;
+      s.y1 = y;
+      s.y_history = std::min(s.y_history + 1, 2);
+    } else {
+      s.y_history = 0;
+    }
+    if (found == FaultType::none && s.spike_hold_s > 0.0) found = FaultType::spikes;
+    if (found == FaultType::none && s.tested_d2.filled == n && s.tested_d2.sum > noise_count_above_) {
+      found = FaultType::noise;
+    }
+    s.spike_hold_s -= sample_period_s_;
+
+    fault[j] = found == FaultType::none ? 0.0 : 1.0;
+    type[j] = fault_code(found);
+  }
+}
+
+}  // namespace ftsense::generic

@@ -1,0 +1,258 @@
+// signal_validator: each test fires on the tick it should (deterministic traces), and healthy
+// quantised or noisy sensors raise nothing (seeded noise, seeds printed).
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "ftsense/fault_type.hpp"
+#include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/signal_validator.hpp"
+#include "ftsense/testing/plugin_contract.hpp"
+
+namespace ftsense::testing {
+template <>
+struct ContractSetup<generic::SignalValidator> {
+  static Json params() { return {{"reference", true}, {"upper_limit", {1e4}}}; }
+  static std::size_t input_dim(std::string_view) { return 3; }
+  static void nominal_input(std::string_view, std::span<double> v) {
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = 100.0 + 10.0 * static_cast<double>(i);
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+INSTANTIATE_TYPED_TEST_SUITE_P(Validator, PluginContract, ::testing::Types<generic::SignalValidator>);
+}  // namespace ftsense::testing
+
+namespace ftsense {
+namespace {
+
+using generic::SignalValidator;
+
+struct OneChannel {
+  SignalValidator validator;
+  bool with_reference;
+  std::vector<double> x{0.0}, r{0.0}, fault{0.0}, type{0.0};
+  double t = 0.0;
+  double period;
+
+  OneChannel(const SignalValidator::Params& p, double period_s)
+      : validator(p, StageContext(period_s, "v", p.reference ? std::vector<std::pair<std::string, std::size_t>>{{"signal", 1}, {"reference", 1}}
+                                                            : std::vector<std::pair<std::string, std::size_t>>{{"signal", 1}})),
+        with_reference(p.reference),
+        period(period_s) {
+    validator.reset();
+  }
+  FaultType step(double reading, double reference = 0.0) {
+    x[0] = reading;
+    r[0] = reference;
+    const std::span<double> outs[] = {fault, type};
+    if (with_reference) {
+      const std::span<const double> ins[] = {x, r};
+      validator.step(StepIO{t, ins, outs});
+    } else {
+      const std::span<const double> ins[] = {x};
+      validator.step(StepIO{t, ins, outs});
+    }
+    t += period;
+    EXPECT_EQ(fault[0] != 0.0, type[0] != fault_code(FaultType::none));
+    return static_cast<FaultType>(static_cast<int>(type[0]));
+  }
+};
+
+TEST(ChiSquare, QuantilesMatchTables) {
+  EXPECT_NEAR(generic::normal_quantile(0.975), 1.959964, 1e-6);
+  EXPECT_NEAR(generic::normal_quantile(1e-9), -5.997807, 1e-5);
+  // chi2 tables: nu = 30, p = 0.05: 18.493; p = 0.95: 43.773 (Wilson-Hilferty within 0.1 %).
+  EXPECT_NEAR(generic::chi_square_quantile(30.0, 0.05) / 18.493, 1.0, 1e-3);
+  EXPECT_NEAR(generic::chi_square_quantile(30.0, 0.95) / 43.773, 1.0, 1e-3);
+}
+
+TEST(SignalValidator, InvalidAndSaturationOnTheirTick) {
+  SignalValidator::Params p;
+  p.noise_std = {100.0};  // so that the jumps below are not spikes
+  p.resolution = {1.0};
+  p.upper_limit = {100.0};
+  OneChannel c(p, 1e-3);
+  EXPECT_EQ(c.step(10.0), FaultType::none);
+  EXPECT_EQ(c.step(std::nan("")), FaultType::invalid);
+  EXPECT_EQ(c.step(11.0), FaultType::none);
+  EXPECT_EQ(c.step(std::numeric_limits<double>::infinity()), FaultType::invalid);
+  EXPECT_EQ(c.step(99.4), FaultType::none);
+  EXPECT_EQ(c.step(99.5), FaultType::saturation);  // within q / 2 of the limit
+  EXPECT_EQ(c.step(130.0), FaultType::saturation);
+  EXPECT_EQ(c.step(50.0), FaultType::none);
+  // No lower limit given: 0 and below are readings like any other.
+  EXPECT_EQ(c.step(0.0), FaultType::none);
+  EXPECT_EQ(c.step(-3.0), FaultType::none);
+}
+
+TEST(SignalValidator, AFrozenReadingIsFlaggedOnTheTickItsLastMovesLeaveTheWindow) {
+  // A reading alternating +-1 (d2 = +-4: below the noise count's 2 sqrt(6) sigma, d2^2 = 16) that
+  // freezes at its last value from tick f: d2 is 16 up to tick f - 1, 4 on tick f, 0 after. The
+  // stale bound 6 sigma^2 n chi2_nu(alpha) / nu lies between 16 + 4 and 16 + 16 + 4 (checked), so
+  // the flag rises on the tick the window keeps only d2(f - 1) and d2(f): f + n - 2.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.05;
+  OneChannel c(p, 1e-3);
+  const std::size_t n = c.validator.window_ticks();
+  ASSERT_EQ(n, 50u);
+  const double nu = 36.0 * 50.0 / 70.0;
+  const double bound = 6.0 * 50.0 * generic::chi_square_quantile(nu, 1e-3 / p.false_alarm_interval_s) / nu;
+  std::printf("stale bound on sum(d2^2): %.2f\n", bound);
+  ASSERT_GT(bound, 20.0);
+  ASSERT_LT(bound, 36.0);
+  constexpr int kFreeze = 200;
+  double last = 0.0;
+  for (int k = 0; k < kFreeze; ++k) {
+    last = k % 2 ? 1.0 : -1.0;
+    ASSERT_EQ(c.step(last), FaultType::none) << k;
+  }
+  const int flag_tick = kFreeze + static_cast<int>(n) - 2;
+  for (int k = kFreeze; k < kFreeze + 200; ++k) {
+    EXPECT_EQ(c.step(last), k >= flag_tick ? FaultType::frozen : FaultType::none) << "tick " << k;
+  }
+  // It moves by 3 (d2 = 3: 9 < bound, still frozen) and back (d2 = -6: 9 + 36 > bound, cleared).
+  EXPECT_EQ(c.step(last + 3.0), FaultType::frozen);
+  EXPECT_EQ(c.step(last), FaultType::none);
+}
+
+TEST(SignalValidator, ACoarselyQuantisedHealthySensorThatRepeatsItselfIsNotFrozen) {
+  // 5 N steps, 1 N noise (sigma < q / 2): a constant load reads the same value for ever; an
+  // unloaded foot reads exact zeros. Neither is a fault.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.resolution = {5.0};
+  OneChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 11;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  int flagged = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double load = k < 10000 ? 0.0 : 203.4;
+    flagged += c.step(5.0 * std::round((load + noise(rng)) / 5.0)) != FaultType::none;
+  }
+  EXPECT_EQ(flagged, 0);
+}
+
+TEST(SignalValidator, HealthyNoisyQuantisedSensorsRaiseNothingAtAnyRate) {
+  // sigma = 3, q = 5 (sigma >= q / 2: the stale test is on) on a slow load, 100 s at 1 kHz and at
+  // 200 Hz; the bound: no flag at all (target one false alarm a day per test).
+  constexpr unsigned kSeed = 12;
+  std::printf("seed %u\n", kSeed);
+  for (const double period : {1e-3, 5e-3}) {
+    SignalValidator::Params p;
+    p.noise_std = {3.0};
+    p.resolution = {5.0};
+    OneChannel c(p, period);
+    std::mt19937_64 rng(kSeed);
+    std::normal_distribution<double> noise(0.0, 3.0);
+    int flagged = 0;
+    for (double t = 0.0; t < 100.0; t += period) {
+      const double load = 300.0 + 200.0 * std::sin(2.0 * std::numbers::pi * 1.0 * t);
+      flagged += c.step(5.0 * std::round((load + noise(rng)) / 5.0)) != FaultType::none;
+    }
+    EXPECT_EQ(flagged, 0) << "T = " << period;
+  }
+}
+
+TEST(SignalValidator, AFrozenOutputThatStillCarriesNoiseIsCaughtAgainstTheReference) {
+  // The load swings 100..500 N at 1 Hz; the sensor follows it with 2 N noise, then from t = 3 s
+  // its output stays at 250 N plus the same noise. The signal-only stale test cannot see it; the
+  // reference test must, within two windows of the first reference move of min_reference_change.
+  SignalValidator::Params p;
+  p.noise_std = {2.0};
+  p.reference = true;
+  p.reference_noise_std = {5.0};
+  p.window_s = 0.1;
+  OneChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 13;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  double first_flag = -1.0;
+  for (int k = 0; k < 5000; ++k) {
+    const double t = k * 1e-3;
+    const double load = 300.0 + 200.0 * std::sin(2.0 * std::numbers::pi * t);
+    const double reading = (t < 3.0 ? load : 250.0) + 2.0 * noise(rng);
+    const FaultType found = c.step(reading, load + 5.0 * noise(rng));
+    if (t < 3.0) {
+      ASSERT_EQ(found, FaultType::none) << "t = " << t;
+    } else if (found == FaultType::frozen && first_flag < 0.0) {
+      first_flag = t;
+    }
+  }
+  std::printf("frozen at 3 s, flagged at %.3f s\n", first_flag);
+  ASSERT_GE(first_flag, 3.0);
+  EXPECT_LE(first_flag, 3.2);
+}
+
+TEST(SignalValidator, ASpikeIsFlaggedOneTickLateAndHeldForAWindow) {
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.02;  // 20 ticks
+  OneChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 16;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  // A ramp with unit noise, one reading 100 off at tick 50.
+  for (int k = 0; k < 100; ++k) {
+    const FaultType found = c.step(0.5 * k + noise(rng) + (k == 50 ? 100.0 : 0.0));
+    EXPECT_EQ(found, k >= 51 && k < 71 ? FaultType::spikes : FaultType::none) << "tick " << k;
+  }
+}
+
+TEST(SignalValidator, AStepIsNeitherASpikeNorNoise) {
+  // A clean 100-unit step (an offset fault's onset, a landing) on white noise: not a validator
+  // fault (the residual detectors judge offsets).
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  OneChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 14;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  int flagged = 0;
+  for (int k = 0; k < 2000; ++k) flagged += c.step((k >= 1000 ? 100.0 : 0.0) + noise(rng)) != FaultType::none;
+  EXPECT_EQ(flagged, 0);
+}
+
+TEST(SignalValidator, ANoiseBurstIsFlaggedWithinAWindowAndClearsAfterIt) {
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.1;
+  OneChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 15;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  int first = -1;
+  int last = -1;
+  for (int k = 0; k < 3000; ++k) {
+    const double sigma = k >= 1000 && k < 1500 ? 4.0 : 1.0;  // 0.5 s of 4x noise
+    const FaultType found = c.step(50.0 + sigma * noise(rng));
+    if (found != FaultType::none) {
+      EXPECT_TRUE(found == FaultType::noise || found == FaultType::spikes) << "tick " << k;
+      if (first < 0) first = k;
+      last = k;
+    }
+  }
+  std::printf("noise 1000..1499: flagged %d..%d\n", first, last);
+  EXPECT_GE(first, 1000);
+  EXPECT_LE(first, 1100);
+  EXPECT_LE(last, 1500 + 100 + 1);
+}
+
+TEST(SignalValidator, RefusesAWindowOfTooFewTicks) {
+  SignalValidator::Params p;
+  p.window_s = 0.005;
+  EXPECT_THROW(SignalValidator(p, StageContext(1e-3, "v", {{"signal", 1}})), ConfigError);
+}
+
+}  // namespace
+}  // namespace ftsense
