@@ -83,6 +83,36 @@ TEST(ConfigSchema, PortsAddedByParametersAreListed) {
   EXPECT_EQ(urdf->outputs().at(*urdf->find_output("com")).frame, "world");
 }
 
+TEST(ConfigSchema, SizeRulesInWordsHoldWhenTheWiringChanges) {
+  // A port "as wired" takes the size wired to it, and a port "as `p`" that of port p: build each
+  // plugin's first example with its "as wired" input wired to 5 values and compare.
+  constexpr std::size_t kWired = 5;
+  const PluginRegistry registry = reference_plugins::registry();
+  std::size_t checked = 0;
+  for (const PluginInfo& plugin : registry.plugins()) {
+    Diagnostics diag;
+    const auto example = plugin.example_ports(0.001, diag);
+    ASSERT_TRUE(example.has_value()) << plugin.name;
+    for (const PortSpec& wired : example->inputs()) {
+      if (wired.dim_rule != "as wired") continue;
+      Json params = plugin.example_params.empty() ? Json::object() : Json::parse(plugin.example_params);
+      if (params.is_array()) params = params.back();
+      const StageContext context(0.001, "stage", {{wired.name, kWired}});
+      const auto stage = plugin.create(params, "/stages/0", context, diag);
+      ASSERT_NE(stage, nullptr) << plugin.name << ": " << diag.errors().front().text();
+      for (const auto* list : {&stage->ports().inputs(), &stage->ports().outputs()}) {
+        for (const PortSpec& port : *list) {
+          if (port.dim_rule == "as wired" || port.dim_rule == "as `" + wired.name + "`") {
+            EXPECT_EQ(port.dim, kWired) << plugin.name << "." << port.name;
+            ++checked;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GE(checked, 30u);  // the generic plugins' channels
+}
+
 TEST(ConfigSchema, StagesAreCheckedByTheirPlugin) {
   const PluginRegistry registry = reference_plugins::registry();
   const Json schema = config_json_schema(registry);
