@@ -1,14 +1,15 @@
 # ftsense: the two commands of the README.
 #   make demo   install what is missing, build, run the main demo
 #   make test   install what is missing, build, run every test
-# Other targets: deps, build, docs (regenerate docs/config_reference.md), sanitize, clean.
+# Other targets: deps, build, docs (regenerate docs/config_reference.md, docs/ftsense-config.schema.json
+# and the generated README blocks), sanitize, clean.
 
 BUILD_DIR := build
 JOBS ?= 2
 # Debian packages the build needs (checked with dpkg; installed with apt-get when missing).
 PACKAGES := cmake ninja-build g++ make pkg-config libeigen3-dev libceres-dev libboost-dev \
             nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libmujoco-dev liburdfdom-dev python3 gnuplot-nox \
-            pybind11-dev python3-dev python3-numpy python3-matplotlib
+            pybind11-dev python3-dev python3-numpy python3-matplotlib python3-jsonschema
 
 .PHONY: all deps configure build test demo docs sanitize clean
 
@@ -38,7 +39,6 @@ demo: build
 	./$(BUILD_DIR)/bin/ftsense demo --output out/demo
 
 docs: build
-	./$(BUILD_DIR)/bin/ftsense plugins --markdown > docs/config_reference.md
 	bash tests/cli/check_generated_docs.sh ./$(BUILD_DIR)/bin/ftsense . --update
 
 sanitize: deps

@@ -1,5 +1,6 @@
 #include "ftsense/config_reference.hpp"
 
+#include <optional>
 #include <sstream>
 
 #include "ftsense/pipeline_document.hpp"
@@ -49,6 +50,57 @@ std::string pipeline_document_markdown() {
   return os.str();
 }
 
+// The tick period the port tables' example stages are built for (ports rarely depend on it).
+constexpr double kExampleSamplePeriodS = 0.001;
+
+std::string unit_text(std::string_view unit) {
+  if (unit == kAnyUnit) return "any";
+  if (unit == kAnyUnitSquared) return "any^2";
+  return std::string(unit);
+}
+
+std::string role_text(const PortSpec& port) {
+  if (port.leave_one_out) return "leave-one-out";
+  switch (port.role) {
+    case PortRole::measured: return "measured";
+    case PortRole::virtual_estimate: return "virtual estimate";
+    case PortRole::signal: break;
+  }
+  return "-";
+}
+
+// One table of input or output ports.
+void port_table(std::ostringstream& os, std::string_view direction, const std::vector<PortSpec>& ports) {
+  os << "| " << direction << " | size | unit | frame | role | meaning |\n|---|---|---|---|---|---|\n";
+  for (const PortSpec& port : ports) {
+    os << "| `" << port.name << "` | " << escape_cell(port.dim_rule.empty() ? std::to_string(port.dim) : port.dim_rule)
+       << " | " << unit_text(port.unit) << " | " << (port.frame.empty() ? "-" : port.frame) << " | "
+       << role_text(port) << " | " << escape_cell(port.description) << " |\n";
+  }
+}
+
+// The plugin's ports, as declared by the plugin built from its example parameters.
+std::string ports_markdown(const PluginInfo& plugin) {
+  std::ostringstream os;
+  Diagnostics diag;
+  const std::optional<Ports> ports = plugin.example_ports ? plugin.example_ports(kExampleSamplePeriodS, diag) : std::nullopt;
+  if (!ports) {
+    os << "Ports: declared when the stage is built (the example parameters do not construct it";
+    if (!diag.errors().empty()) os << ": " << diag.errors().front().text();
+    os << ").\n";
+    return os.str();
+  }
+  os << "Ports";
+  if (!plugin.example_params.empty()) {
+    os << ", declared with the example parameters `" << Json::parse(plugin.example_params).dump() << "`";
+  }
+  os << ":\n\n";
+  port_table(os, "input", ports->inputs());
+  os << '\n';
+  port_table(os, "output", ports->outputs());
+  return os.str();
+}
+
 }  // namespace
 
 std::string config_reference_markdown(const PluginRegistry& plugins) {
@@ -59,6 +111,14 @@ std::string config_reference_markdown(const PluginRegistry& plugins) {
      << "A value that breaks its *rule* is an error. A value within its rule but outside its *plausible*\n"
      << "range (what real legged robots need) is a warning: `ftsense check` and `ftsense run` print it\n"
      << "with its JSON Pointer and go on. It usually means a unit slip (grams for kilograms) or a typo.\n\n"
+     << "Each plugin's ports are listed as the plugin declares them, built without a config from its\n"
+     << "defaults or its example parameters. *size* is a number, or words when it follows the wiring\n"
+     << "(\"as wired\": the number of values wired to it; \"as `measured`\": the size of that port) or the\n"
+     << "parameters (\"len(params.points)\"); unit *any* is the unit of what is wired in; *frame* is the\n"
+     << "frame a vector is expressed in (\"foot in world\": an orientation of the foot relative to the\n"
+     << "world); *role* is what the independence rule knows of a port (docs/method.md section 0).\n\n"
+     << "`docs/ftsense-config.schema.json` (`ftsense plugins --schema`) is the same as a JSON Schema\n"
+     << "(draft-07) for editors: start a config with `\"$schema\": \"<path to it>\"`.\n\n"
      << pipeline_document_markdown()
      << "## Plugins\n";
   for (const auto& plugin : plugins.plugins()) os << '\n' << plugin_reference_markdown(plugin);
@@ -69,7 +129,7 @@ std::string plugin_reference_markdown(const PluginInfo& plugin) {
   std::ostringstream os;
   os << "### `" << plugin.name << "`\n\n" << plugin.summary << "\n\n";
   if (plugin.params.empty()) {
-    os << "No parameters.\n";
+    os << "No parameters.\n\n" << ports_markdown(plugin);
     return os.str();
   }
   os << "| key | type | unit | default | rule | plausible | meaning |\n|---|---|---|---|---|---|---|\n";
@@ -79,6 +139,7 @@ std::string plugin_reference_markdown(const PluginInfo& plugin) {
        << " | " << escape_cell(p.plausible ? p.plausible->text({}) : "-") << " | " << escape_cell(p.description)
        << " |\n";
   }
+  os << '\n' << ports_markdown(plugin);
   return os.str();
 }
 

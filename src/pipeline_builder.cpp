@@ -277,6 +277,7 @@ class PipelineBuilder {
         diag_.error(d.path + "/inputs/" + json_pointer_token(spec.name),
                     "missing input of plugin " + plugin->name + ": " + spec.description + " (" +
                         std::to_string(spec.dim) + " values" + (spec.unit.empty() ? std::string() : ", " + spec.unit) +
+                        (spec.frame.empty() ? std::string() : ", " + spec.frame + " frame") +
                         "); wire it to \"input.<name>\" or \"<stage>.<port>\"");
         ok = false;
         continue;

@@ -20,6 +20,7 @@ std::string_view to_string(DocumentValue value) noexcept {
     case DocumentValue::array: return "array";
     case DocumentValue::text_list: return "array of strings";
     case DocumentValue::wire: return "wire";
+    case DocumentValue::wires: return "object of wires";
     case DocumentValue::range: return "[min, max]";
     case DocumentValue::numbers: return "number or array of numbers";
   }
@@ -31,7 +32,8 @@ bool has_type(const Json& value, DocumentValue type) noexcept {
     case DocumentValue::number: return value.is_number();
     case DocumentValue::boolean: return value.is_boolean();
     case DocumentValue::text: return value.is_string();
-    case DocumentValue::object: return value.is_object();
+    case DocumentValue::object:
+    case DocumentValue::wires: return value.is_object();
     case DocumentValue::array: return value.is_array();
     case DocumentValue::text_list:
       return value.is_array() && std::all_of(value.begin(), value.end(), [](const Json& v) { return v.is_string(); });
@@ -78,7 +80,9 @@ std::vector<DocumentSection> make_sections() {
          "the log's time column (see `time` below)"},
         {"allow_dependent_virtual_sensor", V::boolean, false, "false", "",
          "accept a virtual sensor computed from the sensor it judges (a warning instead of an error)"},
-        description}});
+        description,
+        {"$schema", V::text, false, "", "",
+         "the JSON Schema an editor checks the file with (docs/ftsense-config.schema.json); ftsense ignores it"}}});
   sections.push_back(
       {"inputs/<name>", "an input",
        "`<name>` is an identifier (letters, digits, `_`). Stages refer to it as `input.<name>`.",
@@ -102,7 +106,7 @@ std::vector<DocumentSection> make_sections() {
        {{"name", V::text, true, "", "unique identifier, not `input`", "the stage's unique name"},
         {"plugin", V::text, true, "", "", "the plugin that runs the stage; `ftsense plugins` lists them"},
         {"params", V::object, false, "{}", "", "the plugin's parameters"},
-        {"inputs", V::object, false, "", "one wire per input port of the plugin",
+        {"inputs", V::wires, false, "", "one wire per input port of the plugin",
          "input port to wire: `\"input.<name>\"`, `\"<stage>.<port>\"`, either with a selection of its values "
          "(`\"imu.acc[2]\"`, `\"input.pos[0:2]\"`: 0-based, end excluded), or an array of them (concatenated)"},
         description}});
@@ -116,7 +120,7 @@ std::vector<DocumentSection> make_sections() {
                             std::string(column.meaning) + ", written as `" +
                                 monitor_column_name("<channel>", column, "<unit>") + "`"});
   }
-  monitor.keys.push_back({"extra", V::object, false, "", "",
+  monitor.keys.push_back({"extra", V::wires, false, "", "",
                           "name to wire of further per-channel signals, written as `" +
                               extra_column_name("<channel>", "<name>", "<unit>") +
                               "` (no suffix when dimensionless)"});
@@ -188,6 +192,7 @@ class DocumentReader {
       doc_.allow_dependent_virtual_sensor = a->get<bool>();
     }
     (void)field(cfg_, "", section, "description");
+    (void)field(cfg_, "", section, "$schema");
     if (const Json* inputs = field(cfg_, "", section, "inputs")) read_inputs(*inputs);
     if (const Json* stages = field(cfg_, "", section, "stages")) read_stages(*stages);
     if (const Json* monitor = field(cfg_, "", section, "monitor")) read_monitor(*monitor);
@@ -320,11 +325,9 @@ class DocumentReader {
       }
     }
     if (const Json* unit = field(time, "/time", section, "unit")) {
-      static constexpr std::array<std::pair<std::string_view, double>, 4> kUnits{
-          {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"ns", 1e-9}}};
       const std::string u = unit->get<std::string>();
-      const auto it = std::find_if(kUnits.begin(), kUnits.end(), [&u](const auto& k) { return k.first == u; });
-      if (it == kUnits.end()) {
+      const auto it = std::find_if(kTimeUnits.begin(), kTimeUnits.end(), [&u](const auto& k) { return k.first == u; });
+      if (it == kTimeUnits.end()) {
         diag_.error("/time/unit", " = \"" + u + "\" is not one of s, ms, us, ns");
       } else {
         doc_.time.unit = u;

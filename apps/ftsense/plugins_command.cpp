@@ -3,6 +3,7 @@
 
 #include "cli.hpp"
 #include "ftsense/config_reference.hpp"
+#include "ftsense/config_schema.hpp"
 #include "ftsense/fault_type.hpp"
 
 namespace ftsense::cli {
@@ -12,6 +13,7 @@ int plugins_command(const std::vector<std::string>& args, const Context& context
   const std::vector<OptionSpec> specs{
       {"markdown", false, false, "print the full configuration reference (docs/config_reference.md)"},
       {"only", true, false, "with --markdown: only these plugins' sections (comma-separated names)"},
+      {"schema", false, false, "print the JSON Schema of the pipeline config (docs/ftsense-config.schema.json)"},
       {"fault-types", false, false, "print the fault type table: code, name, model (docs/architecture.md)"}};
   const auto options = parse_options(command, args, specs);
   if (options.count("help")) {
@@ -31,6 +33,10 @@ int plugins_command(const std::vector<std::string>& args, const Context& context
       std::cout << (first ? "" : "\n") << plugin_reference_markdown(*info);
       first = false;
     }
+    return kExitOk;
+  }
+  if (options.count("schema")) {
+    std::cout << config_json_schema(registry).dump(2) << '\n';
     return kExitOk;
   }
   if (options.count("markdown")) {

@@ -25,6 +25,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ftsense/diagnostics.hpp"
@@ -34,7 +35,8 @@
 namespace ftsense {
 
 // The JSON type a key takes.
-enum class DocumentValue { number, boolean, text, object, array, text_list, wire, range, numbers };
+// `wires`: an object whose every value is a wire (a stage's inputs, the monitor's extra).
+enum class DocumentValue { number, boolean, text, object, array, text_list, wire, wires, range, numbers };
 // As users read it: "number", "array of strings", "wire", ...
 [[nodiscard]] std::string_view to_string(DocumentValue value) noexcept;
 // Whether `value` has the JSON type (a wire: a string or a non-empty array of strings).
@@ -79,6 +81,12 @@ struct WireEnd {
   std::size_t producer = 0;  // index into PipelineDocument::stages when !from_input
 };
 
+// The form of one wire element as an ECMAScript regular expression (for the config schema):
+// an identifier, a dot, an identifier, optionally "[i]" or "[i:j]" (indices of at most 6 digits).
+// The reader also demands i < j and names it knows; a test holds the two to the same form.
+inline constexpr std::string_view kWireEndPattern =
+    R"(^[A-Za-z_][A-Za-z0-9_]*\.[A-Za-z_][A-Za-z0-9_]*(\[[0-9]{1,6}(:[0-9]{1,6})?\])?$)";
+
 struct WireDecl {
   std::string port;  // the consuming port (stage input, monitor column key or extra name)
   std::string path;  // JSON Pointer of the wire
@@ -95,6 +103,10 @@ struct InputDecl {
   std::vector<double> scale;
   std::vector<double> offset;
 };
+
+// The units the time column may be written in (`time.unit`), and their length in seconds.
+inline constexpr std::array<std::pair<std::string_view, double>, 4> kTimeUnits{
+    {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"ns", 1e-9}}};
 
 // The log's time column: its name and unit; the reader converts it to seconds.
 struct TimeColumnDecl {

@@ -15,6 +15,17 @@
 //     void step(const ftsense::StepIO&) noexcept;             // one tick: no allocation, no throw
 //   };
 //
+// Optional, for the config reference's port tables (docs/config_reference.md), which list every
+// plugin's ports without a config by constructing it with example parameters:
+//
+//     static constexpr std::string_view example_params = R"({"height_m": 0.8})";
+//                  // JSON overriding the defaults, one object or an array of them (the table
+//                  // lists the union of their ports: a port some parameters add); needed when the
+//                  // defaults do not construct (required parameters). Also the schema's examples.
+//     static ftsense::Ports declare_ports(const Params&);
+//                  // the ports, when constructing needs more than parameters (a file); the
+//                  // constructor then takes its ports from it too.
+//
 // Lifecycle: constructed once when the pipeline is built, reset() before the first tick and
 // whenever the pipeline resets, then step() once per tick. Threading: a plugin object is used by
 // one thread at a time; distinct objects share nothing.
@@ -57,6 +68,16 @@ concept PluginResets = requires(P& p) {
 template <class P>
 concept PluginSteps = requires(P& p, const StepIO& io) {
   { p.step(io) } noexcept;
+};
+
+// The optional members above.
+template <class P>
+concept PluginHasExampleParams = requires {
+  { P::example_params } -> std::convertible_to<std::string_view>;
+};
+template <class P>
+concept PluginDeclaresPortsFromParams = requires(const typename P::Params& params) {
+  { P::declare_ports(params) } -> std::same_as<Ports>;
 };
 
 template <class P>

@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,15 @@ struct PluginInfo {
   std::string name;
   std::string summary;
   std::vector<ParamInfo> params;
+  // JSON text of the parameters the reference's port table is made with: the plugin's
+  // example_params, one object or an array of them; empty when the defaults serve.
+  std::string example_params;
+  // The plugin's ports as declared with each example over the defaults (or by its declare_ports),
+  // for a stage ticking every `sample_period_s` and wired to nothing; the union over the examples
+  // (a port some parameters add). A port sized by its wiring or parameters has the size of the
+  // example and says how in its dim_rule. Null, with the problems in `diag`, when an example
+  // does not construct.
+  std::function<std::optional<Ports>(double sample_period_s, Diagnostics& diag)> example_ports;
   // Checks parameters only (used when a stage cannot be constructed, to still report them).
   std::function<void(const Json& raw, std::string_view params_path, Diagnostics& diag)> check_params;
   // Loads parameters and constructs the stage. Returns null when anything is wrong; problems go
@@ -47,6 +57,39 @@ PluginInfo make_plugin_info() {
       for (const auto& p : e.problems()) diag.error(std::string(stage_path) + p.path, p.message);
       return nullptr;
     }
+  };
+  if constexpr (PluginHasExampleParams<P>) info.example_params = std::string(P::example_params);
+  info.example_ports = [example = info.example_params](double sample_period_s,
+                                                       Diagnostics& diag) -> std::optional<Ports> {
+    const Json parsed = example.empty() ? Json::object() : Json::parse(example);
+    const Json examples = parsed.is_array() ? parsed : Json::array({parsed});
+    Ports all;  // the union over the examples, in order of first appearance
+    for (std::size_t e = 0; e < examples.size(); ++e) {
+      Diagnostics local;
+      const std::string path = "/" + std::string(P::name) + "/example_params" + (parsed.is_array() ? "/" + std::to_string(e) : "");
+      auto params = load_params<typename P::Params>(examples[e], path, P::name, local);
+      diag.merge(local);
+      if (local.has_errors()) return std::nullopt;
+      std::optional<Ports> ports;
+      if constexpr (PluginDeclaresPortsFromParams<P>) {
+        ports = P::declare_ports(params);
+      } else {
+        try {
+          const P plugin(params, StageContext(sample_period_s, std::string(P::name)));
+          ports = plugin.ports();
+        } catch (const ConfigError& error) {
+          for (const auto& p : error.problems()) diag.error(path + p.path, p.message);
+          return std::nullopt;
+        }
+      }
+      for (const PortSpec& spec : ports->inputs()) {
+        if (!all.find_input(spec.name)) all.add_input(spec);
+      }
+      for (const PortSpec& spec : ports->outputs()) {
+        if (!all.find_output(spec.name)) all.add_output(spec);
+      }
+    }
+    return all;
   };
   return info;
 }

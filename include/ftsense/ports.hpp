@@ -39,6 +39,24 @@ struct PortSpec {
   // (a leave-one-out estimate). The independence rule then accepts it as the virtual sensor of
   // that measured signal, channel by channel.
   bool leave_one_out = false;
+  // For the config reference (docs/config_reference.md), which lists ports without a config:
+  // how `dim` follows the parameters or the wiring ("channels: as wired", "= len(params.joints)");
+  // empty when `dim` is fixed.
+  std::string dim_rule = {};
+  // The frame a geometric vector is expressed in ("world", "base", "imu", "foot", "sole");
+  // empty when no frame applies (scalars, per-channel signals, flags).
+  std::string frame = {};
+
+  // Set the optional fields on a spec written as {name, dim, unit, description[, role, ...]}:
+  //   ports_.add_input(PortSpec{"com", 3, "m", "CoM position c"}.in_frame("world"));
+  [[nodiscard]] PortSpec in_frame(std::string f) && {
+    frame = std::move(f);
+    return std::move(*this);
+  }
+  [[nodiscard]] PortSpec sized_by(std::string rule) && {
+    dim_rule = std::move(rule);
+    return std::move(*this);
+  }
 };
 
 class Ports {

@@ -50,9 +50,10 @@ ContactForceDistribution::ContactForceDistribution(const Params& params, const S
   }
   solution_.forces.setZero(n);
   solution_.bound_multipliers.setZero(n);
-  ports_.add_input({"cop", 2, "m", "centre of pressure r of the foot, foot frame"});
-  ports_.add_input({"normal_force", 1, "N", "the foot's normal force F_z"});
-  ports_.add_output({"forces", static_cast<std::size_t>(n), "N", "normal force N_l per contact point"});
+  ports_.add_input(PortSpec{"cop", 2, "m", "centre of pressure r of the foot"}.in_frame("foot"));
+  ports_.add_input(PortSpec{"normal_force", 1, "N", "the foot's normal force F_z"}.in_frame("foot"));
+  ports_.add_output(PortSpec{"forces", static_cast<std::size_t>(n), "N", "normal force N_l per contact point"}
+                        .sized_by("len(params.points)"));
   ports_.add_output({"status", 1, "1", "solver status code (0 optimal, 1 zero load, 2 invalid input, ...)"});
 }
 

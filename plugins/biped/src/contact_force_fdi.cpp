@@ -173,19 +173,25 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                                                       " (airborne_threshold_N: re-admission needs a lower level)");
   }
   const std::size_t n = 2 * feet_points_;
-  ports_.add_input({"measured", n, "N", "contact-point forces, left foot then right foot", PortRole::measured});
-  ports_.add_input({"total_force", 3, "N", "total ground reaction force m R_wb f_imu, world frame",
-                    PortRole::virtual_estimate});
-  ports_.add_input({"l_foot_pos", 3, "m", "left foot frame origin, world frame (kinematics)"});
-  ports_.add_input({"l_foot_rpy", 3, "rad", "left foot orientation roll, pitch, yaw (kinematics)"});
-  ports_.add_input({"r_foot_pos", 3, "m", "right foot frame origin, world frame (kinematics)"});
-  ports_.add_input({"r_foot_rpy", 3, "rad", "right foot orientation roll, pitch, yaw (kinematics)"});
-  ports_.add_output({"fault", n, "1", "1 when the channel is judged faulty"});
-  ports_.add_output({"fault_type", n, "1", "fault type code (fault_type.hpp)"});
-  ports_.add_output({"fault_estimate", n, "N", "measured - recovered: the estimated fault contribution"});
-  ports_.add_output({"recovered", n, "N", "the force to use downstream"});
-  ports_.add_output({"virtual", n, "N", "leave-one-out virtual force: 0 airborne, else F_z - sum of the others",
-                     PortRole::signal, /*leave_one_out=*/true});
+  const std::string per_point = "2 len(params.points): both feet";
+  ports_.add_input(PortSpec{"measured", n, "N", "contact-point forces, left foot then right foot", PortRole::measured}
+                       .sized_by(per_point));
+  ports_.add_input(PortSpec{"total_force", 3, "N", "total ground reaction force m R_wb f_imu", PortRole::virtual_estimate}
+                       .in_frame("world"));
+  ports_.add_input(PortSpec{"l_foot_pos", 3, "m", "left foot frame origin (kinematics)"}.in_frame("world"));
+  ports_.add_input(PortSpec{"l_foot_rpy", 3, "rad", "left foot orientation roll, pitch, yaw (kinematics)"}
+                       .in_frame("foot in world"));
+  ports_.add_input(PortSpec{"r_foot_pos", 3, "m", "right foot frame origin (kinematics)"}.in_frame("world"));
+  ports_.add_input(PortSpec{"r_foot_rpy", 3, "rad", "right foot orientation roll, pitch, yaw (kinematics)"}
+                       .in_frame("foot in world"));
+  ports_.add_output(PortSpec{"fault", n, "1", "1 when the channel is judged faulty"}.sized_by(per_point));
+  ports_.add_output(PortSpec{"fault_type", n, "1", "fault type code (fault_type.hpp)"}.sized_by(per_point));
+  ports_.add_output(PortSpec{"fault_estimate", n, "N", "measured - recovered: the estimated fault contribution"}
+                        .sized_by(per_point));
+  ports_.add_output(PortSpec{"recovered", n, "N", "the force to use downstream"}.sized_by(per_point));
+  ports_.add_output(PortSpec{"virtual", n, "N", "leave-one-out virtual force: 0 airborne, else F_z - sum of the others",
+                             PortRole::signal, /*leave_one_out=*/true}
+                        .sized_by(per_point));
   ports_.add_output({"sum_residual", 1, "N", "low-passed sum of recovered forces - F_z"});
   ports_.add_output({"unisolated", 1, "1", "1 while the sum residual is off with no channel to blame (virtual sensor fault)"});
   ports_.add_output({"virtual_ready", 1, "1", "1 while the total force F_z is finite (0: virtual sensor not ready)"});

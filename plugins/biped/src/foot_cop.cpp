@@ -19,12 +19,12 @@ FootCop::FootCop(const Params& params, const StageContext& /*context*/)
   if (polygon_.vertices().size() < 3) {
     throw ConfigError("/params/points", "the contact points are collinear; a foot needs a support polygon with area");
   }
-  ports_.add_input({"com", 3, "m", "CoM position c, world frame"});
-  ports_.add_input({"force", 3, "N", "the foot's ground reaction force F_i, world frame"});
-  ports_.add_input({"foot_pos", 3, "m", "foot frame origin o_i, world frame"});
-  ports_.add_input({"foot_rpy", 3, "rad", "foot orientation roll, pitch, yaw"});
-  ports_.add_output({"cop", 2, "m", "centre of pressure r_i, foot frame, clamped to the support polygon"});
-  ports_.add_output({"normal_force", 1, "N", "normal force f_z in the foot frame (>= 0)"});
+  ports_.add_input(PortSpec{"com", 3, "m", "CoM position c"}.in_frame("world"));
+  ports_.add_input(PortSpec{"force", 3, "N", "the foot's ground reaction force F_i"}.in_frame("world"));
+  ports_.add_input(PortSpec{"foot_pos", 3, "m", "foot frame origin o_i"}.in_frame("world"));
+  ports_.add_input(PortSpec{"foot_rpy", 3, "rad", "foot orientation roll, pitch, yaw"}.in_frame("foot in world"));
+  ports_.add_output(PortSpec{"cop", 2, "m", "centre of pressure r_i, clamped to the support polygon"}.in_frame("foot"));
+  ports_.add_output(PortSpec{"normal_force", 1, "N", "normal force f_z (>= 0)"}.in_frame("foot"));
   ports_.add_output({"loaded", 1, "1", "1 when f_z >= min_normal_force_N"});
 }
 

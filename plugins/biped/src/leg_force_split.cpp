@@ -32,18 +32,20 @@ void LegForceSplit::Params::validate(Diagnostics& diag, std::string_view path) c
 }
 
 LegForceSplit::LegForceSplit(const Params& params, const StageContext& /*context*/) : params_(params) {
-  ports_.add_input({"imu_acc", 3, "m/s^2", "IMU specific force f_imu in the IMU (trunk) frame"});
-  ports_.add_input({"base_rpy", 3, "rad", "trunk orientation roll, pitch, yaw (R_wb)"});
-  ports_.add_input({"com", 3, "m", "CoM position, world frame"});
-  ports_.add_input({"l_foot_pos", 3, "m", "left foot frame origin o_L, world frame"});
-  ports_.add_input({"r_foot_pos", 3, "m", "right foot frame origin o_R, world frame"});
+  ports_.add_input(PortSpec{"imu_acc", 3, "m/s^2", "IMU specific force f_imu (the IMU is on the trunk)"}
+                       .in_frame("imu"));
+  ports_.add_input(PortSpec{"base_rpy", 3, "rad", "trunk orientation roll, pitch, yaw (R_wb)"}
+                       .in_frame("base in world"));
+  ports_.add_input(PortSpec{"com", 3, "m", "CoM position"}.in_frame("world"));
+  ports_.add_input(PortSpec{"l_foot_pos", 3, "m", "left foot frame origin o_L"}.in_frame("world"));
+  ports_.add_input(PortSpec{"r_foot_pos", 3, "m", "right foot frame origin o_R"}.in_frame("world"));
   ports_.add_input({"contact", 2, "1", "contact state (left, right) from the gait schedule, 0 or 1"});
   if (params.mass_source == Params::MassSource::input) {
     ports_.add_input({"mass", 1, "kg", "total robot mass m (mass_source = input)"});
   }
-  ports_.add_output({"l_force", 3, "N", "left foot ground reaction force F_L, world frame"});
-  ports_.add_output({"r_force", 3, "N", "right foot ground reaction force F_R, world frame"});
-  ports_.add_output({"total_force", 3, "N", "total ground reaction force F = m R_wb f_imu"});
+  ports_.add_output(PortSpec{"l_force", 3, "N", "left foot ground reaction force F_L"}.in_frame("world"));
+  ports_.add_output(PortSpec{"r_force", 3, "N", "right foot ground reaction force F_R"}.in_frame("world"));
+  ports_.add_output(PortSpec{"total_force", 3, "N", "total ground reaction force F = m R_wb f_imu"}.in_frame("world"));
   ports_.add_output({"alpha", 1, "1", "split factor alpha in [-1, 1]; NaN when the split is unknown"});
 }
 

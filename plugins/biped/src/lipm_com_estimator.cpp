@@ -55,20 +55,26 @@ LipmComEstimator::LipmComEstimator(const Params& params, const StageContext& con
   process_noise_ = g * g.transpose() * params.jerk_noise_m_s3 * params.jerk_noise_m_s3;
   // Keep Q positive definite: a small floor on each state's diagonal.
   process_noise_.diagonal() += Eigen::Vector3d(1e-12, 1e-10, 1e-8);
-  ports_.add_input({"imu_acc", 3, "m/s^2", "IMU specific force f_imu in the IMU (trunk) frame"});
-  ports_.add_input({"base_rpy", 3, "rad", "trunk orientation roll, pitch, yaw (R_wb)"});
+  ports_.add_input(PortSpec{"imu_acc", 3, "m/s^2", "IMU specific force f_imu (the IMU is on the trunk)"}
+                       .in_frame("imu"));
+  ports_.add_input(PortSpec{"base_rpy", 3, "rad", "trunk orientation roll, pitch, yaw (R_wb)"}
+                       .in_frame("base in world"));
   if (params.zmp_source == ZmpSource::planned) {
-    ports_.add_input({"planned_zmp", 2, "m", "the gait plan's ZMP p_ref (x, y), world frame"});
+    ports_.add_input(PortSpec{"planned_zmp", 2, "m", "the gait plan's ZMP p_ref (x, y) (zmp_source = planned)"}
+                         .in_frame("world"));
   } else {
-    ports_.add_input({"measured_zmp", 2, "m", "the ZMP measured by the force sensors (x, y), world frame"});
+    ports_.add_input(PortSpec{"measured_zmp", 2, "m", "the ZMP measured by the force sensors (x, y) (zmp_source = measured)"}
+                         .in_frame("world"));
   }
   if (params.use_kinematic_com) {
-    ports_.add_input({"kinematic_com", 2, "m", "CoM (x, y) from forward kinematics, world frame"});
+    ports_.add_input(PortSpec{"kinematic_com", 2, "m", "CoM (x, y) from forward kinematics (use_kinematic_com)"}
+                         .in_frame("world"));
   }
-  ports_.add_output({"com", 3, "m", "CoM position (x, y, z_c), world frame"});
-  ports_.add_output({"com_velocity", 2, "m/s", "CoM velocity (x, y)"});
-  ports_.add_output({"com_acceleration", 2, "m/s^2", "CoM acceleration (x, y)"});
-  ports_.add_output({"com_variance", 2, "m^2", "posterior variance of the CoM position (x, y)"});
+  ports_.add_output(PortSpec{"com", 3, "m", "CoM position (x, y, z_c)"}.in_frame("world"));
+  ports_.add_output(PortSpec{"com_velocity", 2, "m/s", "CoM velocity (x, y)"}.in_frame("world"));
+  ports_.add_output(PortSpec{"com_acceleration", 2, "m/s^2", "CoM acceleration (x, y)"}.in_frame("world"));
+  ports_.add_output(PortSpec{"com_variance", 2, "m^2", "posterior variance of the CoM position (x, y)"}
+                        .in_frame("world"));
   ports_.add_output({"covariance_resets", 2, "1",
                      "restarts of each axis (x, y) since reset: non-finite state or covariance not positive definite"});
   ports_.add_output({"ready", 1, "1",

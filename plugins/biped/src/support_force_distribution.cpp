@@ -29,11 +29,17 @@ SupportForceDistribution::SupportForceDistribution(const Params& params, const S
     throw ConfigError("/inputs/foot_pos", "stacks " + std::to_string(feet_) + " feet; at most " +
                                               std::to_string(kMaxContactPoints) + " are supported");
   }
-  ports_.add_input({"total_force", 3, "N", "total ground reaction force F, world frame (its z part is spread)"});
-  ports_.add_input({"cop", 2, "m", "where the vertical force acts (x, y), world frame: the ZMP, or the CoM's projection"});
-  ports_.add_input({"foot_pos", dim, "m", "foot frame origins (x, y, z) stacked foot after foot, world frame"});
-  ports_.add_input({"contact", feet_, "1", "per foot: 1 in contact, 0 in swing"});
-  ports_.add_output({"forces", feet_, "N", "normal force per foot (0 in swing); NaN when not ready"});
+  ports_.add_input(PortSpec{"total_force", 3, "N", "total ground reaction force F (its z part is spread)"}
+                       .in_frame("world"));
+  ports_.add_input(PortSpec{"cop", 2, "m", "where the vertical force acts (x, y): the ZMP, or the CoM's projection"}
+                       .in_frame("world"));
+  ports_.add_input(PortSpec{"foot_pos", dim, "m", "foot frame origins (x, y, z) stacked foot after foot"}
+                       .in_frame("world")
+                       .sized_by("as wired: 3 per foot"));
+  ports_.add_input(PortSpec{"contact", feet_, "1", "per foot: 1 in contact, 0 in swing"}
+                       .sized_by("feet (foot_pos / 3)"));
+  ports_.add_output(PortSpec{"forces", feet_, "N", "normal force per foot (0 in swing); NaN when not ready"}
+                        .sized_by("feet (foot_pos / 3)"));
 }
 
 void SupportForceDistribution::step(const StepIO& io) noexcept {

@@ -22,12 +22,14 @@ void TotalGroundForce::Params::validate(Diagnostics& diag, std::string_view path
 }
 
 TotalGroundForce::TotalGroundForce(const Params& params, const StageContext& /*context*/) : params_(params) {
-  ports_.add_input({"imu_acc", 3, "m/s^2", "IMU specific force f_imu in the IMU (trunk) frame"});
-  ports_.add_input({"base_rpy", 3, "rad", "trunk orientation roll, pitch, yaw (R_wb)"});
+  ports_.add_input(PortSpec{"imu_acc", 3, "m/s^2", "IMU specific force f_imu (the IMU is on the trunk)"}
+                       .in_frame("imu"));
+  ports_.add_input(PortSpec{"base_rpy", 3, "rad", "trunk orientation roll, pitch, yaw (R_wb)"}
+                       .in_frame("base in world"));
   if (params.mass_source == Params::MassSource::input) {
     ports_.add_input({"mass", 1, "kg", "total robot mass m (mass_source = input)"});
   }
-  ports_.add_output({"total_force", 3, "N", "total ground reaction force F = m R_wb f_imu, world frame"});
+  ports_.add_output(PortSpec{"total_force", 3, "N", "total ground reaction force F = m R_wb f_imu"}.in_frame("world"));
 }
 
 void TotalGroundForce::step(const StepIO& io) noexcept {

@@ -17,13 +17,17 @@ void ZmpFromContactForces::Params::describe(ParamSchema<Params>& schema) {
 ZmpFromContactForces::ZmpFromContactForces(const Params& params, const StageContext& /*context*/)
     : points_(params.points), min_total_force_N_(params.min_total_force_N) {
   const std::size_t n = points_.size();
-  ports_.add_input({"l_forces", n, "N", "left foot contact-point normal forces (measured)"});
-  ports_.add_input({"r_forces", n, "N", "right foot contact-point normal forces (measured)"});
-  ports_.add_input({"l_foot_pos", 3, "m", "left foot frame origin, world frame"});
-  ports_.add_input({"l_foot_rpy", 3, "rad", "left foot orientation roll, pitch, yaw"});
-  ports_.add_input({"r_foot_pos", 3, "m", "right foot frame origin, world frame"});
-  ports_.add_input({"r_foot_rpy", 3, "rad", "right foot orientation roll, pitch, yaw"});
-  ports_.add_output({"zmp", 2, "m", "measured ZMP (x, y), world frame"});
+  ports_.add_input(PortSpec{"l_forces", n, "N", "left foot contact-point normal forces (measured)"}
+                       .sized_by("len(params.points)"));
+  ports_.add_input(PortSpec{"r_forces", n, "N", "right foot contact-point normal forces (measured)"}
+                       .sized_by("len(params.points)"));
+  ports_.add_input(PortSpec{"l_foot_pos", 3, "m", "left foot frame origin"}.in_frame("world"));
+  ports_.add_input(PortSpec{"l_foot_rpy", 3, "rad", "left foot orientation roll, pitch, yaw"}
+                       .in_frame("foot in world"));
+  ports_.add_input(PortSpec{"r_foot_pos", 3, "m", "right foot frame origin"}.in_frame("world"));
+  ports_.add_input(PortSpec{"r_foot_rpy", 3, "rad", "right foot orientation roll, pitch, yaw"}
+                       .in_frame("foot in world"));
+  ports_.add_output(PortSpec{"zmp", 2, "m", "measured ZMP (x, y)"}.in_frame("world"));
   ports_.add_output({"total_normal_force", 1, "N", "sum of all contact-point forces"});
 }
 

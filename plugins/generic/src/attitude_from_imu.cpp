@@ -43,9 +43,11 @@ void AttitudeFromImu::Params::describe(ParamSchema<Params>& schema) {
 
 AttitudeFromImu::AttitudeFromImu(const Params& params, const StageContext& context)
     : params_(params), period_s_(context.sample_period_s()) {
-  ports_.add_input({"gyro", 3, "rad/s", "angular rate omega in the IMU (body) frame"});
-  ports_.add_input({"imu_acc", 3, "m/s^2", "specific force f in the IMU (body) frame (reads +g up at rest)"});
-  ports_.add_output({"rpy", 3, "rad", "roll, pitch, yaw of the IMU, R = Rz(yaw) Ry(pitch) Rx(roll); NaN until started"});
+  ports_.add_input(PortSpec{"gyro", 3, "rad/s", "angular rate omega of the IMU (body)"}.in_frame("imu"));
+  ports_.add_input(PortSpec{"imu_acc", 3, "m/s^2", "specific force f of the IMU (body) (reads +g up at rest)"}
+                       .in_frame("imu"));
+  ports_.add_output(PortSpec{"rpy", 3, "rad", "roll, pitch, yaw of the IMU, R = Rz(yaw) Ry(pitch) Rx(roll); NaN until started"}
+                        .in_frame("imu in world"));
   reset();
 }
 

@@ -95,16 +95,22 @@ CusumDetector::CusumDetector(const Params& params, const StageContext& context)
                             "with it; give a smaller min_change or a larger noise_std");
     }
   }
-  ports_.add_input({"residual", dim, std::string(kAnyUnit), "the residual r (zero-mean when fault-free)"});
-  ports_.add_output({"fault", dim, std::string(kDimensionless), "1 while the channel is raised, else 0"});
-  ports_.add_output({"fault_type", dim, std::string(kDimensionless),
-                     "fault type code (fault_type.hpp): none or unclassified"});
-  ports_.add_output({"statistic", dim, std::string(kDimensionless),
-                     "max(S+, S-) / h: the evidence of a change, 1 raises the channel"});
-  ports_.add_output({"direction", dim, std::string(kDimensionless),
-                     "+1 when S+ leads (residual above its centre), -1 when S- leads, 0 when both are 0"});
-  ports_.add_output({"judged", dim, std::string(kDimensionless),
-                     "1 when the residual was finite this tick, 0 when the channel could not be judged"});
+  ports_.add_input(PortSpec{"residual", dim, std::string(kAnyUnit), "the residual r (zero-mean when fault-free)"}
+                       .sized_by("as wired"));
+  ports_.add_output(PortSpec{"fault", dim, std::string(kDimensionless), "1 while the channel is raised, else 0"}
+                        .sized_by("as `residual`"));
+  ports_.add_output(PortSpec{"fault_type", dim, std::string(kDimensionless),
+                     "fault type code (fault_type.hpp): none or unclassified"}
+                        .sized_by("as `residual`"));
+  ports_.add_output(PortSpec{"statistic", dim, std::string(kDimensionless),
+                     "max(S+, S-) / h: the evidence of a change, 1 raises the channel"}
+                        .sized_by("as `residual`"));
+  ports_.add_output(PortSpec{"direction", dim, std::string(kDimensionless),
+                     "+1 when S+ leads (residual above its centre), -1 when S- leads, 0 when both are 0"}
+                        .sized_by("as `residual`"));
+  ports_.add_output(PortSpec{"judged", dim, std::string(kDimensionless),
+                     "1 when the residual was finite this tick, 0 when the channel could not be judged"}
+                        .sized_by("as `residual`"));
   upper_.assign(dim, 0.0);
   lower_.assign(dim, 0.0);
   previous_z_.assign(dim, 0.0);

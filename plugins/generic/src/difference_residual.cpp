@@ -4,10 +4,12 @@ namespace ftsense::generic {
 
 DifferenceResidual::DifferenceResidual(const Params& /*params*/, const StageContext& context) {
   const std::size_t dim = context.wired_dim("measured", 1);
-  ports_.add_input({"measured", dim, std::string(kAnyUnit), "the measured signal", PortRole::measured});
-  ports_.add_input({"virtual", dim, std::string(kAnyUnit),
-                    "the virtual sensor's estimate of the same quantity", PortRole::virtual_estimate});
-  ports_.add_output({"residual", dim, std::string(kAnyUnit), "measured - virtual"});
+  ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the measured signal", PortRole::measured}
+                       .sized_by("as wired"));
+  ports_.add_input(PortSpec{"virtual", dim, std::string(kAnyUnit), "the virtual sensor's estimate of the same quantity",
+                            PortRole::virtual_estimate}
+                       .sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"residual", dim, std::string(kAnyUnit), "measured - virtual"}.sized_by("as `measured`"));
 }
 
 void DifferenceResidual::step(const StepIO& io) noexcept {

@@ -28,12 +28,17 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
     : correction_(params.correction) {
   for (const auto& t : params.substitute_types) substitute_types_.push_back(*fault_type_from_string(t));
   const std::size_t dim = context.wired_dim("measured", 1);
-  ports_.add_input({"measured", dim, std::string(kAnyUnit), "the monitored sensor"});
-  ports_.add_input({"fault_estimate", dim, std::string(kAnyUnit), "the estimated fault eta_hat"});
-  ports_.add_input({"virtual", dim, std::string(kAnyUnit), "the virtual sensor's value"});
-  ports_.add_input({"fault", dim, std::string(kDimensionless), "1 while the channel is flagged"});
-  ports_.add_input({"fault_type", dim, std::string(kDimensionless), "the channel's fault type code"});
-  ports_.add_output({"recovered", dim, std::string(kAnyUnit), "the signal to use downstream"});
+  ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the monitored sensor"}.sized_by("as wired"));
+  ports_.add_input(PortSpec{"fault_estimate", dim, std::string(kAnyUnit), "the estimated fault eta_hat"}
+                       .sized_by("as `measured`"));
+  ports_.add_input(PortSpec{"virtual", dim, std::string(kAnyUnit), "the virtual sensor's value"}
+                       .sized_by("as `measured`"));
+  ports_.add_input(PortSpec{"fault", dim, std::string(kDimensionless), "1 while the channel is flagged"}
+                       .sized_by("as `measured`"));
+  ports_.add_input(PortSpec{"fault_type", dim, std::string(kDimensionless), "the channel's fault type code"}
+                       .sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"recovered", dim, std::string(kAnyUnit), "the signal to use downstream"}
+                        .sized_by("as `measured`"));
   last_.assign(dim, 0.0);
 }
 

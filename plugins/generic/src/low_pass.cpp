@@ -24,8 +24,8 @@ LowPass::LowPass(const Params& params, const StageContext& context) : start_(par
   }
   a_ = -std::expm1(-2.0 * std::numbers::pi * params.cutoff_hz * context.sample_period_s());
   const std::size_t dim = context.wired_dim("signal", 1);
-  ports_.add_input({"signal", dim, std::string(kAnyUnit), "the signal to smooth"});
-  ports_.add_output({"filtered", dim, std::string(kAnyUnit), "the low-passed signal"});
+  ports_.add_input(PortSpec{"signal", dim, std::string(kAnyUnit), "the signal to smooth"}.sized_by("as wired"));
+  ports_.add_output(PortSpec{"filtered", dim, std::string(kAnyUnit), "the low-passed signal"}.sized_by("as `signal`"));
   state_.assign(dim, 0.0);
   initialised_.assign(dim, 0);
 }

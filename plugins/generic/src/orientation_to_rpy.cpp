@@ -67,11 +67,14 @@ void OrientationToRpy::Params::describe(ParamSchema<Params>& schema) {
 
 OrientationToRpy::OrientationToRpy(const Params& params, const StageContext& /*context*/) : from_(params.from) {
   const bool quaternion = from_ == From::quaternion_xyzw || from_ == From::quaternion_wxyz;
-  ports_.add_input({"orientation", quaternion ? 4u : 9u, std::string(kDimensionless),
-                    quaternion ? "unit quaternion, in the order of parameter from"
-                               : "rotation matrix R (body to world), in the layout of parameter from"});
-  ports_.add_output({"rpy", 3, "rad",
-                     "roll, pitch, yaw with R = Rz(yaw) Ry(pitch) Rx(roll); NaN when the input is no orientation"});
+  ports_.add_input(PortSpec{"orientation", quaternion ? 4u : 9u, std::string(kDimensionless),
+                            quaternion ? "unit quaternion, in the order of parameter from"
+                                       : "rotation matrix R (body to world), in the layout of parameter from"}
+                       .in_frame("body in world")
+                       .sized_by("4 (quaternion) or 9 (rotation matrix), by params.from"));
+  ports_.add_output(PortSpec{"rpy", 3, "rad",
+                             "roll, pitch, yaw with R = Rz(yaw) Ry(pitch) Rx(roll); NaN when the input is no orientation"}
+                        .in_frame("body in world"));
 }
 
 void OrientationToRpy::to_rpy(From from, std::span<const double> o, std::span<double, 3> rpy) noexcept {

@@ -29,17 +29,23 @@ RandomWalkFaultFilter::RandomWalkFaultFilter(const Params& params, const StageCo
   const double s = params.force_process_noise + params.measurement_noise;
   steady_variance_ = 0.5 * (q + std::sqrt(q * q + 4.0 * q * s));
   const std::size_t dim = context.wired_dim("measured", 1);
-  ports_.add_input({"measured", dim, std::string(kAnyUnit), "the monitored sensor N_meas", PortRole::measured});
-  ports_.add_input({"virtual", dim, std::string(kAnyUnit), "the virtual sensor N_vfs", PortRole::virtual_estimate});
-  ports_.add_output({"fault_estimate", dim, std::string(kAnyUnit), "eta_hat, the estimated sensor fault"});
-  ports_.add_output({"true_estimate", dim, std::string(kAnyUnit), "the filter's estimate of the true signal N"});
-  ports_.add_output({"ready", dim, std::string(kDimensionless),
+  ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the monitored sensor N_meas", PortRole::measured}
+                       .sized_by("as wired"));
+  ports_.add_input(PortSpec{"virtual", dim, std::string(kAnyUnit), "the virtual sensor N_vfs", PortRole::virtual_estimate}
+                       .sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"fault_estimate", dim, std::string(kAnyUnit), "eta_hat, the estimated sensor fault"}
+                        .sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"true_estimate", dim, std::string(kAnyUnit), "the filter's estimate of the true signal N"}
+                        .sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"ready", dim, std::string(kDimensionless),
                      "1 once the fault variance has converged and both inputs are finite (0: virtual "
-                     "sensor not ready, the state holds)"});
-  ports_.add_output({"fault_variance", dim, std::string(kAnyUnitSquared),
-                     "posterior variance p of eta_hat (unit of the signal, squared), for health monitoring"});
-  ports_.add_output({"covariance_resets", dim, std::string(kDimensionless),
-                     "number of covariance resets of the channel since reset (non-finite or non-positive P)"});
+                     "sensor not ready, the state holds)"}.sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"fault_variance", dim, std::string(kAnyUnitSquared),
+                     "posterior variance p of eta_hat (unit of the signal, squared), for health monitoring"}
+                        .sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"covariance_resets", dim, std::string(kDimensionless),
+                     "number of covariance resets of the channel since reset (non-finite or non-positive P)"}
+                        .sized_by("as `measured`"));
   channels_.resize(dim);
   reset();
 }

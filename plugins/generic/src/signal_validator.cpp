@@ -142,14 +142,17 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
   // Low-pass of time constant n T / 8 for frozen test (b): its noise is small against a move.
   lp_gain_ = -std::expm1(-8.0 / static_cast<double>(window_));
 
-  ports_.add_input({"signal", dim, std::string(kAnyUnit), "the readings x to validate"});
+  ports_.add_input(PortSpec{"signal", dim, std::string(kAnyUnit), "the readings x to validate"}.sized_by("as wired"));
   if (reference_) {
-    ports_.add_input({"reference", dim, std::string(kAnyUnit), "a virtual sensor of the same quantity",
-                      PortRole::virtual_estimate});
+    ports_.add_input(PortSpec{"reference", dim, std::string(kAnyUnit),
+                              "a virtual sensor of the same quantity (reference)", PortRole::virtual_estimate}
+                         .sized_by("as `signal`"));
   }
-  ports_.add_output({"fault", dim, std::string(kDimensionless), "1 while a test fails, else 0"});
-  ports_.add_output({"fault_type", dim, std::string(kDimensionless),
-                     "fault type code (fault_type.hpp): none, invalid, saturation, frozen, spikes or noise"});
+  ports_.add_output(PortSpec{"fault", dim, std::string(kDimensionless), "1 while a test fails, else 0"}
+                        .sized_by("as `signal`"));
+  ports_.add_output(PortSpec{"fault_type", dim, std::string(kDimensionless),
+                     "fault type code (fault_type.hpp): none, invalid, saturation, frozen, spikes or noise"}
+                        .sized_by("as `signal`"));
   states_.resize(dim);
   sums_storage_.assign(2 * dim * window_, 0.0);
   lp_storage_.assign(2 * dim * (window_ + 1), 0.0);

@@ -57,13 +57,16 @@ ThresholdDetector::ThresholdDetector(const Params& params, const StageContext& c
   }
   centers_.assign(dim, params.centers.front());
   if (params.centers.size() == dim) centers_ = params.centers;
-  ports_.add_input({"signal", dim, std::string(kAnyUnit), "the evaluated signal s (e.g. filtered fault estimate)"});
+  ports_.add_input(PortSpec{"signal", dim, std::string(kAnyUnit), "the evaluated signal s (e.g. filtered fault estimate)"}
+                       .sized_by("as wired"));
   if (check_measured_) {
-    ports_.add_input({"measured", dim, std::string(kAnyUnit), "the monitored sensor, checked for NaN/Inf"});
+    ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the monitored sensor, checked for NaN/Inf (check_measured)"}
+                         .sized_by("as `signal`"));
   }
-  ports_.add_output({"fault", dim, std::string(kDimensionless), "1 when a fault is detected, else 0"});
-  ports_.add_output({"fault_type", dim, std::string(kDimensionless),
-                     "fault type code (fault_type.hpp): none, unclassified or invalid"});
+  ports_.add_output(PortSpec{"fault", dim, std::string(kDimensionless), "1 when a fault is detected, else 0"}
+                        .sized_by("as `signal`"));
+  ports_.add_output(PortSpec{"fault_type", dim, std::string(kDimensionless),
+                     "fault type code (fault_type.hpp): none, unclassified or invalid"}.sized_by("as `signal`"));
   above_for_s_.assign(dim, 0.0);
   below_for_s_.assign(dim, 0.0);
   raised_.assign(dim, 0);

@@ -43,9 +43,12 @@ ContactFromFootHeight::ContactFromFootHeight(const Params& params, const StageCo
                                               "multiple of 3");
   }
   const std::size_t feet = dim / 3;
-  ports_.add_input({"foot_pos", dim, "m", "foot frame origins (x, y, z) stacked foot after foot, world frame"});
-  ports_.add_output({"contact", feet, std::string(kDimensionless),
-                     "per foot: 1 in contact, 0 in swing, NaN while its height is not finite"});
+  ports_.add_input(PortSpec{"foot_pos", dim, "m", "foot frame origins (x, y, z) stacked foot after foot"}
+                       .in_frame("world")
+                       .sized_by("as wired: 3 per foot"));
+  ports_.add_output(PortSpec{"contact", feet, std::string(kDimensionless),
+                             "per foot: 1 in contact, 0 in swing, NaN while its height is not finite"}
+                        .sized_by("feet (foot_pos / 3)"));
   state_.assign(feet, State::unknown);
 }
 

@@ -48,6 +48,28 @@ void UrdfKinematics::Params::describe(ParamSchema<Params>& schema) {
       .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
 }
 
+Ports UrdfKinematics::declare_ports(const Params& params) {
+  Ports ports;
+  ports.add_input(PortSpec{"base_pos", 3, "m", "position p_WB of base_link"}.in_frame("world"));
+  ports.add_input(PortSpec{"base_rpy", 3, "rad", "orientation of base_link: roll, pitch, yaw of R_WB"}
+                      .in_frame("base in world"));
+  ports.add_input(PortSpec{"joint_positions", params.joints.size(), "rad", "positions q of the joints listed in `joints`"}
+                      .sized_by("len(params.joints)"));
+  ports.add_output(PortSpec{"com", 3, "m", "centre of mass c_W of the whole robot"}.in_frame("world"));
+  ports.add_output(PortSpec{"l_sole_pos", 3, "m", "left sole frame origin"}.in_frame("world"));
+  ports.add_output(PortSpec{"l_sole_rpy", 3, "rad", "left sole orientation: roll, pitch, yaw"}
+                       .in_frame("sole in world"));
+  ports.add_output(PortSpec{"r_sole_pos", 3, "m", "right sole frame origin"}.in_frame("world"));
+  ports.add_output(PortSpec{"r_sole_rpy", 3, "rad", "right sole orientation: roll, pitch, yaw"}
+                       .in_frame("sole in world"));
+  ports.add_output(PortSpec{"imu_rpy", 3, "rad", "IMU frame orientation R_WB R_B,IMU: roll, pitch, yaw"}
+                       .in_frame("imu in world"));
+  ports.add_output({"sole_height", 2, "m", "lowest sole point above the ground (left, right)"});
+  ports.add_output({"contact", 2, "1", "kinematic contact state (left, right): sole_height < contact_height_m"});
+  ports.add_output({"mass", 1, "kg", "total mass M of the URDF's links"});
+  return ports;
+}
+
 UrdfKinematics::UrdfKinematics(const Params& params, const StageContext& context) : params_(params) {
   KinematicTree tree;
   try {
@@ -113,18 +135,7 @@ UrdfKinematics::UrdfKinematics(const Params& params, const StageContext& context
   diag.throw_if_errors();
   kinematics_.emplace(tree, base, std::move(sources), frames);
 
-  ports_.add_input({"base_pos", 3, "m", "position p_WB of base_link, world frame"});
-  ports_.add_input({"base_rpy", 3, "rad", "orientation of base_link: roll, pitch, yaw of R_WB"});
-  ports_.add_input({"joint_positions", params.joints.size(), "rad", "positions q of the joints listed in `joints`"});
-  ports_.add_output({"com", 3, "m", "centre of mass c_W of the whole robot, world frame"});
-  ports_.add_output({"l_sole_pos", 3, "m", "left sole frame origin, world frame"});
-  ports_.add_output({"l_sole_rpy", 3, "rad", "left sole orientation: roll, pitch, yaw"});
-  ports_.add_output({"r_sole_pos", 3, "m", "right sole frame origin, world frame"});
-  ports_.add_output({"r_sole_rpy", 3, "rad", "right sole orientation: roll, pitch, yaw"});
-  ports_.add_output({"imu_rpy", 3, "rad", "IMU frame orientation R_WB R_B,IMU: roll, pitch, yaw"});
-  ports_.add_output({"sole_height", 2, "m", "lowest sole point above the ground (left, right)"});
-  ports_.add_output({"contact", 2, "1", "kinematic contact state (left, right): sole_height < contact_height_m"});
-  ports_.add_output({"mass", 1, "kg", "total mass M of the URDF's links"});
+  ports_ = declare_ports(params);
 }
 
 void UrdfKinematics::step(const StepIO& io) noexcept {

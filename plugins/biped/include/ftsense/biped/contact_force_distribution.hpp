@@ -36,6 +36,9 @@ class ContactForceDistribution {
   static constexpr std::string_view name = "contact_force_distribution";
   static constexpr std::string_view summary =
       "contact-point normal forces of one foot from F_z and the CoP: bounded least squares (eq. 13-23)";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"({"points": [[0.12, 0.075], [0.12, -0.075], [-0.12, 0.075], [-0.12, -0.075]]})";
 
   enum class Solver { active_set, ceres };
 

@@ -87,6 +87,9 @@ class ContactForceFdi {
   static constexpr std::string_view summary =
       "detects, isolates, classifies and recovers contact-point force faults from pad heights, "
       "the total force and signal continuity";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"({"points": [[0.12, 0.075], [0.12, -0.075], [-0.12, 0.075], [-0.12, -0.075]], "noise_std_N": 2.0})";
 
   struct Params {
     std::vector<std::array<double, 2>> points;

@@ -27,6 +27,9 @@ class FootCop {
   static constexpr std::string_view name = "foot_cop";
   static constexpr std::string_view summary =
       "CoP of one foot where the force line through the CoM meets the sole (eq. 10-12, corrected)";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"({"points": [[0.12, 0.075], [0.12, -0.075], [-0.12, 0.075], [-0.12, -0.075]]})";
 
   struct Params {
     std::vector<std::array<double, 2>> points;

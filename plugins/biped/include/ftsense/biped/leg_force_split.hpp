@@ -39,6 +39,9 @@ class LegForceSplit {
   static constexpr std::string_view name = "leg_force_split";
   static constexpr std::string_view summary =
       "F = m R_wb f_imu split between the feet by the lateral CoM (paper eq. 6-9)";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"([{"mass_kg": 114.0}, {"mass_source": "input"}])";
 
   struct Params {
     double mass_kg = 0.0;

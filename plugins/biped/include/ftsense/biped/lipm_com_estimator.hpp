@@ -60,6 +60,10 @@ class LipmComEstimator {
   static constexpr std::string_view name = "lipm_com_estimator";
   static constexpr std::string_view summary =
       "CoM Kalman filter on the jerk-form LIPM with IMU acceleration and ZMP (paper eq. 1-3)";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"([{"com_height_m": 0.7, "zmp_source": "planned"},
+       {"com_height_m": 0.7, "zmp_source": "measured", "use_kinematic_com": true}])";
 
   enum class ZmpSource { planned, measured };
 

@@ -20,6 +20,9 @@ class TotalGroundForce {
  public:
   static constexpr std::string_view name = "total_ground_force";
   static constexpr std::string_view summary = "F = m R_wb f_imu: the total ground reaction force of any legged robot";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"([{"mass_kg": 114.0}, {"mass_source": "input"}])";
 
   struct Params {
     double mass_kg = 0.0;

@@ -21,6 +21,9 @@ class ZmpFromContactForces {
   static constexpr std::string_view name = "zmp_from_contact_forces";
   static constexpr std::string_view summary =
       "ZMP as the centre of pressure of both feet's measured contact-point forces";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"({"points": [[0.12, 0.075], [0.12, -0.075], [-0.12, 0.075], [-0.12, -0.075]]})";
 
   struct Params {
     std::vector<std::array<double, 2>> points;

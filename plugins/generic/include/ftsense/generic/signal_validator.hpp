@@ -48,6 +48,8 @@ class SignalValidator {
   static constexpr std::string_view name = "signal_validator";
   static constexpr std::string_view summary =
       "invalid, saturated, frozen, spiky or noisy readings per channel, against the sensor's noise and resolution";
+  // For the config reference's port table and the schema (plugin.hpp): input reference is optional.
+  static constexpr std::string_view example_params = R"([{}, {"reference": true}])";
 
   struct Params {
     std::vector<double> noise_std{1.0};

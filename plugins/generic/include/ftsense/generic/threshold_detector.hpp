@@ -30,6 +30,9 @@ class ThresholdDetector {
   static constexpr std::string_view name = "threshold_detector";
   static constexpr std::string_view summary =
       "fault when |signal| > threshold (paper eq. 33), with optional on/off delays";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"({"thresholds": [100.0], "warmup_s": 2.0, "check_measured": true})";
 
   struct Params {
     std::vector<double> thresholds{1.0};

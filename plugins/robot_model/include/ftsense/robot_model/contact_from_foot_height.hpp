@@ -30,6 +30,9 @@ class ContactFromFootHeight {
   static constexpr std::string_view name = "contact_from_foot_height";
   static constexpr std::string_view summary =
       "contact state per foot from its height above the ground, with touchdown/liftoff hysteresis";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"({"touchdown_height_m": 0.02})";
 
   struct Params {
     double ground_height_m = 0.0;

@@ -44,6 +44,10 @@ class UrdfKinematics {
   static constexpr std::string_view name = "urdf_kinematics";
   static constexpr std::string_view summary =
       "URDF forward kinematics: CoM, sole poses, IMU orientation and kinematic contact from base pose and joints";
+  // For the config reference's port table and the schema (plugin.hpp).
+  static constexpr std::string_view example_params =
+      R"({"urdf": "model.urdf", "joints": ["l_hip_pitch", "l_knee", "l_ankle_pitch", "r_hip_pitch", "r_knee", "r_ankle_pitch"],
+       "base_link": "root_link", "imu_link": "root_link_imu_frame", "left_sole_link": "l_sole", "right_sole_link": "r_sole"})";
 
   struct Params {
     std::string urdf;
@@ -68,6 +72,8 @@ class UrdfKinematics {
   };
 
   UrdfKinematics(const Params& params, const StageContext& context);
+  // The ports, without reading the URDF (the config reference lists them without one).
+  [[nodiscard]] static Ports declare_ports(const Params& params);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
   void reset() noexcept {}
   void step(const StepIO& io) noexcept;
