@@ -29,13 +29,16 @@ UnloadedReadingResidual::UnloadedReadingResidual(const Params& params, const Sta
     if (!std::isfinite(params.zero[j])) throw ConfigError("/params/zero/" + std::to_string(j), "is not a finite number");
   }
   zero_ = params.zero.size() == dim ? params.zero : std::vector<double>(dim, params.zero.front());
-  ports_.add_input({"signal", dim, std::string(kAnyUnit), "the readings x", PortRole::measured});
-  ports_.add_input({"loadable", dim, std::string(kDimensionless),
-                    "1 while channel j can carry load (its contact point on the ground), 0 while it cannot "
-                    "(below 1/2: cannot)",
-                    PortRole::virtual_estimate});
-  ports_.add_output({"residual", dim, std::string(kAnyUnit),
-                     "x_j - z_j while channel j has been unable to carry load for settle_s, else NaN"});
+  ports_.add_input(
+      PortSpec{"signal", dim, std::string(kAnyUnit), "the readings x", PortRole::measured}.sized_by("as wired"));
+  ports_.add_input(PortSpec{"loadable", dim, std::string(kDimensionless),
+                            "1 while channel j can carry load (its contact point on the ground), 0 while it cannot "
+                            "(below 1/2: cannot)",
+                            PortRole::virtual_estimate}
+                       .sized_by("as `signal`"));
+  ports_.add_output(PortSpec{"residual", dim, std::string(kAnyUnit),
+                             "x_j - z_j while channel j has been unable to carry load for settle_s, else NaN"}
+                        .sized_by("as `signal`"));
   unloaded_for_s_.assign(dim, 0.0);
 }
 
