@@ -123,13 +123,24 @@ int run_quietly(const std::vector<std::string>& args, const Context& context) {
   return rc;
 }
 
+// Removes a file if it is there; returns its size (0 when there was none).
+std::uintmax_t remove_file(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return 0;
+  return std::filesystem::remove(path, ec) ? size : 0;
+}
+
 }  // namespace
 
 int demo_command(const std::vector<std::string>& args, const Context& context) {
   const std::vector<OptionSpec> specs{
       {"output", true, false, "output folder (default out/demo)", 'o', {"out"}, FileArg::output_folder},
       {"configs", true, false, "the configs folder (default: the source tree's configs/)"},
-      {"quick", false, false, "short walks (9 s) for a smoke test; the numbers are not the published ones"}};
+      {"quick", false, false, "short walks (9 s) for a smoke test; the numbers are not the published ones"},
+      {"no-logs", false, false,
+       "delete the simulated logs and the runs' CSV once they are scored (about 700 MB; keeps the metrics, "
+       "reports, figures and HTML)"}};
   const auto options = parse_options(context.command("demo"), args, specs);
   if (options.count("help")) {
     std::cout << usage_text(context.command("demo"),
@@ -145,6 +156,7 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   const std::string out = options.count("output") ? options.at("output") : "out/demo";
   const std::string configs = options.count("configs") ? options.at("configs") : FTSENSE_SOURCE_DIR "/configs";
   const bool quick = options.count("quick") > 0;
+  const bool keep_logs = options.count("no-logs") == 0;
   std::filesystem::create_directories(out);
   const double duration = quick ? 9.0 : 0.0;  // 0: the scenario's own
 
@@ -286,6 +298,15 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   }
 
   for (auto& d : drawing) d.get();
+  if (!keep_logs) {
+    // Scored and drawn: the logs and runs are no longer read (figures come from figures.dat).
+    std::uintmax_t freed = 0;
+    for (const auto& s : scenarios) {
+      freed += remove_file(out + "/" + s + ".csv");
+      for (const auto& v : variants) freed += remove_file(out + "/" + s + "_run_" + v.name + ".csv");
+    }
+    std::cout << "\n(--no-logs: deleted the logs and runs' CSV, " << freed / (1024 * 1024) << " MB)" << std::endl;
+  }
   progress("writing the metrics and the report");
   std::ofstream(out + "/metrics.json") << metrics.dump(2) << '\n';
   // report.md and report.html: one document, the same numbers as the summary above, as tables.
