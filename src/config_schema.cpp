@@ -136,9 +136,15 @@ Json param_schema(const ParamInfo& p) {
   std::string description = p.description;
   if (!p.unit.empty()) description += " [" + p.unit + "]";
   if (p.plausible) description += "; plausible " + p.plausible->text(p.unit);
-  out["description"] = description;
-  if (!p.required) out["default"] = p.default_value;
-  return out;
+  // The value itself, or a reference to the config's own definitions (config_definitions.hpp):
+  // if/then/else rather than anyOf, so that a wrong value is reported where it is wrong (the
+  // list element), not at the parameter. No parameter is itself an object.
+  Json either{{"if", {{"type", "object"}}},
+              {"then", ref_to("definition_reference")},
+              {"else", std::move(out)},
+              {"description", description}};
+  if (!p.required) either["default"] = p.default_value;
+  return either;
 }
 
 // The params object of one plugin.
@@ -185,6 +191,12 @@ Json config_json_schema(const PluginRegistry& plugins) {
       {"description", "a wire end, or a non-empty array of them concatenated in order"},
       {"anyOf", Json::array({ref_to("wire_end"),
                              {{"type", "array"}, {"minItems", 1}, {"items", ref_to("wire_end")}}})}};
+  definitions["definition_reference"] = {
+      {"type", "object"},
+      {"properties", {{"$ref", {{"type", "string"}, {"pattern", "^#/definitions/[^/]+$"}}}}},
+      {"required", Json::array({"$ref"})},
+      {"additionalProperties", false},
+      {"description", "a value of the config's top-level \"definitions\": {\"$ref\": \"#/definitions/<name>\"}"}};
   Json root;
   for (const DocumentSection& section : pipeline_document_sections()) {
     if (section.path.empty()) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <set>
 
+#include "ftsense/config_definitions.hpp"
 #include "ftsense/independence_rule.hpp"
 #include "ftsense/pipeline.hpp"
 #include "ftsense/pipeline_document.hpp"
@@ -443,7 +444,10 @@ class PipelineBuilder {
 
 Pipeline Pipeline::build(const Json& config, const PluginRegistry& plugins,
                          const std::filesystem::path& config_directory) {
-  return PipelineBuilder(config, plugins, config_directory).build();
+  Diagnostics references;
+  const Json resolved = resolve_definitions(config, references);
+  references.throw_if_errors();
+  return PipelineBuilder(resolved, plugins, config_directory).build();
 }
 
 }  // namespace ftsense

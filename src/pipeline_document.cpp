@@ -81,6 +81,9 @@ std::vector<DocumentSection> make_sections() {
         {"allow_dependent_virtual_sensor", V::boolean, false, "false", "",
          "accept a virtual sensor computed from the sensor it judges (a warning instead of an error)"},
         description,
+        {"definitions", V::object, false, "", "",
+         "values written once and used in several places as {\"$ref\": \"#/definitions/<name>\"} (a sole "
+         "outline both feet share, say); see include/ftsense/config_definitions.hpp"},
         {"$schema", V::text, false, "", "",
          "the JSON Schema an editor checks the file with (docs/ftsense-config.schema.json); ftsense ignores it"}}});
   sections.push_back(
