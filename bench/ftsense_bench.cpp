@@ -114,7 +114,12 @@ StageReplay make_stage_replay(const Json& config, const std::string& stage_name)
   const auto& ports = stage.ports().inputs();
   for (std::size_t p = 0; p < ports.size(); ++p) {
     Json columns = Json::array();
-    for (std::size_t c = 0; c < ports[p].dim; ++c) columns.push_back("c" + std::to_string(p) + "_" + std::to_string(c));
+    for (std::size_t c = 0; c < ports[p].dim; ++c) {
+      // Appended, not "c" + std::to_string(p): GCC 12 warns falsely (-Wrestrict) on literal + temporary.
+      std::string column = "c";
+      column.append(std::to_string(p)).append("_").append(std::to_string(c));
+      columns.push_back(column);
+    }
     const std::string name = "in" + std::to_string(p);
     single["inputs"][name] = {{"columns", columns}, {"unit", ports[p].unit.empty() ? "u" : ports[p].unit}};
     wires[ports[p].name] = "input." + name;
