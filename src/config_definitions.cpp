@@ -9,21 +9,6 @@ namespace {
 constexpr std::string_view kPrefix = "#/definitions/";
 constexpr int kMaxDepth = 32;  // definitions using definitions: deeper than this is a cycle
 
-// JSON Pointer escaping of one key (RFC 6901).
-std::string escape(const std::string& key) {
-  std::string out;
-  for (const char c : key) {
-    if (c == '~') {
-      out += "~0";
-    } else if (c == '/') {
-      out += "~1";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
 class Resolver {
  public:
   Resolver(const Json* definitions, Diagnostics& diag) : definitions_(definitions), diag_(diag) {}
@@ -35,9 +20,9 @@ class Resolver {
         resolve_reference(value, path, using_names);
         return;
       }
-      for (auto& [key, item] : value.items()) resolve(item, path + "/" + escape(key), using_names);
+      for (auto& [key, item] : value.items()) resolve(item, json_pointer_append(path, key), using_names);
     } else if (value.is_array()) {
-      for (std::size_t i = 0; i < value.size(); ++i) resolve(value[i], path + "/" + std::to_string(i), using_names);
+      for (std::size_t i = 0; i < value.size(); ++i) resolve(value[i], json_pointer_append(path, i), using_names);
     }
   }
 
@@ -109,9 +94,7 @@ Json resolve_definitions(const Json& config, Diagnostics& diag) {
   std::vector<std::string> using_names;
   for (auto& [key, value] : out.items()) {
     if (key == "definitions") continue;  // resolved where they are used
-    std::string path = "/";
-    path += escape(key);  // not "/" + escape(key): GCC 12 warns falsely (-Wrestrict) on literal + temporary
-    resolver.resolve(value, path, using_names);
+    resolver.resolve(value, json_pointer_append("", key), using_names);
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "ftsense/channel_values.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/cusum_design.hpp"
 #include "ftsense/plausible_ranges.hpp"
@@ -43,31 +44,12 @@ void CusumDetector::Params::describe(ParamSchema<Params>& schema) {
       .plausible(0.0, 600.0, "initial transients settle in seconds; ten minutes at most");
 }
 
-namespace {
-
-// One value for all channels or one per channel; every value finite.
-std::vector<double> per_channel(const std::vector<double>& values, std::size_t dim, const std::string& key) {
-  if (values.size() != 1 && values.size() != dim) {
-    throw ConfigError("/params/" + key, "has " + std::to_string(values.size()) + " entries but the residual has " +
-                                            std::to_string(dim) +
-                                            " channels; give one value per channel or one for all");
-  }
-  for (std::size_t j = 0; j < values.size(); ++j) {
-    if (!std::isfinite(values[j])) {
-      throw ConfigError("/params/" + key + "/" + std::to_string(j), "is not a finite number");
-    }
-  }
-  return values.size() == dim ? values : std::vector<double>(dim, values.front());
-}
-
-}  // namespace
-
 CusumDetector::CusumDetector(const Params& params, const StageContext& context)
     : sample_period_s_(context.sample_period_s()), warmup_s_(params.warmup_s) {
   const std::size_t dim = context.wired_dim("residual", params.noise_std.size());
-  const std::vector<double> noise_std = per_channel(params.noise_std, dim, "noise_std");
-  const std::vector<double> min_change = per_channel(params.min_change, dim, "min_change");
-  centers_ = per_channel(params.centers, dim, "centers");
+  const std::vector<double> noise_std = channel_values(params.noise_std, dim, "noise_std");
+  const std::vector<double> min_change = channel_values(params.min_change, dim, "min_change");
+  centers_ = channel_values(params.centers, dim, "centers");
 
   rho_ = params.correlation_time_s > 0.0 ? std::exp(-sample_period_s_ / params.correlation_time_s) : 0.0;
   samples_per_tick_ = (1.0 - rho_) / (1.0 + rho_);

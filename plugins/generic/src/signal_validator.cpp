@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "ftsense/channel_values.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/chi_square.hpp"
 
@@ -57,38 +58,18 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
       .at_most(1.0);
 }
 
-namespace {
-
-std::vector<double> per_channel(const std::vector<double>& values, std::size_t dim, const std::string& key,
-                                bool may_be_empty) {
-  if (values.empty() && may_be_empty) return std::vector<double>(dim, std::nan(""));
-  if (values.size() != 1 && values.size() != dim) {
-    throw ConfigError("/params/" + key, "has " + std::to_string(values.size()) + " entries but the signal has " +
-                                            std::to_string(dim) +
-                                            " channels; give one value per channel or one for all");
-  }
-  for (std::size_t j = 0; j < values.size(); ++j) {
-    if (!std::isfinite(values[j])) {
-      throw ConfigError("/params/" + key + "/" + std::to_string(j), "is not a finite number");
-    }
-  }
-  return values.size() == dim ? values : std::vector<double>(dim, values.front());
-}
-
-}  // namespace
-
 SignalValidator::SignalValidator(const Params& params, const StageContext& context)
     : sample_period_s_(context.sample_period_s()),
       window_s_(params.window_s),
       follow_ratio_(params.follow_ratio),
       reference_(params.reference) {
   const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
-  const auto noise_std = per_channel(params.noise_std, dim, "noise_std", false);
-  const auto resolution = per_channel(params.resolution, dim, "resolution", false);
-  const auto upper = per_channel(params.upper_limit, dim, "upper_limit", true);
-  const auto lower = per_channel(params.lower_limit, dim, "lower_limit", true);
-  const auto reference_noise = per_channel(params.reference_noise_std, dim, "reference_noise_std", false);
-  const auto min_change = per_channel(params.min_reference_change, dim, "min_reference_change", false);
+  const auto noise_std = channel_values(params.noise_std, dim, "noise_std");
+  const auto resolution = channel_values(params.resolution, dim, "resolution");
+  const auto upper = channel_values(params.upper_limit, dim, "upper_limit", true);
+  const auto lower = channel_values(params.lower_limit, dim, "lower_limit", true);
+  const auto reference_noise = channel_values(params.reference_noise_std, dim, "reference_noise_std");
+  const auto min_change = channel_values(params.min_reference_change, dim, "min_reference_change");
 
   const double ticks = std::round(params.window_s / sample_period_s_);
   if (!(ticks >= 10.0 && ticks <= 1e6)) {

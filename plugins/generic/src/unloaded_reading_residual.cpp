@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include "ftsense/channel_values.hpp"
+
 namespace ftsense::generic {
 
 void UnloadedReadingResidual::Params::describe(ParamSchema<Params>& schema) {
@@ -21,14 +23,7 @@ void UnloadedReadingResidual::Params::describe(ParamSchema<Params>& schema) {
 UnloadedReadingResidual::UnloadedReadingResidual(const Params& params, const StageContext& context)
     : settle_s_(params.settle_s), sample_period_s_(context.sample_period_s()) {
   const std::size_t dim = context.wired_dim("signal", params.zero.size());
-  if (params.zero.size() != 1 && params.zero.size() != dim) {
-    throw ConfigError("/params/zero", "has " + std::to_string(params.zero.size()) + " entries but the signal has " +
-                                          std::to_string(dim) + " channels; give one value per channel or one for all");
-  }
-  for (std::size_t j = 0; j < params.zero.size(); ++j) {
-    if (!std::isfinite(params.zero[j])) throw ConfigError("/params/zero/" + std::to_string(j), "is not a finite number");
-  }
-  zero_ = params.zero.size() == dim ? params.zero : std::vector<double>(dim, params.zero.front());
+  zero_ = channel_values(params.zero, dim, "zero");
   ports_.add_input(
       PortSpec{"signal", dim, std::string(kAnyUnit), "the readings x", PortRole::measured}.sized_by("as wired"));
   ports_.add_input(PortSpec{"loadable", dim, std::string(kDimensionless),
