@@ -187,7 +187,7 @@ TEST(CusumDetector, WhiteResidualMeetsTheFalseAlarmTarget) {
 TEST(CusumDetector, CorrelatedResidualMeetsTheTargetAtEveryRate) {
   // An AR(1) residual with tau_c = 20 ms (a low-passed one), at 1 kHz and at 200 Hz: the exact
   // whitening makes it the white case, so the same 15 % holds (8000 s with a 20 s target: about
-  // 400 alarms, 5 % standard error). Without whitening the interval was 421 s at 1 kHz.
+  // 400 alarms, 5 % standard error).
   constexpr unsigned kSeed = 7;
   std::printf("seed %u\n", kSeed);
   for (const double period : {1e-3, 5e-3}) {

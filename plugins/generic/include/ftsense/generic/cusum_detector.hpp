@@ -20,7 +20,7 @@
 // detected after about (h + 1.166) / (sqrt(w) mu - k_e) ticks: the same time in seconds at any
 // rate, since sqrt(w) ~ sqrt(T / (2 tau_c)) and h ~ 1 / sqrt(w) as T shrinks. Without the
 // whitening a correlated residual would move S like a smooth curve, not a random walk, and the
-// false-alarm interval would miss its target by an order of magnitude.
+// false-alarm interval would miss its target.
 //
 // Re-admission: while raised, S+ and S- are held at most h, so once the residual is back at
 // c_j they fall by k_e per tick and the channel clears when both reach 0, about h / k_e ticks
