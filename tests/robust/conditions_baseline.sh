@@ -2,7 +2,8 @@
 # Where a pipeline stands on issue 13's conditions (not a ctest: it prints, it does not judge).
 # Simulates each scenario of configs/scenarios/ made for them (quantised forces, 200 / 500 Hz logs,
 # frozen outputs that keep their noise, intermittent faults, healthy again after a burst), runs
-# the pipeline with its sample period set to the scenario's log period, and prints the report's
+# the pipeline with its sample period set to the scenario's log period (and the force sensors'
+# resolution, when the scenario quantises them), and prints the report's
 # summary line per scenario.
 # usage: conditions_baseline.sh FTSENSE ROOT WORKDIR [CONFIG]   (CONFIG: configs/suralp_robust.json)
 set -euo pipefail
@@ -15,10 +16,15 @@ for s in clean_quantised_1N clean_quantised_5N quantised_1N quantised_5N clean_2
          faults_500hz frozen_noisy intermittent heal_after; do
   scenario="$root/configs/scenarios/$s.json"
   period=$(/usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1])).get('log_period_s', 0.001))" "$scenario")
-  /usr/bin/python3 - "$config" "$period" "$work/config_$s.json" <<'PY'
+  /usr/bin/python3 - "$config" "$period" "$work/config_$s.json" "$scenario" <<'PY'
 import json, os, sys
 c = json.load(open(sys.argv[1]))
 c["sample_period_s"] = float(sys.argv[2])
+# The user knows the sensors' resolution: a quantised scenario's config says it.
+resolution = json.load(open(sys.argv[4])).get("sensors", {}).get("force", {}).get("resolution_N")
+for st in c["stages"]:
+    if resolution and st["plugin"] == "contact_force_fdi":
+        st["params"]["resolution_N"] = resolution
 base = os.path.dirname(os.path.abspath(sys.argv[1]))
 for st in c["stages"]:  # files named in the config stay where they were
     for k, v in st.get("params", {}).items():

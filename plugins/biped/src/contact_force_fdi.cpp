@@ -66,11 +66,20 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("touchdown_height_m", &Params::touchdown_height_m,
              "a foot touches down when all its pads come below this height")
       .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
-  schema.add("stale_ticks", &Params::stale_ticks, "repeated readings that make a channel frozen").at_least(2)
-      .plausible(2, 10000, "10,000 ticks are 1 s at 10 kHz, 100 s at 100 Hz");
-  schema.add("stale_tolerance_N", &Params::stale_tolerance_N, "readings this close count as repeated (quantisation)")
+  schema.add("resolution_N", &Params::resolution_N,
+             "quantisation step q of the sensors (0: continuous): readings within q / 2 count as repeated")
       .unit("N").at_least(0.0)
       .plausible(0.0, 100.0, "force sensors quantise in steps of up to a few newtons");
+  schema.add("upper_limit_N", &Params::upper_limit_N,
+             "top of the sensors' measuring range: stuck there is saturation (0: unknown, judged by the "
+             "largest value seen)")
+      .unit("N").at_least(0.0);
+  schema.add("frozen_min_s", &Params::frozen_min_s,
+             "shortest run on one level that is frozen (longer when quantisation makes healthy repeats likely)")
+      .unit("s").greater_than(0.0).plausible(plausible::flag_delay_s());
+  schema.add("false_alarm_interval_s", &Params::false_alarm_interval_s,
+             "mean time between false alarms of the frozen test on one healthy channel (sets its run length)")
+      .unit("s").greater_than(0.0).plausible(1.0, 1e9, "from a second (tests) to decades");
   schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike")
       .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
   schema.add("spike_hold_s", &Params::spike_hold_s, "the spikes flag stays this long after the last spike")
@@ -166,6 +175,23 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                               " s is too short for contact_force_fdi: its airborne mean of " +
                               format_number(kAirborneMeanWindow_s) + " s would be more than 100000 ticks");
   }
+  // The frozen test's run length n_f (header): the probability p that healthy noise leaves a
+  // reading on its quantisation level, and alpha, the false-alarm probability per tick.
+  repeat_band_N_ = 0.5 * params.resolution_N;
+  {
+    const double stay = std::erf(params.resolution_N / (2.0 * std::sqrt(2.0) * params.noise_std_N));
+    const double alpha = std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s);
+    const double run = stay > 0.0 ? std::log(alpha) / std::log(std::min(stay, 1.0 - 1e-15)) : 0.0;
+    const double ticks = std::max(params.frozen_min_s / context.sample_period_s(), run);
+    if (!(ticks <= kMaxWindowTicks)) {
+      throw ConfigError("/params/resolution_N",
+                        " = " + format_number(params.resolution_N) + " N against noise_std_N = " +
+                            format_number(params.noise_std_N) + " N: a healthy reading would stay on one level for " +
+                            format_number(ticks) + " ticks, so the frozen test cannot tell a frozen sensor (more "
+                            "than 100000 ticks); give the sensors' real noise or a shorter false_alarm_interval_s");
+    }
+    frozen_ticks_ = std::max(2, static_cast<int>(std::ceil(ticks - 1e-9)));
+  }
   min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
   if (params.airborne_clear_N >= params.airborne_threshold_N) {
     throw ConfigError("/params/airborne_clear_N", " = " + format_number(params.airborne_clear_N) + " violates < " +
@@ -200,16 +226,22 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_xx_.assign(n, 0.0);
   gain_xr_.assign(n, 0.0);
   channels_.resize(n);
-  for (auto& c : channels_) c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
+  for (auto& c : channels_) {
+    c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
+    c.first_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
+  }
   residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
 }
 
 void ContactForceFdi::reset() noexcept {
   for (auto& c : channels_) {
     std::vector<double> ring = std::move(c.second_diff);
+    std::vector<double> ring1 = std::move(c.first_diff);
     std::fill(ring.begin(), ring.end(), 0.0);
+    std::fill(ring1.begin(), ring1.end(), 0.0);
     c = Channel{};
     c.second_diff = std::move(ring);
+    c.first_diff = std::move(ring1);
   }
   std::fill(residual_ring_.begin(), residual_ring_.end(), 0.0);
   residual_next_ = 0;
@@ -267,7 +299,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
 
   // Evidence, channel by channel.
-  const double tick_noise = params_.noise_std_N * std::sqrt(6.0) * params_.noise_factor;
+  const double tick_noise =
+      std::sqrt(6.0 * (params_.noise_std_N * params_.noise_std_N + repeat_band_N_ * repeat_band_N_)) * params_.noise_factor;
   for (std::size_t f = 0; f < 2; ++f) {
     bool any = false;
     for (std::size_t l = 0; l < feet_points_ && f * feet_points_ + l < height.size(); ++l) {
@@ -298,19 +331,30 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (c.type == FaultType::invalid) clear(c);  // a finite value re-admits at once
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
-      c.stale_count = std::abs(change) <= params_.stale_tolerance_N ? c.stale_count + 1 : 0;
+      // An unloaded pad on its zero level may repeat itself (a sensor that clips at zero or has
+      // a dead band): no evidence either way, so the run neither grows nor restarts. Any other
+      // value repeated in the air is evidence (a noisy sensor does not repeat 1.3 N).
+      const bool unloaded_zero = airborne && std::abs(x) <= repeat_band_N_;
+      if (std::abs(change) > repeat_band_N_) {
+        c.stale_count = 0;
+      } else if (!unloaded_zero) {
+        ++c.stale_count;
+      }
       const double spike = c.previous - 0.5 * (x + c.previous2);
       if (!touching_down && std::abs(spike) > params_.spike_threshold_N &&
           std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N) {
         c.last_spike_s = t - period_s_;
       }
-      c.second_diff[c.second_diff_next] = std::abs(x - 2.0 * c.previous + c.previous2);
+      const double innovation = x - 2.0 * c.previous + c.previous2;
+      c.second_diff[c.second_diff_next] = std::abs(innovation);
+      c.first_diff[c.second_diff_next] = std::abs(change);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
       c.jump_pending = false;
       // Any time but a landing: a rolling foot's pads change a few newtons per tick, far below
       // jump_threshold_N, and the sum-residual confirmation rejects what is not a sensor step.
       const bool may_jump = !touching_down;
-      if (std::abs(change) > params_.jump_threshold_N && may_jump && !group_pending_) {
+      if (std::abs(change) > params_.jump_threshold_N && std::abs(innovation) > params_.jump_threshold_N && may_jump &&
+          !group_pending_) {
         c.jump_pending = true;
         c.jump_size = change;
         c.candidate_load = c.previous;
@@ -415,13 +459,15 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
     }
     // Frozen / saturation.
-    if (c.stale_count >= params_.stale_ticks) {
-      // Saturation: stuck at the largest value the channel has shown, or stuck again at exactly
-      // the value of its previous stuck episode after moving in between (a clipped load comes
-      // back to the same ceiling; a frozen sensor does not leave and return).
-      const bool at_max = x > 50.0 && x >= c.max_seen - params_.stale_tolerance_N;
-      const bool same_ceiling = x > 50.0 && std::abs(x - c.last_stale_value) <= params_.stale_tolerance_N;
-      if (c.stale_count == params_.stale_ticks) {
+    if (c.stale_count >= frozen_ticks_) {
+      // Saturation: stuck at the top of the range, or at the largest load the channel has shown,
+      // or stuck again at the value of its previous stuck episode after moving in between (a
+      // clipped load comes back to the same ceiling; a frozen sensor does not leave and return).
+      const bool loaded = x > params_.airborne_threshold_N;
+      const bool at_limit = params_.upper_limit_N > 0.0 && x >= params_.upper_limit_N - repeat_band_N_;
+      const bool at_max = at_limit || (loaded && x >= c.max_seen - repeat_band_N_);
+      const bool same_ceiling = loaded && std::abs(x - c.last_stale_value) <= repeat_band_N_;
+      if (c.stale_count == frozen_ticks_) {
         c.stale_episodes = same_ceiling ? c.stale_episodes + 1 : 1;
         c.last_stale_value = x;
       }
@@ -439,8 +485,16 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
     // Noise burst: most second differences far above their healthy spread.
     int noisy = 0;
-    for (double d : c.second_diff) noisy += d > tick_noise;
-    if (noisy * 2 > noise_window_ticks_) {
+    double rough = 0.0, moving = 0.0;
+    for (std::size_t i = 0; i < c.second_diff.size(); ++i) {
+      noisy += c.second_diff[i] > tick_noise;
+      rough += c.second_diff[i] * c.second_diff[i];
+      moving += c.first_diff[i] * c.first_diff[i];
+    }
+    // Not raised while its foot's landing rings in the window (the foot bounces on its pads for
+    // tens of milliseconds: a few ticks of a slow log).
+    const bool own_foot_landing = t - last_touchdown_s_[std::min<std::size_t>(j / feet_points_, 1)] < params_.touchdown_guard_s;
+    if (noisy * 2 > noise_window_ticks_ && rough > moving && !own_foot_landing) {
       raise(c, FaultType::noise, t);
     } else if (c.type == FaultType::noise && noisy * 4 < noise_window_ticks_) {
       if (c.clear_since < 0) c.clear_since = t;

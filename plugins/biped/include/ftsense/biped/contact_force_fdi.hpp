@@ -15,19 +15,31 @@
 //
 // Tests, per channel j, each tick (thresholds are parameters):
 //   invalid   N_j not finite.
-//   frozen    N_j repeated exactly (within stale_tolerance_N) for stale_ticks ticks; saturation
-//             when that value is the largest the channel has shown, or when the channel sticks
-//             again at exactly the value of its previous stuck episode (a clipped load returns to
-//             the same ceiling).
+//   frozen    N_j on one quantisation level (|N_j,k - N_j,k-1| <= q / 2, q = resolution_N; 0:
+//             exact repeats) for n_f ticks, n_f the run a healthy reading makes with probability
+//             below alpha = T / false_alarm_interval_s: noise of std sigma (noise_std_N) keeps a
+//             reading on its level with probability at most p = erf(q / (2 sqrt(2) sigma)) per
+//             tick (a load at the level's centre), so n_f = max(frozen_min_s / T, ln alpha / ln p)
+//             (5 N steps and 2 N noise: p = 0.79, 77 ticks at 1 kHz). An airborne pad that reads
+//             its zero level (|N_j| <= q / 2) is not evidence (an unloaded sensor may clip at 0). Saturation when the value is at the top of the range (upper_limit_N - q/2,
+//             when given), or a load (> airborne_threshold_N) that is the largest the channel has
+//             shown, or when the channel sticks again at the value of its previous stuck episode
+//             (a clipped load returns to the same ceiling).
 //   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree (not
 //             within touchdown_guard_s of a touchdown: a landing heel rings like a spike); the flag
 //             stays spike_hold_s after the last spike.
-//   noise     over noise_window_s, more than half of the second differences exceed
-//             noise_factor * noise_std_N * sqrt(6) (their healthy standard deviation).
+//   noise     over noise_window_s, more than half of the second differences d2 exceed
+//             noise_factor * sqrt(6 (sigma^2 + q^2 / 4)) (their healthy standard deviation, q / 2
+//             the worst quantisation error), and the window is rough like white noise rather
+//             than smooth like a load: sum d2^2 > sum d1^2 (white noise: 6 sigma^2 against
+//             2 sigma^2; a load moving at the tick rate, as at 200 Hz: d2 << d1); not raised
+//             within touchdown_guard_s of its foot's touchdown (a landing foot bounces on its pads).
 //   airborne  |mean N_j| > airborne_threshold_N, the mean of the readings taken once the pad has
 //             been airborne for airborne_settle_s, over at least 0.02 s and 10 readings:
 //             offset, drift or frozen-at-load; the mean measures the fault directly.
-//   jump      |N_j,k - N_j,k-1| > jump_threshold_N, with no foot touching down within
+//   jump      |N_j,k - N_j,k-1| > jump_threshold_N and the reading is as far from its linear
+//             prediction 2 N_j,k-1 - N_j,k-2 (a step is a surprise, a fast healthy load change
+//             at a slow log rate is not), with no foot touching down within
 //             touchdown_guard_s (a landing impact jumps pads and, unseen by the trunk IMU, the
 //             sum residual; a rolling foot's pads change only a few N per tick); confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
@@ -103,8 +115,10 @@ class ContactForceFdi {
     double jump_window_s = 0.01;
     double touchdown_guard_s = 0.15;
     double touchdown_height_m = 0.001;
-    int stale_ticks = 20;
-    double stale_tolerance_N = 0.0;
+    double resolution_N = 0.0;
+    double upper_limit_N = 0.0;
+    double frozen_min_s = 0.02;
+    double false_alarm_interval_s = 86400.0;
     double spike_threshold_N = 60.0;
     double spike_hold_s = 0.8;
     double noise_window_s = 0.05;
@@ -148,7 +162,8 @@ class ContactForceFdi {
     int stale_episodes = 0;            // consecutive stuck episodes at that same value
     double max_seen = 0.0;
     double last_spike_s = -1e9;
-    std::vector<double> second_diff;  // ring, noise test
+    std::vector<double> second_diff;  // ring of |d2|, noise test
+    std::vector<double> first_diff;   // ring of |d1| at the same ticks (whiteness)
     std::size_t second_diff_next = 0;
     int airborne_ticks = 0;
     double airborne_sum = 0.0;
@@ -193,6 +208,8 @@ class ContactForceFdi {
   std::array<bool, 2> foot_airborne_{false, false};
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
+  int frozen_ticks_ = 2;        // n_f, the frozen test's run length
+  double repeat_band_N_ = 0.0;  // q / 2
   int jump_window_ticks_;
   int min_airborne_samples_ = 10;
   // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.

@@ -1,0 +1,175 @@
+// contact_force_fdi: the tests that must hold at any log rate and quantisation (issue 13) fire on
+// the tick they should on deterministic traces: the frozen run length follows the sensors'
+// resolution, noise, rate and false-alarm target; an unloaded pad on its zero level is no
+// evidence; the noise test tells white jitter from a fast smooth load; a jump must be a surprise.
+
+#include <array>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "ftsense/biped/contact_force_fdi.hpp"
+#include "ftsense/fault_type.hpp"
+
+namespace ftsense::biped {
+namespace {
+
+constexpr std::size_t kChannels = 8;
+
+// Both feet flat on the ground (or the left one lifted), eight pads driven tick by tick.
+struct Feet {
+  ContactForceFdi fdi;
+  double period;
+  double t = 0.0;
+  std::vector<double> measured = std::vector<double>(kChannels, 0.0);
+  std::vector<double> total = {0.0, 0.0, 0.0};
+  std::vector<double> l_pos = {0.0, 0.1, 0.0}, l_rpy = {0.0, 0.0, 0.0};
+  std::vector<double> r_pos = {0.0, -0.1, 0.0}, r_rpy = {0.0, 0.0, 0.0};
+  std::vector<std::vector<double>> outs;
+
+  Feet(const ContactForceFdi::Params& p, double period_s) : fdi(p, StageContext(period_s, "fdi")), period(period_s) {
+    for (const auto& port : fdi.ports().outputs()) outs.emplace_back(port.dim, 0.0);
+    fdi.reset();
+  }
+  // One tick; F_z is the pads' sum unless given.
+  void step(double fz = std::nan("")) {
+    double sum = 0.0;
+    for (double x : measured) sum += x;
+    total[2] = std::isnan(fz) ? sum : fz;
+    const std::span<const double> ins[] = {measured, total, l_pos, l_rpy, r_pos, r_rpy};
+    std::vector<std::span<double>> out_spans(outs.begin(), outs.end());
+    fdi.step(StepIO{t, ins, out_spans});
+    t += period;
+  }
+  [[nodiscard]] FaultType type(std::size_t channel) const {
+    return fault_type_from_code(outs[ContactForceFdi::kFaultType][channel]).value_or(FaultType::unclassified);
+  }
+};
+
+ContactForceFdi::Params suralp(double resolution_N = 0.0) {
+  ContactForceFdi::Params p;
+  p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  p.noise_std_N = 2.0;
+  p.resolution_N = resolution_N;
+  return p;
+}
+
+// Healthy loaded pads that never repeat a quantisation level: each moves by 3 q / 4 + 1 N per tick,
+// alternately up and down, around its own load.
+double moving(std::size_t channel, int tick, double q) {
+  return 200.0 + 10.0 * static_cast<double>(channel) + (tick % 2 == 0 ? 0.0 : 0.75 * q + 1.0);
+}
+
+// The run length n_f of the header: ln alpha / ln p, p = erf(q / (2 sqrt(2) sigma)).
+int expected_frozen_ticks(double q, double sigma, double period_s, double interval_s, double min_s) {
+  const double p = std::erf(q / (2.0 * std::sqrt(2.0) * sigma));
+  const double run = p > 0.0 ? std::log(period_s / interval_s) / std::log(p) : 0.0;
+  return static_cast<int>(std::ceil(std::max(min_s / period_s, run) - 1e-9));
+}
+
+// A loaded pad stuck on one level from tick `stuck_at`: frozen exactly n_f ticks later.
+void expect_frozen_after(double q, double period_s, int n_f) {
+  SCOPED_TRACE("q = " + std::to_string(q) + " N, T = " + std::to_string(period_s) + " s, n_f = " + std::to_string(n_f));
+  Feet feet(suralp(q), period_s);
+  const int stuck_at = 50;
+  for (int k = 0; k < stuck_at + n_f + 1; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = moving(j, k, q);
+    if (k >= stuck_at) feet.measured[2] = 150.0;  // below its largest reading: frozen, not saturated
+    feet.step();
+    const FaultType expected = k >= stuck_at + n_f ? FaultType::frozen : FaultType::none;
+    ASSERT_EQ(feet.type(2), expected) << "tick " << k;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 2) {
+        ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+}
+
+TEST(ContactForceFdi, FrozenRunLengthFollowsResolutionNoiseRateAndFalseAlarmTarget) {
+  // 5 N steps, 2 N noise: a healthy reading stays on its level with p = erf(0.884) = 0.79 per
+  // tick, so a day between false alarms at 1 kHz takes ln(1.157e-8) / ln(0.7887) = 76.97 -> 77 ticks.
+  const int quantised = expected_frozen_ticks(5.0, 2.0, 1e-3, 86400.0, 0.02);
+  EXPECT_EQ(quantised, 77);
+  expect_frozen_after(5.0, 1e-3, quantised);
+  // Continuous readings never repeat: frozen_min_s decides, 20 ticks at 1 kHz, 4 at 200 Hz.
+  expect_frozen_after(0.0, 1e-3, 20);
+  expect_frozen_after(0.0, 5e-3, 4);
+  // 1 N steps under 2 N noise repeat rarely (p = 0.197): frozen_min_s still decides.
+  EXPECT_EQ(expected_frozen_ticks(1.0, 2.0, 1e-3, 86400.0, 0.02), 20);
+  expect_frozen_after(1.0, 1e-3, 20);
+}
+
+TEST(ContactForceFdi, NoiseTooSmallForItsResolutionIsAConfigError) {
+  // 50 N steps under 1 mN of noise: a healthy reading would sit on one level for ever.
+  auto p = suralp(50.0);
+  p.noise_std_N = 1e-3;
+  try {
+    const ContactForceFdi fdi(p, StageContext(1e-3, "fdi"));
+    FAIL() << "the frozen test cannot work";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.problems()[0].path, "/params/resolution_N");
+    EXPECT_NE(e.problems()[0].message.find("give the sensors' real noise"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ContactForceFdi, UnloadedPadOnItsZeroLevelIsNoEvidenceOfAFrozenSensor) {
+  Feet feet(suralp(), 1e-3);
+  feet.l_pos[2] = 0.1;  // the left foot in the air: its pads carry nothing
+  for (int k = 0; k < 500; ++k) {
+    for (std::size_t j = 4; j < kChannels; ++j) feet.measured[j] = moving(j, k, 0.0);
+    feet.measured[0] = 0.0;  // a sensor that clips at zero: exact zeros, healthy
+    feet.measured[1] = 1.3;  // a sensor stuck at 1.3 N: no noisy sensor repeats that
+    feet.measured[2] = k % 2 == 0 ? 0.5 : -0.5;
+    feet.measured[3] = 0.0;
+    feet.step();
+    ASSERT_EQ(feet.type(0), FaultType::none) << "tick " << k;
+    ASSERT_EQ(feet.type(1), k >= 20 ? FaultType::frozen : FaultType::none) << "tick " << k;
+  }
+}
+
+TEST(ContactForceFdi, NoiseTestTellsWhiteJitterFromAFastSmoothLoadAtASlowRate) {
+  // 200 Hz: the 0.05 s window is 10 ticks; 6 second differences above 4 sqrt(6) 2 N = 19.6 N
+  // make a burst when the window is rougher than it moves (sum d2^2 > sum d1^2).
+  Feet feet(suralp(), 5e-3);
+  for (int k = 0; k < 100; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = moving(j, k, 0.0);
+    const double jitter = k % 2 == 0 ? 8.0 : -8.0;       // |d2| = 32 N, |d1| = 16 N
+    feet.measured[1] = 300.0 + jitter;                     // white-like: a noise burst
+    feet.measured[5] = 300.0 + 40.0 * k + jitter;          // |d1| = 24 or 56 N: a load moving fast
+    feet.step();
+    // The burst is judged once 6 of the window's second differences (ticks 2..7) are in.
+    ASSERT_EQ(feet.type(1), k >= 7 ? FaultType::noise : FaultType::none) << "tick " << k;
+    ASSERT_EQ(feet.type(5), FaultType::none) << "tick " << k;
+  }
+}
+
+TEST(ContactForceFdi, AJumpMustBeASurpriseNotAFastRamp) {
+  // 200 Hz, F_z steady: a pad whose load speeds up smoothly (10 N per tick per tick) to 30 N per
+  // tick moves the sum residual as much as a step would, but its linear prediction foresees each
+  // tick: no jump. A 30 N step on a steady pad is both a change and a surprise: an offset of the
+  // step's size (29 N: the pad's own alternation takes 1 N) once the 0.01 s window confirms it.
+  Feet ramp(suralp(), 5e-3), step(suralp(), 5e-3);
+  double fz = 0.0;
+  for (std::size_t j = 0; j < kChannels; ++j) fz += moving(j, 0, 0.0);
+  double speed = 0.0, load = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) ramp.measured[j] = step.measured[j] = moving(j, k, 0.0);
+    if (k >= 20) {
+      speed = std::min(30.0, speed + 10.0);
+      load += speed;
+      ramp.measured[2] += load;
+      step.measured[2] += 30.0;
+    }
+    ramp.step(fz);
+    step.step(fz);
+    ASSERT_EQ(ramp.type(2), FaultType::none) << "tick " << k;
+    ASSERT_EQ(step.type(2), k >= 21 ? FaultType::offset : FaultType::none) << "tick " << k;
+  }
+  EXPECT_NEAR(step.outs[ContactForceFdi::kFaultEstimate][2], 29.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace ftsense::biped
