@@ -114,6 +114,10 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("gain_min_load_N", &Params::gain_min_load_N,
              "RMS load a channel must carry over the gain window to be judged by the gain test")
       .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
+  schema.add("follow_ratio", &Params::follow_ratio,
+             "an offset or drift whose reading spans less than this share of its leave-one-out force's span is "
+             "a frozen output that keeps its noise")
+      .greater_than(0.0).less_than(0.5);
 }
 
 void ContactForceFdi::LineFit::add(double t, double b, double weight) noexcept {
@@ -274,6 +278,7 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.gain = 1.0;
   c.fit_has_air = false;
   c.clear_since = -1.0;
+  c.following = c.frozen_by_follow = false;
 }
 
 void ContactForceFdi::step(const StepIO& io) noexcept {
@@ -473,7 +478,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       raise(c, at_max || c.stale_episodes >= 2 ? FaultType::saturation : FaultType::frozen, t);
       if (c.stale_episodes >= 2 && c.type == FaultType::frozen) c.type = FaultType::saturation;
-    } else if ((c.type == FaultType::frozen || c.type == FaultType::saturation) && c.stale_count == 0) {
+    } else if ((c.type == FaultType::frozen || c.type == FaultType::saturation) && c.stale_count == 0 &&
+               !c.frozen_by_follow) {
       if (c.clear_since < 0) c.clear_since = t;
       if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
     }
@@ -593,6 +599,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     virtual_force[j] = airborne ? 0.0
                        : fz_ok  ? std::max(0.0, fz - (total - recovered[j]))
                                 : std::numeric_limits<double>::quiet_NaN();
+    follow_test(c, measured[j], virtual_force[j]);
     fault[j] = c.type != FaultType::none ? 1.0 : 0.0;
     type[j] = fault_code(c.type);
     const double x = measured[j];
@@ -618,6 +625,39 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any) || gain_unisolated_) ? 1.0 : 0.0;
   io.out(kVirtualReady)[0] = fz_ok ? 1.0 : 0.0;
   started_ = true;
+}
+
+void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_force) noexcept {
+  const bool judged = c.type == FaultType::offset || c.type == FaultType::drift ||
+                      (c.type == FaultType::frozen && c.frozen_by_follow);
+  if (!judged) {
+    c.following = false;
+    return;
+  }
+  if (!std::isfinite(reading) || !std::isfinite(virtual_force)) return;
+  const double smoothed = c.smoothed;
+  if (!c.following) {
+    c.following = true;
+    c.virtual_smoothed = virtual_force;
+    c.reading_lo = c.reading_hi = smoothed;
+    c.virtual_lo = c.virtual_hi = virtual_force;
+    return;
+  }
+  c.virtual_smoothed += -std::expm1(-2.0 * 3.141592653589793 * 10.0 * period_s_) * (virtual_force - c.virtual_smoothed);
+  c.reading_lo = std::min(c.reading_lo, smoothed);
+  c.reading_hi = std::max(c.reading_hi, smoothed);
+  c.virtual_lo = std::min(c.virtual_lo, c.virtual_smoothed);
+  c.virtual_hi = std::max(c.virtual_hi, c.virtual_smoothed);
+  const double load_span = c.virtual_hi - c.virtual_lo;
+  if (load_span < 2.0 * params_.sum_threshold_N) return;  // the load has not moved beyond the force's error
+  const double reading_span = c.reading_hi - c.reading_lo;
+  if (!c.frozen_by_follow && reading_span < params_.follow_ratio * load_span) {
+    c.type = FaultType::frozen;
+    c.frozen_by_follow = true;
+    c.following = false;  // judge re-admission on a fresh span
+  } else if (c.frozen_by_follow && reading_span >= 0.5 * load_span) {
+    clear(c);  // the reading follows the load again
+  }
 }
 
 void ContactForceFdi::gain_regression(std::span<const double> recovered, double residual, bool usable,

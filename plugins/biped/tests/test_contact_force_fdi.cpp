@@ -173,3 +173,43 @@ TEST(ContactForceFdi, AJumpMustBeASurpriseNotAFastRamp) {
 
 }  // namespace
 }  // namespace ftsense::biped
+
+namespace ftsense::biped {
+namespace {
+
+// The left foot swings with pad 0 reading 150 N +- 1 N (raised as an offset by the airborne test),
+// then lands and pad 0's true load rises smoothly to 400 N. A frozen output keeps reading 150 N:
+// re-typed frozen once the leave-one-out force has spanned 2 sum_threshold_N = 160 N; an offset
+// reads load + 150 N and stays an offset.
+FaultType after_landing(bool frozen, double& recovered) {
+  Feet feet(suralp(), 1e-3);
+  FaultType type = FaultType::none;
+  for (int k = 0; k < 600; ++k) {
+    const bool landed = k >= 200;
+    feet.l_pos[2] = landed ? 0.0 : 0.1;
+    const double load = landed ? std::min(400.0, 2.0 * (k - 200)) : 0.0;
+    for (std::size_t j = 1; j < kChannels; ++j) feet.measured[j] = j < 4 ? (landed ? 100.0 + (k % 2) : k % 2) : moving(j, k, 0.0);
+    double others = 0.0;
+    for (std::size_t j = 1; j < kChannels; ++j) others += feet.measured[j];
+    const double noise = k % 2 == 0 ? 1.0 : -1.0;
+    feet.measured[0] = (frozen ? 150.0 : load + 150.0) + noise;
+    feet.step(others + load);
+    if (k == 150) {
+      EXPECT_EQ(feet.type(0), FaultType::offset) << "the airborne test raises it";
+    }
+    type = feet.type(0);
+  }
+  recovered = feet.outs[ContactForceFdi::kRecovered][0];
+  return type;
+}
+
+TEST(ContactForceFdi, AnOffsetWhoseReadingDoesNotFollowTheLoadIsAFrozenOutputThatKeepsItsNoise) {
+  double recovered = 0.0;
+  EXPECT_EQ(after_landing(true, recovered), FaultType::frozen);
+  EXPECT_NEAR(recovered, 400.0, 1e-9) << "substituted from the total force: F_z minus the other pads";
+  EXPECT_EQ(after_landing(false, recovered), FaultType::offset);
+  EXPECT_NEAR(recovered, 400.0, 2.0) << "the reading minus the airborne mean (150 N)";
+}
+
+}  // namespace
+}  // namespace ftsense::biped

@@ -63,6 +63,11 @@
 //             window restarts after every decision, and takes no tick while a loaded channel is
 //             substituted from the total force (which absorbs the residual) or within
 //             touchdown_guard_s of a touchdown (impacts).
+//   follow    a channel raised as offset or drift whose smoothed reading spans less than
+//             follow_ratio of what its leave-one-out force (smoothed alike) spans since, once that force has moved
+//             by 2 sum_threshold_N (beyond its own error): the reading does not follow the load,
+//             a frozen output that keeps its noise; re-typed frozen and substituted. Re-admitted
+//             when the reading spans half the force's move again.
 // Type: invalid > frozen/saturation > noise > spikes > gain > drift > offset (a noise burst
 // also trips the spike test). A foot touches down when all its pads come below
 // touchdown_height_m. Offset and drift are
@@ -132,6 +137,7 @@ class ContactForceFdi {
     double gain_explained = 0.5;
     double gain_isolation_margin = 0.08;
     double gain_min_load_N = 30.0;
+    double follow_ratio = 0.25;
     static void describe(ParamSchema<Params>& schema);
   };
 
@@ -183,12 +189,20 @@ class ContactForceFdi {
     bool fit_has_air = false;
     double recovered = 0.0;
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
+    // Does the reading follow the load? Ranges of the smoothed reading and of the leave-one-out
+    // force since the channel was raised as offset or drift (or re-typed frozen).
+    bool following = false;  // ranges being tracked
+    bool frozen_by_follow = false;
+    double reading_lo = 0.0, reading_hi = 0.0, virtual_lo = 0.0, virtual_hi = 0.0;
+    double virtual_smoothed = 0.0;  // the same 10 Hz low-pass as `smoothed`: both lag alike
   };
 
   void raise(Channel& c, FaultType type, double t) noexcept;
   // The stance-regression gain test (see the header comment); runs after recovery.
   void gain_regression(std::span<const double> recovered, double residual, bool usable, double t) noexcept;
   void clear(Channel& c) noexcept;
+  // The follow test (header comment), after the leave-one-out force of this tick is known.
+  void follow_test(Channel& c, double reading, double virtual_force) noexcept;
 
   Ports ports_;
   Params params_;
