@@ -229,6 +229,9 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_forgetting_ = std::exp(-1.0 / gain_window_ticks_);
   gain_xx_.assign(n, 0.0);
   gain_xr_.assign(n, 0.0);
+  gain_raw_rr_.assign(n, 0.0);
+  gain_held_ticks_.assign(n, 0);
+  gain_held_rr_.assign(n, 0.0);
   channels_.resize(n);
   for (auto& c : channels_) {
     c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
@@ -256,9 +259,7 @@ void ContactForceFdi::reset() noexcept {
   last_touchdown_s_ = {-1e9, -1e9};
   foot_airborne_ = {false, false};
   std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
-  std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
-  gain_rr_ = gain_weight_ = 0.0;
-  gain_ticks_ = 0;
+  restart_gain_window();
   gain_unisolated_ = false;
 }
 
@@ -351,7 +352,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.last_spike_s = t - period_s_;
       }
       const double innovation = x - 2.0 * c.previous + c.previous2;
+      c.noisy_count -= c.second_diff[c.second_diff_next] > tick_noise ? 1 : 0;
       c.second_diff[c.second_diff_next] = std::abs(innovation);
+      c.noisy_count += c.second_diff[c.second_diff_next] > tick_noise ? 1 : 0;
       c.first_diff[c.second_diff_next] = std::abs(change);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
       c.jump_pending = false;
@@ -489,18 +492,22 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     } else if (c.type == FaultType::spikes) {
       clear(c);
     }
-    // Noise burst: most second differences far above their healthy spread.
-    int noisy = 0;
-    double rough = 0.0, moving = 0.0;
-    for (std::size_t i = 0; i < c.second_diff.size(); ++i) {
-      noisy += c.second_diff[i] > tick_noise;
-      rough += c.second_diff[i] * c.second_diff[i];
-      moving += c.first_diff[i] * c.first_diff[i];
+    // Noise burst: most second differences far above their healthy spread (counted as the ring
+    // fills), and the window rougher than it moves (summed only then: a rare event).
+    const int noisy = c.noisy_count;
+    bool rough = false;
+    if (noisy * 2 > noise_window_ticks_) {
+      double d2_power = 0.0, d1_power = 0.0;
+      for (std::size_t i = 0; i < c.second_diff.size(); ++i) {
+        d2_power += c.second_diff[i] * c.second_diff[i];
+        d1_power += c.first_diff[i] * c.first_diff[i];
+      }
+      rough = d2_power > d1_power;
     }
     // Not raised while its foot's landing rings in the window (the foot bounces on its pads for
     // tens of milliseconds: a few ticks of a slow log).
     const bool own_foot_landing = t - last_touchdown_s_[std::min<std::size_t>(j / feet_points_, 1)] < params_.touchdown_guard_s;
-    if (noisy * 2 > noise_window_ticks_ && rough > moving && !own_foot_landing) {
+    if (noisy * 2 > noise_window_ticks_ && rough && !own_foot_landing) {
       raise(c, FaultType::noise, t);
     } else if (c.type == FaultType::noise && noisy * 4 < noise_window_ticks_) {
       if (c.clear_since < 0) c.clear_since = t;
@@ -614,7 +621,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   // The corrected sum residual: what no channel explains.
   const double residual = fz_ok ? total - fz : 0.0;
-  gain_regression(recovered, residual, fz_ok && all_finite_readings && !touching_down && !substituting_loaded, t);
+  gain_regression(measured, recovered, residual, fz_ok && all_finite_readings && !touching_down && !substituting_loaded,
+                  t);
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
   // Without F_z the residual is unknown, not zero: hold the filter rather than pull it to zero.
   if (fz_ok || !started_) sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
@@ -660,8 +668,8 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
   }
 }
 
-void ContactForceFdi::gain_regression(std::span<const double> recovered, double residual, bool usable,
-                                      double t) noexcept {
+void ContactForceFdi::gain_regression(std::span<const double> measured, std::span<const double> recovered,
+                                      double residual, bool usable, double t) noexcept {
   if (!usable) return;  // the window keeps what it has; impacts and substitutions add nothing
   const double f = gain_forgetting_;
   for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
@@ -669,11 +677,41 @@ void ContactForceFdi::gain_regression(std::span<const double> recovered, double 
     gain_xr_[j] = f * gain_xr_[j] + recovered[j] * residual;
   }
   gain_rr_ = f * gain_rr_ + residual * residual;
+  // What the residual would be if a channel held as a gain fault were read as it is, against what
+  // it is with the correction, both over the ticks since the correction was last set.
+  for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
+    if (channels_[j].type != FaultType::gain) {
+      gain_raw_rr_[j] = gain_held_rr_[j] = 0.0;
+      gain_held_ticks_[j] = 0;
+      continue;
+    }
+    const double raw = residual + measured[j] - recovered[j];
+    gain_raw_rr_[j] = f * gain_raw_rr_[j] + raw * raw;
+    gain_held_rr_[j] = f * gain_held_rr_[j] + residual * residual;
+    ++gain_held_ticks_[j];
+  }
   gain_weight_ = f * gain_weight_ + 1.0;
   ++gain_ticks_;
   // Judge once per 10 ms, and only over a full window.
   if (gain_ticks_ < gain_window_ticks_ || gain_ticks_ % 10 != 0 || !(gain_rr_ > 0.0)) return;
 
+  // Re-admission by model comparison: a channel held as a gain fault whose reading, taken as it
+  // is, leaves no more residual power over the window than its correction does is healthy again
+  // (this needs no isolation: the pads of one foot are fitted alike, so a small gain error on a
+  // healthy pad might never stand out).
+  bool readmitted = false;
+  for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
+    // Once the correction has held for a window.
+    if (channels_[j].type == FaultType::gain && gain_held_ticks_[j] >= gain_window_ticks_ &&
+        gain_raw_rr_[j] <= gain_held_rr_[j]) {
+      clear(channels_[j]);
+      readmitted = true;
+    }
+  }
+  if (readmitted) {
+    restart_gain_window();
+    return;
+  }
   // The channel whose one-regressor fit r ~ beta_j N^_j explains the most of the residual.
   const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * gain_weight_;
   std::size_t best = gain_xx_.size();
@@ -718,8 +756,15 @@ void ContactForceFdi::gain_regression(std::span<const double> recovered, double 
     c.gain = gain;
   }
   // The window's residuals were computed with the old correction: start a new one.
+  restart_gain_window();
+}
+
+void ContactForceFdi::restart_gain_window() noexcept {
   std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
   std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
+  std::fill(gain_raw_rr_.begin(), gain_raw_rr_.end(), 0.0);
+  std::fill(gain_held_rr_.begin(), gain_held_rr_.end(), 0.0);
+  std::fill(gain_held_ticks_.begin(), gain_held_ticks_.end(), 0);
   gain_rr_ = gain_weight_ = 0.0;
   gain_ticks_ = 0;
 }

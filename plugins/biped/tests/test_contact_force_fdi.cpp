@@ -213,3 +213,44 @@ TEST(ContactForceFdi, AnOffsetWhoseReadingDoesNotFollowTheLoadIsAFrozenOutputTha
 
 }  // namespace
 }  // namespace ftsense::biped
+
+namespace ftsense::biped {
+namespace {
+
+// Pad 0 steps by +30 N at 100 N load (a confirmed jump: an offset), then reads 0 in the air, so
+// the jump is taken for a gain k = 1 + 30 / 100. After landing, pad 0 reads either its true
+// load (healthy: the correction only adds residual) or 1.3 times it (a gain fault). All pads of
+// the foot carry constant loads, so the regression fits each alike and isolates none: only the
+// model comparison can let the healthy pad go, once the correction has held for the 2 s window.
+FaultType gain_held_then(bool healthy, FaultType& middle) {
+  Feet feet(suralp(), 1e-3);
+  FaultType type = FaultType::none;
+  for (int k = 0; k < 4000; ++k) {
+    const bool lifted = k >= 300 && k < 500;
+    feet.l_pos[2] = lifted ? 0.1 : 0.0;
+    const double load = lifted ? 0.0 : 100.0;
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = j < 4 ? load + (k % 2) : moving(j, k, 0.0);
+    double truth = 0.0;
+    for (double x : feet.measured) truth += x;
+    if (k >= 100 && k < 300) feet.measured[0] += 30.0;
+    if (k >= 500 && !healthy) feet.measured[0] *= 1.3;
+    feet.step(truth);
+    if (k == 150) {
+      EXPECT_EQ(feet.type(0), FaultType::offset) << "the confirmed jump";
+    }
+    if (k == 1000) middle = feet.type(0);
+    type = feet.type(0);
+  }
+  return type;
+}
+
+TEST(ContactForceFdi, AGainCorrectionThatDoesNotLowerTheResidualIsDroppedWithoutIsolation) {
+  FaultType middle = FaultType::none;
+  EXPECT_EQ(gain_held_then(true, middle), FaultType::none) << "re-admitted by model comparison";
+  EXPECT_EQ(middle, FaultType::gain);
+  EXPECT_EQ(gain_held_then(false, middle), FaultType::gain) << "a real gain fault stays";
+  EXPECT_EQ(middle, FaultType::gain);
+}
+
+}  // namespace
+}  // namespace ftsense::biped

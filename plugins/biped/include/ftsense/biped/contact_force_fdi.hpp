@@ -59,8 +59,10 @@
 //             its neighbour: then nothing is blamed and `unisolated` is raised instead) and
 //             |beta_j| > gain_threshold, with k = 1 / (1 - beta_j), and its RMS load over the
 //             window is above gain_min_load_N; the same test refines k on the corrected residual
-//             and re-admits the channel when k comes back within gain_threshold / 2 of 1. The
-//             window restarts after every decision, and takes no tick while a loaded channel is
+//             and re-admits the channel when k comes back within gain_threshold / 2 of 1, or, by
+//             model comparison (no isolation needed), when its reading taken as it is leaves no
+//             more residual power than its correction does over the gain window since the
+//             correction was set. The window restarts after every decision, and takes no tick while a loaded channel is
 //             substituted from the total force (which absorbs the residual) or within
 //             touchdown_guard_s of a touchdown (impacts).
 //   follow    a channel raised as offset or drift whose smoothed reading spans less than
@@ -171,6 +173,7 @@ class ContactForceFdi {
     std::vector<double> second_diff;  // ring of |d2|, noise test
     std::vector<double> first_diff;   // ring of |d1| at the same ticks (whiteness)
     std::size_t second_diff_next = 0;
+    int noisy_count = 0;  // entries of second_diff above the noise level
     int airborne_ticks = 0;
     double airborne_sum = 0.0;
     int airborne_count = 0;
@@ -199,7 +202,9 @@ class ContactForceFdi {
 
   void raise(Channel& c, FaultType type, double t) noexcept;
   // The stance-regression gain test (see the header comment); runs after recovery.
-  void gain_regression(std::span<const double> recovered, double residual, bool usable, double t) noexcept;
+  void gain_regression(std::span<const double> measured, std::span<const double> recovered, double residual,
+                       bool usable, double t) noexcept;
+  void restart_gain_window() noexcept;
   void clear(Channel& c) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
   void follow_test(Channel& c, double reading, double virtual_force) noexcept;
@@ -230,6 +235,11 @@ class ContactForceFdi {
   std::vector<double> gain_xx_;
   std::vector<double> gain_xr_;
   double gain_rr_ = 0.0;
+  // Per channel held as a gain fault, since its correction was last set: ticks, <r_raw, r_raw>
+  // with r_raw = r + N_j - N^_j (the reading taken as it is) and <r, r>.
+  std::vector<int> gain_held_ticks_;
+  std::vector<double> gain_raw_rr_;
+  std::vector<double> gain_held_rr_;
   double gain_weight_ = 0.0;
   double gain_forgetting_ = 1.0;
   int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
