@@ -280,6 +280,26 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.fit_has_air = false;
   c.clear_since = -1.0;
   c.following = c.frozen_by_follow = false;
+  c.sign_fault = false;
+  c.negative_fit = SlopeFit{};
+}
+
+bool ContactForceFdi::SlopeFit::negative_slope(double& k) const noexcept {
+  if (n < 3.0) return false;
+  const double mv = sv / n, mx = sx / n;
+  const double cvv = svv / n - mv * mv, cxv = sxv / n - mx * mv, cxx = sxx / n - mx * mx;
+  if (!(cvv > 0.0)) return false;
+  const double slope = cxv / cvv;
+  const double standard_error = std::sqrt(std::max(0.0, cxx - slope * cxv) / (n * cvv));
+  if (!(slope + 4.0 * standard_error < 0.0)) return false;  // negative beyond 4 standard errors
+  // And the gain model x = k v explains the readings better than an offset x = v + b (a negative
+  // offset read only while its load is light looks like a falling line).
+  const double gain_k = sxv / svv;
+  const double gain_residual = sxx - gain_k * sxv;
+  const double offset_residual = (sxx - 2.0 * sxv + svv) - (sx - sv) * (sx - sv) / n;
+  if (!(gain_k < 0.0 && gain_residual < offset_residual)) return false;
+  k = std::min(gain_k, -0.1);  // |k| >= 0.1: the recovery divides by it
+  return true;
 }
 
 void ContactForceFdi::step(const StepIO& io) noexcept {
@@ -333,7 +353,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       raw_sum += c.recovered;
       continue;
     }
-    raw_sum += x;
+    // The sum residual of the jump test takes a gain fault's reading with its correction (a sign
+    // flip's load changes, read twice over, must not make its neighbours' changes look like
+    // steps). Offsets stay as read: their correction ends with the jump that ends them.
+    raw_sum += c.type == FaultType::gain ? (airborne ? 0.0 : x / c.gain) : x;
     if (c.type == FaultType::invalid) clear(c);  // a finite value re-admits at once
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
@@ -387,6 +410,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.airborne_sum = 0.0;
     }
     c.max_seen = std::max(c.max_seen, x);
+    // A pad only pushes: a loaded pad reading below -airborne_threshold_N is a negative offset
+    // or a negative multiple of its load (a sign flip). The least-squares line of the reading on
+    // the leave-one-out force (fitted once that force is known, below) tells them apart: slope
+    // about 1, or k < 0; a pad read right side up again under load clears it.
+    const bool shows_load = !airborne && std::isfinite(c.last_virtual) && c.last_virtual > params_.gain_min_load_N;
+    if (!airborne && x < -params_.airborne_threshold_N) {
+      ++c.negative_ticks;
+      c.positive_ticks = 0;
+    } else {
+      c.negative_ticks = 0;
+      c.positive_ticks = shows_load && x > params_.airborne_threshold_N ? c.positive_ticks + 1 : 0;
+      if (!c.sign_fault) c.negative_fit = SlopeFit{};
+    }
   }
 
   // Sum residual history for the jump confirmation.
@@ -513,6 +549,21 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (c.clear_since < 0) c.clear_since = t;
       if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
     }
+    // Negative reading under load (see the evidence loop).
+    if (c.sign_fault && c.type == FaultType::gain) {
+      double k = 0.0;
+      if (c.positive_ticks >= min_airborne_samples) {
+        clear(c);
+      } else if (c.negative_fit.negative_slope(k)) {
+        c.gain = k;
+      }
+    } else if (double k = 0.0; c.negative_ticks >= min_airborne_samples && !c.fit_has_air &&
+                               c.negative_fit.v_hi - c.negative_fit.v_lo >= params_.sum_threshold_N &&
+                               c.negative_fit.negative_slope(k) && priority(c.type) <= priority(FaultType::gain)) {
+      raise(c, FaultType::gain, t);
+      c.gain = k;
+      c.sign_fault = true;
+    }
     // Airborne pad: its reading is the fault itself.
     if (c.airborne_count >= min_airborne_samples) {
       const double mean = c.airborne_sum / c.airborne_count;
@@ -612,6 +663,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const double x = measured[j];
     fault_estimate[j] = std::isfinite(x) ? x - recovered[j] : 0.0;
     c.recovered = recovered[j];
+    c.last_virtual = virtual_force[j];
+    if (c.negative_ticks > 0 && std::isfinite(x) && virtual_force[j] > params_.gain_min_load_N) {
+      c.negative_fit.add(virtual_force[j], x);
+    }
     if (std::isfinite(x)) {
       const double smoothing = -std::expm1(-2.0 * 3.141592653589793 * 10.0 * period_s_);
       c.smoothed = ticks_since_start > 0 ? c.smoothed + smoothing * (x - c.smoothed) : x;

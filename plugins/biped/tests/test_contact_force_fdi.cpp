@@ -254,3 +254,50 @@ TEST(ContactForceFdi, AGainCorrectionThatDoesNotLowerTheResidualIsDroppedWithout
 
 }  // namespace
 }  // namespace ftsense::biped
+
+namespace ftsense::biped {
+namespace {
+
+// Pad 0 carries 100 + 50 sin(2 pi k / 200) N. From tick 300 to 600 it reads either minus its load
+// (a sign flip) or its load - 180 N (a negative offset): both read below zero under load, and
+// only the line of the reading on the leave-one-out force (slope -1 against +1) tells them apart,
+// once that force has moved beyond its error bound.
+TEST(ContactForceFdi, ALoadedPadReadingMinusItsLoadIsASignFlipNotANegativeOffset) {
+  constexpr double kTwoPi = 6.283185307179586;
+  Feet flip(suralp(), 1e-3), offset(suralp(), 1e-3);
+  for (int k = 0; k < 800; ++k) {
+    const double load = 100.0 + 50.0 * std::sin(kTwoPi * k / 200.0);
+    for (std::size_t j = 1; j < kChannels; ++j) flip.measured[j] = offset.measured[j] = moving(j, k, 0.0);
+    flip.measured[0] = offset.measured[0] = load;
+    double truth = 0.0;
+    for (double x : flip.measured) truth += x;
+    const bool faulty = k >= 300 && k < 600;
+    if (faulty) {
+      flip.measured[0] = -load;
+      offset.measured[0] = load - 180.0;
+    }
+    flip.step(truth);
+    offset.step(truth);
+    // The flip is judged once the leave-one-out force has spanned sum_threshold_N = 80 N since the
+    // first negative reading (from 50 N at tick 350 to 130 N near tick 421).
+    if (k == 421) {
+      EXPECT_EQ(flip.type(0), FaultType::offset) << "the confirmed jump, not yet judged a flip";
+    }
+    if (k == 450) {
+      EXPECT_EQ(flip.type(0), FaultType::gain);
+      EXPECT_NEAR(flip.outs[ContactForceFdi::kRecovered][0], load, 1e-6) << "read / k with k = -1";
+      EXPECT_EQ(offset.type(0), FaultType::offset);
+      EXPECT_NEAR(offset.outs[ContactForceFdi::kFaultEstimate][0], -180.0, 2.0);
+    }
+    if (k >= 300 && k < 600) {
+      ASSERT_NE(offset.type(0), FaultType::gain) << "tick " << k;
+    }
+    for (std::size_t j = 1; j < kChannels; ++j) {
+      ASSERT_EQ(flip.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+    }
+  }
+  EXPECT_EQ(flip.type(0), FaultType::none) << "right side up again under load: re-admitted";
+}
+
+}  // namespace
+}  // namespace ftsense::biped

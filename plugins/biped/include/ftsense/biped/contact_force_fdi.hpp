@@ -70,6 +70,14 @@
 //             by 2 sum_threshold_N (beyond its own error): the reading does not follow the load,
 //             a frozen output that keeps its noise; re-typed frozen and substituted. Re-admitted
 //             when the reading spans half the force's move again.
+//   negative  a pad only pushes: a loaded pad (leave-one-out force above gain_min_load_N)
+//             reading below -airborne_threshold_N for as many ticks as the airborne mean takes
+//             is a gain fault with k < 0 (a sign flip) when the least-squares line of the reading
+//             on the leave-one-out force v has a slope below 0 by 4 standard errors and the line
+//             x = k v through 0 fits better than x = v + b (a negative offset), once v has
+//             spanned sum_threshold_N (the bound of its own error) and unless the air has measured
+//             the channel's offset already; re-admitted once it reads above +airborne_threshold_N
+//             under load for as long.
 // Type: invalid > frozen/saturation > noise > spikes > gain > drift > offset (a noise burst
 // also trips the spike test). A foot touches down when all its pads come below
 // touchdown_height_m. Offset and drift are
@@ -90,6 +98,7 @@
 // rather than blamed on a force sensor.
 // Channel order: the left foot's points, then the right foot's, each in the order of `points`.
 
+#include <algorithm>
 #include <array>
 #include <span>
 #include <string_view>
@@ -162,6 +171,20 @@ class ContactForceFdi {
     void solve(double& a, double& s) const noexcept;
   };
 
+  // Least-squares line x = a + k v of a reading on its leave-one-out force.
+  struct SlopeFit {
+    double n = 0, sv = 0, sx = 0, svv = 0, sxv = 0, sxx = 0;
+    double v_lo = 0, v_hi = 0;
+    void add(double v, double x) noexcept {
+      v_lo = n > 0 ? std::min(v_lo, v) : v;
+      v_hi = n > 0 ? std::max(v_hi, v) : v;
+      n += 1; sv += v; sx += x; svv += v * v; sxv += x * v; sxx += x * x;
+    }
+    // k of x = k v, when the slope is negative beyond 4 standard errors and x = k v fits
+    // better than x = v + b (clamped to <= -0.1).
+    [[nodiscard]] bool negative_slope(double& k) const noexcept;
+  };
+
   struct Channel {
     // evidence
     double previous = 0.0, previous2 = 0.0;
@@ -198,6 +221,11 @@ class ContactForceFdi {
     bool frozen_by_follow = false;
     double reading_lo = 0.0, reading_hi = 0.0, virtual_lo = 0.0, virtual_hi = 0.0;
     double virtual_smoothed = 0.0;  // the same 10 Hz low-pass as `smoothed`: both lag alike
+    // A pad that reads below zero under load (sign flip): the run, its regression on the load.
+    double last_virtual = 0.0;  // the leave-one-out force of the previous tick
+    int negative_ticks = 0, positive_ticks = 0;
+    SlopeFit negative_fit;
+    bool sign_fault = false;
   };
 
   void raise(Channel& c, FaultType type, double t) noexcept;
