@@ -36,7 +36,7 @@ done
 # Progress counts to its total, walks are named by their length, and no carriage return reaches
 # a redirected log.
 last=$(grep -oE '^\[[0-9]+/[0-9]+\]' "$out/stdout" | tail -1)
-[ "$last" = "[11/11]" ] && ok "progress ends at [11/11]" || bad "progress ends at $last"
+[ "$last" = "[12/12]" ] && ok "progress ends at [12/12]" || bad "progress ends at $last"
 [ -s "$out/clean_9s_seed1_scenario.json" ] && [ ! -e "$out/clean_60s_seed1_scenario.json" ] && ok "quick walks named 9s" || bad "quick walks not named by their length"
 if grep -q $'\r' "$out/stderr" "$out/stdout"; then bad "a carriage return in the redirected output"; else ok "no carriage return in redirected output"; fi
 rows=$(($(wc -l < "$out/paper_run_reference.csv") - 1))
@@ -46,6 +46,29 @@ grep -q "r_foot/p2   offset" "$out/stdout" && ok "per-channel table" || bad "per
 grep -q "^gains_bursts " "$out/stdout" && ok "side-by-side table" || bad "side-by-side table"
 # The robust pipeline finds the paper's four faults even in the quick run.
 grep -E "^paper .*4/4 det, 4/4 type" "$out/stdout" > /dev/null && ok "robust: paper faults" || bad "robust: paper faults"
+# The conditions the robust pipeline was not tuned on (issue 13 acceptance 1): every scenario
+# run with the config told its log's period and the sensors' resolution, and reported beside.
+/usr/bin/python3 - "$out" <<'PY' && ok "conditions: configs follow the logs, reports written" || bad "conditions"
+import json, sys
+out = sys.argv[1]
+expected = {"clean_quantised_1N": (0.001, 1.0), "clean_quantised_5N": (0.001, 5.0), "quantised_1N": (0.001, 1.0),
+            "quantised_5N": (0.001, 5.0), "clean_200hz": (0.005, None), "clean_500hz": (0.002, None),
+            "faults_200hz": (0.005, None), "faults_500hz": (0.002, None), "frozen_noisy": (0.001, None),
+            "intermittent": (0.001, None), "heal_after": (0.001, None)}
+summary = json.load(open(f"{out}/metrics.json"))["conditions"]
+for name, (period, resolution) in expected.items():
+    c = json.load(open(f"{out}/robust_{name}_config.json"))
+    assert c["sample_period_s"] == period, (name, c["sample_period_s"])
+    fdi = [s for s in c["stages"] if s["plugin"] == "contact_force_fdi"][0]
+    assert fdi["params"].get("resolution_N") == resolution, (name, fdi["params"].get("resolution_N"))
+    json.load(open(f"{out}/robust_{name}/metrics.json"))
+    rows = sum(1 for _ in open(f"{out}/{name}_run_robust.csv")) - 1
+    assert rows == round(9.0 / period), (name, rows)  # 9 s walks at the log's own rate
+    assert name in summary, name
+PY
+rows=$(sed -n '/^  scenario  *T \[s\]/,/^$/p' "$out/stdout" | grep -cE '^  (clean_|quantised|faults_|frozen|intermittent|heal)')
+[ "$rows" -eq 11 ] && ok "conditions table in the summary" || bad "conditions table in the summary: $rows rows"
+grep -q '^| scenario | log period \[s\] | resolution \[N\] |' "$out/report.md" && ok "report.md conditions table" || bad "report.md conditions table"
 # The centred-band calibration wrote a centre per channel, and the demo printed that pipeline's rows.
 grep -q '"centers"' "$out/thresholds_reference_band.json" && ok "band thresholds have centres" || bad "band thresholds have no centres"
 grep -q "paper pipeline with centred bands" "$out/stdout" && ok "band pipeline summary" || bad "band pipeline summary"
