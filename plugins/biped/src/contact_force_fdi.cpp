@@ -236,6 +236,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   for (auto& c : channels_) {
     c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
     c.first_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
+    c.noisy_tick.assign(static_cast<std::size_t>(noise_window_ticks_), 0);
   }
   residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
 }
@@ -244,11 +245,14 @@ void ContactForceFdi::reset() noexcept {
   for (auto& c : channels_) {
     std::vector<double> ring = std::move(c.second_diff);
     std::vector<double> ring1 = std::move(c.first_diff);
+    std::vector<int> flags = std::move(c.noisy_tick);
+    std::fill(flags.begin(), flags.end(), 0);
     std::fill(ring.begin(), ring.end(), 0.0);
     std::fill(ring1.begin(), ring1.end(), 0.0);
     c = Channel{};
     c.second_diff = std::move(ring);
     c.first_diff = std::move(ring1);
+    c.noisy_tick = std::move(flags);
   }
   std::fill(residual_ring_.begin(), residual_ring_.end(), 0.0);
   residual_next_ = 0;
@@ -257,6 +261,8 @@ void ContactForceFdi::reset() noexcept {
   started_ = false;
   group_pending_ = false;
   last_touchdown_s_ = {-1e9, -1e9};
+  foot_sum_ = {};
+  foot_sum_ticks_ = {0, 0};
   foot_airborne_ = {false, false};
   std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
   restart_gain_window();
@@ -336,6 +342,25 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     foot_airborne_[f] = any;
   }
   const bool touching_down = t - std::max(last_touchdown_s_[0], last_touchdown_s_[1]) < params_.touchdown_guard_s;
+  // The second difference of each foot's summed reading: load moving between the pads of a foot
+  // (a rocking or chattering foot) leaves it small, a pad's own noise does not. Unknown (taken as
+  // large) while a pad has no value.
+  std::array<double, 2> foot_d2{};
+  for (std::size_t f = 0; f < 2; ++f) {
+    double sum = 0.0;
+    bool known = true;
+    for (std::size_t l = 0; l < feet_points_; ++l) {
+      const double x = measured[f * feet_points_ + l];
+      known = known && std::isfinite(x);
+      sum += x;
+    }
+    foot_d2[f] = known && foot_sum_ticks_[f] >= 2 ? std::abs(sum - 2.0 * foot_sum_[f][0] + foot_sum_[f][1])
+                                                  : std::numeric_limits<double>::infinity();
+    foot_sum_[f][1] = foot_sum_[f][0];
+    foot_sum_[f][0] = sum;
+    foot_sum_ticks_[f] = known ? std::min(foot_sum_ticks_[f] + 1, 2) : 0;
+  }
+  const double foot_noise = tick_noise * std::sqrt(static_cast<double>(feet_points_));
   int jump_candidates = 0;
   double jump_sum = 0.0;
   double raw_sum = 0.0;
@@ -375,9 +400,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.last_spike_s = t - period_s_;
       }
       const double innovation = x - 2.0 * c.previous + c.previous2;
-      c.noisy_count -= c.second_diff[c.second_diff_next] > tick_noise ? 1 : 0;
+      c.noisy_count -= c.noisy_tick[c.second_diff_next];
       c.second_diff[c.second_diff_next] = std::abs(innovation);
-      c.noisy_count += c.second_diff[c.second_diff_next] > tick_noise ? 1 : 0;
+      c.noisy_tick[c.second_diff_next] =
+          std::abs(innovation) > tick_noise && foot_d2[std::min<std::size_t>(j / feet_points_, 1)] > foot_noise ? 1 : 0;
+      c.noisy_count += c.noisy_tick[c.second_diff_next];
       c.first_diff[c.second_diff_next] = std::abs(change);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
       c.jump_pending = false;

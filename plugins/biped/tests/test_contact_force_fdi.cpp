@@ -1,7 +1,8 @@
 // contact_force_fdi: the tests that must hold at any log rate and quantisation (issue 13) fire on
 // the tick they should on deterministic traces: the frozen run length follows the sensors'
 // resolution, noise, rate and false-alarm target; an unloaded pad on its zero level is no
-// evidence; the noise test tells white jitter from a fast smooth load; a jump must be a surprise.
+// evidence; the noise test tells white jitter from a fast smooth load and from a chattering foot;
+// a jump must be a surprise.
 
 #include <array>
 #include <cmath>
@@ -130,19 +131,27 @@ TEST(ContactForceFdi, UnloadedPadOnItsZeroLevelIsNoEvidenceOfAFrozenSensor) {
   }
 }
 
-TEST(ContactForceFdi, NoiseTestTellsWhiteJitterFromAFastSmoothLoadAtASlowRate) {
-  // 200 Hz: the 0.05 s window is 10 ticks; 6 second differences above 4 sqrt(6) 2 N = 19.6 N
-  // make a burst when the window is rougher than it moves (sum d2^2 > sum d1^2).
-  Feet feet(suralp(), 5e-3);
+TEST(ContactForceFdi, NoiseTestTellsWhiteJitterFromAFastSmoothLoadAndFromAChatteringFoot) {
+  // 200 Hz: the 0.05 s window is 10 ticks; 6 second differences above 4 sqrt(6) 2 N = 19.6 N,
+  // with the foot's summed reading above 2 x 19.6 N (4 pads), make a burst when the window is
+  // rougher than it moves (sum d2^2 > sum d1^2). +-16 N jitter: |d2| = 64 N (58 N on the foot,
+  // whose other pads alternate by 1 N).
+  Feet feet(suralp(), 5e-3), chatter(suralp(), 5e-3);
   for (int k = 0; k < 100; ++k) {
-    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = moving(j, k, 0.0);
-    const double jitter = k % 2 == 0 ? 8.0 : -8.0;       // |d2| = 32 N, |d1| = 16 N
-    feet.measured[1] = 300.0 + jitter;                     // white-like: a noise burst
-    feet.measured[5] = 300.0 + 40.0 * k + jitter;          // |d1| = 24 or 56 N: a load moving fast
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = chatter.measured[j] = moving(j, k, 0.0);
+    const double jitter = k % 2 == 0 ? 16.0 : -16.0;
+    feet.measured[1] = 300.0 + jitter;              // white-like: a noise burst
+    feet.measured[5] = 300.0 + 80.0 * k + jitter;   // |d1| = 48 or 112 N: a load moving fast
+    chatter.measured[2] = 300.0 + jitter;            // two pads of one foot trading load:
+    chatter.measured[3] = 300.0 - jitter;            // each rough, their foot's sum smooth
     feet.step();
-    // The burst is judged once 6 of the window's second differences (ticks 2..7) are in.
-    ASSERT_EQ(feet.type(1), k >= 7 ? FaultType::noise : FaultType::none) << "tick " << k;
+    chatter.step();
+    // The burst is judged once 6 large differences are in: ticks 1..6 (at tick 1 the difference
+    // is the one-tick change, 32 N, and the foot's sum has no history yet).
+    ASSERT_EQ(feet.type(1), k >= 6 ? FaultType::noise : FaultType::none) << "tick " << k;
     ASSERT_EQ(feet.type(5), FaultType::none) << "tick " << k;
+    ASSERT_EQ(chatter.type(2), FaultType::none) << "tick " << k;
+    ASSERT_EQ(chatter.type(3), FaultType::none) << "tick " << k;
   }
 }
 

@@ -30,7 +30,9 @@
 //             stays spike_hold_s after the last spike.
 //   noise     over noise_window_s, more than half of the second differences d2 exceed
 //             noise_factor * sqrt(6 (sigma^2 + q^2 / 4)) (their healthy standard deviation, q / 2
-//             the worst quantisation error), and the window is rough like white noise rather
+//             the worst quantisation error) while the foot's summed reading is as rough (its d2
+//             above sqrt(n) times that: load rocking between the pads of a foot cancels there, a
+//             pad's own noise does not), and the window is rough like white noise rather
 //             than smooth like a load: sum d2^2 > sum d1^2 (white noise: 6 sigma^2 against
 //             2 sigma^2; a load moving at the tick rate, as at 200 Hz: d2 << d1); not raised
 //             within touchdown_guard_s of its foot's touchdown (a landing foot bounces on its pads).
@@ -196,7 +198,8 @@ class ContactForceFdi {
     std::vector<double> second_diff;  // ring of |d2|, noise test
     std::vector<double> first_diff;   // ring of |d1| at the same ticks (whiteness)
     std::size_t second_diff_next = 0;
-    int noisy_count = 0;  // entries of second_diff above the noise level
+    std::vector<int> noisy_tick;  // ring: 1 where the tick's d2 counts as noisy
+    int noisy_count = 0;          // its sum
     int airborne_ticks = 0;
     double airborne_sum = 0.0;
     int airborne_count = 0;
@@ -253,6 +256,8 @@ class ContactForceFdi {
   int group_size_ = 0;
   std::array<double, 2> last_touchdown_s_{-1e9, -1e9};
   std::array<bool, 2> foot_airborne_{false, false};
+  std::array<std::array<double, 2>, 2> foot_sum_{};  // per foot: summed reading one and two ticks ago
+  std::array<int, 2> foot_sum_ticks_{0, 0};          // consecutive ticks with every pad's value, up to 2
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
   int frozen_ticks_ = 2;        // n_f, the frozen test's run length
