@@ -92,10 +92,14 @@ TEST(ShippedConfigs, MeasuredZmpTripsTheIndependenceRuleUnlessAllowed) {
   }
 }
 
-TEST(ShippedConfigs, SuralpTicksAllocateNothing) {
-  // The whole reference pipeline (10 stages, QP solver included) over 10,000 ticks of a
-  // synthetic walk: alternating single supports, a swaying CoM, noisy pads.
-  Pipeline p = Pipeline::build(load("configs/suralp.json"), reference_plugins::registry());
+class SuralpConfigs : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SuralpConfigs, TicksAllocateNothing) {
+  // The whole pipeline (the reference one: 10 stages, QP solver included; the robust one) over
+  // 10,000 ticks of a synthetic walk: alternating single supports with the swing foot lifted, a
+  // swaying CoM, a jittering pad (the noise test's window sums), a pad reading minus its load
+  // (the sign-flip fit), a frozen pad.
+  Pipeline p = Pipeline::build(load(GetParam()), reference_plugins::registry());
   auto input = [&p](const std::string& name) {
     for (std::size_t i = 0; i < p.inputs().size(); ++i) {
       if (p.inputs()[i].name == name) return p.input_values(i);
@@ -113,10 +117,14 @@ TEST(ShippedConfigs, SuralpTicksAllocateNothing) {
     l_pos[1] = 0.1, r_pos[1] = -0.1;
     zmp[0] = 0.1 * t, zmp[1] = 0.08 * std::sin(3.14159 * t);
     imu[0] = 0.2 * std::cos(3.0 * t), imu[1] = -0.5 * std::sin(3.14159 * t), imu[2] = 9.81;
+    l_pos[2] = left ? 0.0 : 0.05, r_pos[2] = right ? 0.0 : 0.05;
     for (int j = 0; j < 4; ++j) {
       l_forces[j] = left ? 250.0 + 30.0 * std::sin(7.0 * t + j) : 0.0;
       r_forces[j] = right ? 250.0 + 30.0 * std::cos(5.0 * t + j) : 0.0;
     }
+    if (t > 3.0 && t < 3.5) r_forces[0] += k % 2 == 0 ? 60.0 : -60.0;
+    if (t > 5.0 && t < 6.0) l_forces[1] = -l_forces[1];
+    if (t > 7.0 && t < 8.0) l_forces[2] = 180.0;
     p.step(t);
   };
   tick(0);
@@ -125,6 +133,9 @@ TEST(ShippedConfigs, SuralpTicksAllocateNothing) {
   EXPECT_EQ(scope.allocations(), 0u);
   for (double v : p.values(p.monitor()[MonitorColumn::recovered])) EXPECT_TRUE(std::isfinite(v));
 }
+
+INSTANTIATE_TEST_SUITE_P(ShippedConfigs, SuralpConfigs,
+                         ::testing::Values("configs/suralp.json", "configs/suralp_robust.json"));
 
 }  // namespace
 }  // namespace ftsense

@@ -34,6 +34,10 @@ int priority(FaultType type) {
   return 0;
 }
 
+// The smallest |k| of a gain fault: a reading under a tenth of its force carries no usable
+// scale of it (and the recovery N / k must stay bounded).
+constexpr double kMinGain = 0.1;
+
 bool corrects(FaultType type) {
   return type == FaultType::offset || type == FaultType::drift || type == FaultType::gain;
 }
@@ -304,7 +308,7 @@ bool ContactForceFdi::SlopeFit::negative_slope(double& k) const noexcept {
   const double gain_residual = sxx - gain_k * sxv;
   const double offset_residual = (sxx - 2.0 * sxv + svv) - (sx - sv) * (sx - sv) / n;
   if (!(gain_k < 0.0 && gain_residual < offset_residual)) return false;
-  k = std::min(gain_k, -0.1);  // |k| >= 0.1: the recovery divides by it
+  k = std::min(gain_k, -kMinGain);  // the recovery divides by it
   return true;
 }
 
@@ -517,7 +521,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           // before this jump.
           const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * c.jump_load_before
                                                                    : c.offset + c.slope * (t - c.fit.t0);
-          if (corrects(c.type) && std::abs(c.jump_size + estimate) < 0.4 * std::abs(estimate) + 15.0) {
+          if (corrects(c.type) && std::abs(c.jump_size + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
             clear(c);  // the fault ended with a jump back
           } else if (c.type == FaultType::none) {
             raise(c, FaultType::offset, t);
@@ -606,10 +610,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           // Raised by a jump and near zero in the air so far: wait until the mean settles before
           // fitting the air as an offset (which would hide a gain fault).
         } else if (!c.fit_has_air && reads_zero) {
-          // Raised by a jump, zero in the air: a gain fault if the pad was loaded, else over.
-          if (c.jump_load_before > 50.0 && std::abs(c.offset) > 0.1 * c.jump_load_before) {
-            c.type = FaultType::gain;
-            c.gain = 1.0 + c.offset / c.jump_load_before;
+          // Raised by a jump, zero in the air: a gain fault if the pad was loaded, else over. A
+          // pad that kept under a tenth of its load reads nothing, not a scale of it: its output
+          // is dead (frozen near zero) and is substituted; dividing by k would blow it up.
+          if (c.jump_load_before > params_.gain_min_load_N && std::abs(c.offset) > 0.1 * c.jump_load_before) {
+            const double k = 1.0 + c.offset / c.jump_load_before;
+            c.type = k >= kMinGain ? FaultType::gain : FaultType::frozen;
+            c.gain = k >= kMinGain ? k : 1.0;
           } else {
             clear(c);
           }
@@ -622,7 +629,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           c.fit.add(t, x, 1.0);
           double a = c.offset, s = 0.0;
           c.fit.solve(a, s);
-          const bool drifting = c.fit.span() >= 0.3 && std::abs(s) > 2.0;
+          const bool drifting = c.fit.span() >= 0.3 && std::abs(s) * c.fit.span() > params_.airborne_clear_N;
           c.type = drifting ? FaultType::drift : FaultType::offset;
           c.offset = drifting ? a : c.fit.sb / c.fit.n;
           c.slope = drifting ? s : 0.0;
@@ -830,7 +837,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   gain_unisolated_ = best_explained - second_explained < params_.gain_isolation_margin;
   if (gain_unisolated_) return;
   // recovered_new = recovered (1 - beta): k_new = k / (1 - beta).
-  const double gain = (c.type == FaultType::gain ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
+  double gain = (c.type == FaultType::gain ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
+  if (std::abs(gain) < kMinGain) gain = std::copysign(kMinGain, gain);  // the recovery divides by it
   if (c.type == FaultType::gain && std::abs(1.0 - 1.0 / gain) < 0.5 * params_.gain_threshold) {
     clear(c);  // the reading is its force again
   } else {

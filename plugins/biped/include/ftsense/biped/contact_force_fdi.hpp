@@ -83,8 +83,10 @@
 // Type: invalid > frozen/saturation > noise > spikes > gain > drift > offset (a noise burst
 // also trips the spike test). A foot touches down when all its pads come below
 // touchdown_height_m. Offset and drift are
-// told apart by a line fitted to the fault's direct measurements (airborne means, onset jump);
-// a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load).
+// told apart by a line fitted to the fault's direct measurements (airborne means, onset jump):
+// a drift when, over at least 0.3 s of them, the line moves by more than airborne_clear_N;
+// a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; under
+// 0.1 the output is dead: frozen, substituted); every gain estimate keeps |k| >= 0.1.
 // Re-admission: when the test that raised the flag has been clear for clear_s (an airborne zero,
 // a finite value, varying values, a reverse jump of the estimated size).
 //
