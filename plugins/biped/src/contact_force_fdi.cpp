@@ -38,6 +38,9 @@ int priority(FaultType type) {
 // scale of it (and the recovery N / k must stay bounded).
 constexpr double kMinGain = 0.1;
 
+// Tick counters stop here (about 12 days at 1 kHz): past it they would overflow.
+constexpr int kCountCap = 1'000'000'000;
+
 bool corrects(FaultType type) {
   return type == FaultType::offset || type == FaultType::drift || type == FaultType::gain;
 }
@@ -389,14 +392,15 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (c.type == FaultType::invalid) clear(c);  // a finite value re-admits at once
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
-      // An unloaded pad on its zero level may repeat itself (a sensor that clips at zero or has
-      // a dead band): no evidence either way, so the run neither grows nor restarts. Any other
+      // An unloaded pad (in the air, or on the ground with no load left for it) on its zero level
+      // may repeat itself (a sensor that clips at zero or has a dead band): no evidence either way, so the run neither grows nor restarts. Any other
       // value repeated in the air is evidence (a noisy sensor does not repeat 1.3 N).
-      const bool unloaded_zero = airborne && std::abs(x) <= repeat_band_N_;
+      const bool unloaded = airborne || (std::isfinite(c.last_virtual) && c.last_virtual < params_.airborne_threshold_N);
+      const bool unloaded_zero = unloaded && std::abs(x) <= repeat_band_N_;
       if (std::abs(change) > repeat_band_N_) {
         c.stale_count = 0;
       } else if (!unloaded_zero) {
-        ++c.stale_count;
+        c.stale_count = std::min(c.stale_count + 1, kCountCap);
       }
       const double spike = c.previous - 0.5 * (x + c.previous2);
       if (!touching_down && std::abs(spike) > params_.spike_threshold_N &&
@@ -421,7 +425,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.jump_size = change;
         c.candidate_load = c.previous;
         ++jump_candidates;
-        jump_sum += change;
+        // In the terms of the sum residual, which takes a gain fault's reading corrected.
+        jump_sum += c.type == FaultType::gain ? change / c.gain : change;
       }
     }
     if (airborne) {
@@ -447,11 +452,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     // about 1, or k < 0; a pad read right side up again under load clears it.
     const bool shows_load = !airborne && std::isfinite(c.last_virtual) && c.last_virtual > params_.gain_min_load_N;
     if (!airborne && x < -params_.airborne_threshold_N) {
-      ++c.negative_ticks;
+      c.negative_ticks = std::min(c.negative_ticks + 1, kCountCap);
       c.positive_ticks = 0;
     } else {
       c.negative_ticks = 0;
-      c.positive_ticks = shows_load && x > params_.airborne_threshold_N ? c.positive_ticks + 1 : 0;
+      c.positive_ticks = shows_load && x > params_.airborne_threshold_N ? std::min(c.positive_ticks + 1, kCountCap) : 0;
       if (!c.sign_fault) c.negative_fit = SlopeFit{};
     }
   }
@@ -615,8 +620,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           // is dead (frozen near zero) and is substituted; dividing by k would blow it up.
           if (c.jump_load_before > params_.gain_min_load_N && std::abs(c.offset) > 0.1 * c.jump_load_before) {
             const double k = 1.0 + c.offset / c.jump_load_before;
-            c.type = k >= kMinGain ? FaultType::gain : FaultType::frozen;
-            c.gain = k >= kMinGain ? k : 1.0;
+            if (std::abs(k) >= kMinGain) {
+              c.type = FaultType::gain;
+              c.gain = k;
+              c.sign_fault = k < 0.0;  // re-admitted when it reads right side up under load
+            } else {
+              c.type = FaultType::frozen;
+              c.frozen_by_follow = true;  // re-admitted only when the reading follows the load again
+            }
           } else {
             clear(c);
           }
@@ -766,6 +777,10 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     gain_xr_[j] = f * gain_xr_[j] + recovered[j] * residual;
   }
   gain_rr_ = f * gain_rr_ + residual * residual;
+  if (!std::isfinite(gain_rr_)) {  // readings too large to square: start again rather than stay blind
+    restart_gain_window();
+    return;
+  }
   // What the residual would be if a channel held as a gain fault were read as it is, against what
   // it is with the correction, both over the ticks since the correction was last set.
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
@@ -777,22 +792,25 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     const double raw = residual + measured[j] - recovered[j];
     gain_raw_rr_[j] = f * gain_raw_rr_[j] + raw * raw;
     gain_held_rr_[j] = f * gain_held_rr_[j] + residual * residual;
-    ++gain_held_ticks_[j];
+    gain_held_ticks_[j] = std::min(gain_held_ticks_[j] + 1, kCountCap);
   }
   gain_weight_ = f * gain_weight_ + 1.0;
-  ++gain_ticks_;
+  // Saturates by whole windows of 10, so the judging cadence and a full window both hold.
+  gain_ticks_ = gain_ticks_ < kCountCap ? gain_ticks_ + 1 : gain_ticks_ - 10 * (kCountCap / 20) + 1;
   // Judge once per 10 ms, and only over a full window.
   if (gain_ticks_ < gain_window_ticks_ || gain_ticks_ % 10 != 0 || !(gain_rr_ > 0.0)) return;
 
-  // Re-admission by model comparison: a channel held as a gain fault whose reading, taken as it
-  // is, leaves no more residual power over the window than its correction does is healthy again
+  // Re-admission by model comparison: a channel held as a gain fault that carried load over the
+  // window and whose reading, taken as it is, leaves no more residual power than its correction
+  // does is healthy again
   // (this needs no isolation: the pads of one foot are fitted alike, so a small gain error on a
   // healthy pad might never stand out).
+  const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * gain_weight_;
   bool readmitted = false;
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
     // Once the correction has held for a window.
     if (channels_[j].type == FaultType::gain && gain_held_ticks_[j] >= gain_window_ticks_ &&
-        gain_raw_rr_[j] <= gain_held_rr_[j]) {
+        gain_xx_[j] >= min_power && gain_raw_rr_[j] <= gain_held_rr_[j]) {
       clear(channels_[j]);
       readmitted = true;
     }
@@ -802,7 +820,6 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     return;
   }
   // The channel whose one-regressor fit r ~ beta_j N^_j explains the most of the residual.
-  const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * gain_weight_;
   std::size_t best = gain_xx_.size();
   double best_explained = 0.0;
   double second_explained = 0.0;  // of any other channel, flagged or not: isolation needs a clear winner

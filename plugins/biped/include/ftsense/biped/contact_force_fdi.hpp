@@ -20,8 +20,9 @@
 //             below alpha = T / false_alarm_interval_s: noise of std sigma (noise_std_N) keeps a
 //             reading on its level with probability at most p = erf(q / (2 sqrt(2) sigma)) per
 //             tick (a load at the level's centre), so n_f = max(frozen_min_s / T, ln alpha / ln p)
-//             (5 N steps and 2 N noise: p = 0.79, 77 ticks at 1 kHz). An airborne pad that reads
-//             its zero level (|N_j| <= q / 2) is not evidence (an unloaded sensor may clip at 0). Saturation when the value is at the top of the range (upper_limit_N - q/2,
+//             (5 N steps and 2 N noise: p = 0.79, 77 ticks at 1 kHz). An unloaded pad (airborne,
+//             or left no load by the others: leave-one-out force below airborne_threshold_N) that
+//             reads its zero level (|N_j| <= q / 2) is not evidence (a sensor may clip at 0). Saturation when the value is at the top of the range (upper_limit_N - q/2,
 //             when given), or a load (> airborne_threshold_N) that is the largest the channel has
 //             shown, or when the channel sticks again at the value of its previous stuck episode
 //             (a clipped load returns to the same ceiling).
@@ -62,9 +63,9 @@
 //             |beta_j| > gain_threshold, with k = 1 / (1 - beta_j), and its RMS load over the
 //             window is above gain_min_load_N; the same test refines k on the corrected residual
 //             and re-admits the channel when k comes back within gain_threshold / 2 of 1, or, by
-//             model comparison (no isolation needed), when its reading taken as it is leaves no
-//             more residual power than its correction does over the gain window since the
-//             correction was set. The window restarts after every decision, and takes no tick while a loaded channel is
+//             model comparison (no isolation needed), when it carried load (RMS above
+//             gain_min_load_N) and its reading taken as it is leaves no more residual power than
+//             its correction does over the gain window since the correction was set. The window restarts after every decision, and takes no tick while a loaded channel is
 //             substituted from the total force (which absorbs the residual) or within
 //             touchdown_guard_s of a touchdown (impacts).
 //   follow    a channel raised as offset or drift whose smoothed reading spans less than
@@ -85,8 +86,9 @@
 // touchdown_height_m. Offset and drift are
 // told apart by a line fitted to the fault's direct measurements (airborne means, onset jump):
 // a drift when, over at least 0.3 s of them, the line moves by more than airborne_clear_N;
-// a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; under
-// 0.1 the output is dead: frozen, substituted); every gain estimate keeps |k| >= 0.1.
+// a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
+// a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
+// load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
 // Re-admission: when the test that raised the flag has been clear for clear_s (an airborne zero,
 // a finite value, varying values, a reverse jump of the estimated size).
 //
