@@ -98,21 +98,23 @@ std::string cell(const Row& r) {
   return os.str();
 }
 
+// A number with `digits` decimals; "-" for NaN (not measured).
+std::string number(double v, int digits) {
+  if (std::isnan(v)) return "-";
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(digits) << v;
+  return os.str();
+}
+
 // The same numbers as cell(), one per table column: detected, type right, median delay [s],
 // mean recovered RMSE [N], false alarms.
 std::vector<std::string> cells(const Row& r) {
   std::vector<std::string> out(5, "-");
-  auto text = [](double v, int digits) {
-    std::ostringstream os;
-    if (std::isnan(v)) return std::string("-");
-    os << std::fixed << std::setprecision(digits) << v;
-    return os.str();
-  };
   if (r.faulty > 0) {
     out[0] = std::to_string(r.detected) + "/" + std::to_string(r.faulty);
     out[1] = std::to_string(r.types) + "/" + std::to_string(r.faulty);
-    out[2] = text(r.median_delay_s, 3);
-    out[3] = text(r.recovered_rmse, 1);
+    out[2] = number(r.median_delay_s, 3);
+    out[3] = number(r.recovered_rmse, 1);
   }
   out[4] = std::to_string(r.false_alarms);
   return out;
@@ -140,13 +142,6 @@ std::string config_for_log(const std::string& config, const Json& scenario, cons
   c.erase("$schema");
   std::ofstream(target) << c.dump(2) << '\n';
   return target;
-}
-
-std::string number(double v, int digits) {
-  if (std::isnan(v)) return "-";
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
 }
 
 // `ftsense run` without its per-run summary on stdout (the demo prints one table instead).

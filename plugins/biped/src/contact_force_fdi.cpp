@@ -203,6 +203,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
     }
     frozen_ticks_ = std::max(2, static_cast<int>(std::ceil(ticks - 1e-9)));
   }
+  smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * 10.0 * period_s_);
   min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
   if (params.airborne_clear_N >= params.airborne_threshold_N) {
     throw ConfigError("/params/airborne_clear_N", " = " + format_number(params.airborne_clear_N) + " violates < " +
@@ -393,8 +394,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
       // An unloaded pad (in the air, or on the ground with no load left for it) on its zero level
-      // may repeat itself (a sensor that clips at zero or has a dead band): no evidence either way, so the run neither grows nor restarts. Any other
-      // value repeated in the air is evidence (a noisy sensor does not repeat 1.3 N).
+      // may repeat itself (a sensor that clips at zero or has a dead band): no evidence either
+      // way, so the run neither grows nor restarts. Any other value repeated in the air is
+      // evidence (a noisy sensor does not repeat 1.3 N).
       const bool unloaded = airborne || (std::isfinite(c.last_virtual) && c.last_virtual < params_.airborne_threshold_N);
       const bool unloaded_zero = unloaded && std::abs(x) <= repeat_band_N_;
       if (std::abs(change) > repeat_band_N_) {
@@ -713,8 +715,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.negative_fit.add(virtual_force[j], x);
     }
     if (std::isfinite(x)) {
-      const double smoothing = -std::expm1(-2.0 * 3.141592653589793 * 10.0 * period_s_);
-      c.smoothed = ticks_since_start > 0 ? c.smoothed + smoothing * (x - c.smoothed) : x;
+      c.smoothed = ticks_since_start > 0 ? c.smoothed + smoothing_ * (x - c.smoothed) : x;
       c.previous2 = ticks_since_start > 0 ? c.previous : x;
       c.previous = x;
     }
@@ -751,7 +752,7 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
     c.virtual_lo = c.virtual_hi = virtual_force;
     return;
   }
-  c.virtual_smoothed += -std::expm1(-2.0 * 3.141592653589793 * 10.0 * period_s_) * (virtual_force - c.virtual_smoothed);
+  c.virtual_smoothed += smoothing_ * (virtual_force - c.virtual_smoothed);
   c.reading_lo = std::min(c.reading_lo, smoothed);
   c.reading_hi = std::max(c.reading_hi, smoothed);
   c.virtual_lo = std::min(c.virtual_lo, c.virtual_smoothed);
@@ -800,15 +801,13 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // Judge once per 10 ms, and only over a full window.
   if (gain_ticks_ < gain_window_ticks_ || gain_ticks_ % 10 != 0 || !(gain_rr_ > 0.0)) return;
 
-  // Re-admission by model comparison: a channel held as a gain fault that carried load over the
-  // window and whose reading, taken as it is, leaves no more residual power than its correction
-  // does is healthy again
-  // (this needs no isolation: the pads of one foot are fitted alike, so a small gain error on a
-  // healthy pad might never stand out).
+  // Re-admission by model comparison, once the correction has held for a window: a channel held
+  // as a gain fault that carried load and whose reading, taken as it is, leaves no more residual
+  // power than its correction does is healthy again (this needs no isolation: the pads of one
+  // foot are fitted alike, so a small gain error on a healthy pad might never stand out).
   const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * gain_weight_;
   bool readmitted = false;
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
-    // Once the correction has held for a window.
     if (channels_[j].type == FaultType::gain && gain_held_ticks_[j] >= gain_window_ticks_ &&
         gain_xx_[j] >= min_power && gain_raw_rr_[j] <= gain_held_rr_[j]) {
       clear(channels_[j]);

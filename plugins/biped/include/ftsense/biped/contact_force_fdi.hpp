@@ -268,6 +268,7 @@ class ContactForceFdi {
   double repeat_band_N_ = 0.0;  // q / 2
   int jump_window_ticks_;
   int min_airborne_samples_ = 10;
+  double smoothing_ = 1.0;  // gain of the 10 Hz low-pass of `smoothed` and `virtual_smoothed` per tick
   // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.
   std::vector<double> gain_xx_;
   std::vector<double> gain_xr_;
