@@ -140,8 +140,7 @@ Json leave_one_out_config(const std::string& virtual_wire) {
       {"name": "fdi", "plugin": "contact_force_fdi",
        "params": {"points": [[0.1, 0.05], [0.1, -0.05], [-0.1, 0.05], [-0.1, -0.05]]},
        "inputs": {"measured": "input.forces", "total_force": "input.total_force",
-                  "l_foot_pos": "input.l_pos", "l_foot_rpy": "input.l_rpy",
-                  "r_foot_pos": "input.r_pos", "r_foot_rpy": "input.r_rpy"}},
+                  "foot_pos": ["input.l_pos", "input.r_pos"], "foot_rpy": ["input.l_rpy", "input.r_rpy"]}},
       {"name": "residual", "plugin": "difference_residual",
        "inputs": {"measured": "input.forces", "virtual": ")" + virtual_wire + R"("}}
     ]

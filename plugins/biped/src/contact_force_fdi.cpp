@@ -48,7 +48,7 @@ bool corrects(FaultType type) {
 }  // namespace
 
 void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
-  schema.add("points", &Params::points, "contact points (x, y) of each foot, foot frame (both feet alike)")
+  schema.add("points", &Params::points, "contact points (x, y) of each foot, foot frame (every foot alike; [[0, 0]] for point feet)")
       .unit("m").count_at_least(1).count_at_most(8).required().plausible(plausible::foot_point_m());
   schema.add("noise_std_N", &Params::noise_std_N, "nominal standard deviation of a healthy sensor's noise")
       .unit("N").greater_than(0.0)
@@ -210,18 +210,32 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                                                       format_number(params.airborne_threshold_N) +
                                                       " (airborne_threshold_N: re-admission needs a lower level)");
   }
-  const std::size_t n = 2 * feet_points_;
-  const std::string per_point = "2 len(params.points): both feet";
-  ports_.add_input(PortSpec{"measured", n, "N", "contact-point forces, left foot then right foot", PortRole::measured}
+  // The feet: as many as foot_pos stacks origins (nothing wired sizes it for two).
+  const std::size_t foot_dim = context.wired_dim("foot_pos", 6);
+  if (foot_dim % 3 != 0 || foot_dim == 0) {
+    throw ConfigError("/inputs/foot_pos", "carries " + std::to_string(foot_dim) +
+                                              " values; foot_pos stacks the (x, y, z) origins of the feet, a "
+                                              "multiple of 3");
+  }
+  feet_ = foot_dim / 3;
+  oriented_feet_ = std::any_of(params.points.begin(), params.points.end(),
+                               [](const std::array<double, 2>& p) { return p[0] != 0.0 || p[1] != 0.0; });
+  const std::size_t n = feet_ * feet_points_;
+  const std::string per_point = "feet x len(params.points): foot after foot";
+  ports_.add_input(PortSpec{"measured", n, "N", "contact-point forces, foot after foot", PortRole::measured}
                        .sized_by(per_point));
   ports_.add_input(PortSpec{"total_force", 3, "N", "total ground reaction force m R_wb f_imu", PortRole::virtual_estimate}
                        .in_frame("world"));
-  ports_.add_input(PortSpec{"l_foot_pos", 3, "m", "left foot frame origin (kinematics)"}.in_frame("world"));
-  ports_.add_input(PortSpec{"l_foot_rpy", 3, "rad", "left foot orientation roll, pitch, yaw (kinematics)"}
-                       .in_frame("foot in world"));
-  ports_.add_input(PortSpec{"r_foot_pos", 3, "m", "right foot frame origin (kinematics)"}.in_frame("world"));
-  ports_.add_input(PortSpec{"r_foot_rpy", 3, "rad", "right foot orientation roll, pitch, yaw (kinematics)"}
-                       .in_frame("foot in world"));
+  ports_.add_input(PortSpec{"foot_pos", foot_dim, "m", "foot frame origins (x, y, z) stacked foot after foot (kinematics)"}
+                       .in_frame("world")
+                       .sized_by("as wired: 3 per foot"));
+  if (oriented_feet_) {
+    ports_.add_input(PortSpec{"foot_rpy", foot_dim, "rad",
+                              "foot orientations roll, pitch, yaw stacked foot after foot (kinematics); a port only "
+                              "when a point lies off the foot origin"}
+                         .in_frame("foot in world")
+                         .sized_by("3 per foot"));
+  }
   ports_.add_output(PortSpec{"fault", n, "1", "1 when the channel is judged faulty"}.sized_by(per_point));
   ports_.add_output(PortSpec{"fault_type", n, "1", "fault type code (fault_type.hpp)"}.sized_by(per_point));
   ports_.add_output(PortSpec{"fault_estimate", n, "N", "measured - recovered: the estimated fault contribution"}
@@ -247,6 +261,12 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
     c.noisy_tick.assign(static_cast<std::size_t>(noise_window_ticks_), 0);
   }
   residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
+  height_.assign(n, 0.0);
+  last_touchdown_s_.assign(feet_, -1e9);
+  foot_airborne_.assign(feet_, 0);
+  foot_sum_.assign(feet_, {0.0, 0.0});
+  foot_sum_ticks_.assign(feet_, 0);
+  foot_d2_.assign(feet_, 0.0);
 }
 
 void ContactForceFdi::reset() noexcept {
@@ -268,10 +288,10 @@ void ContactForceFdi::reset() noexcept {
   sum_filtered_ = 0.0;
   started_ = false;
   group_pending_ = false;
-  last_touchdown_s_ = {-1e9, -1e9};
-  foot_sum_ = {};
-  foot_sum_ticks_ = {0, 0};
-  foot_airborne_ = {false, false};
+  std::fill(last_touchdown_s_.begin(), last_touchdown_s_.end(), -1e9);
+  std::fill(foot_sum_.begin(), foot_sum_.end(), std::array<double, 2>{0.0, 0.0});
+  std::fill(foot_sum_ticks_.begin(), foot_sum_ticks_.end(), 0);
+  std::fill(foot_airborne_.begin(), foot_airborne_.end(), 0);
   std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
   restart_gain_window();
   gain_unisolated_ = false;
@@ -325,36 +345,34 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   const int ticks_since_start = started_ ? 2 : 0;
 
   // Pad heights from kinematics (a foot with an unknown pose is taken as on the ground).
-  std::array<double, 16> height{};
-  const std::size_t feet[2][2] = {{kLeftPos, kLeftRpy}, {kRightPos, kRightRpy}};
-  for (std::size_t f = 0; f < 2; ++f) {
-    const auto pos = io.in(feet[f][0]);
-    const auto rpy = io.in(feet[f][1]);
+  const auto foot_pos = io.in(kFootPos);
+  for (std::size_t f = 0; f < feet_; ++f) {
+    const auto pos = foot_pos.subspan(3 * f, 3);
+    const auto rpy = oriented_feet_ ? io.in(kFootRpy).subspan(3 * f, 3) : std::span<const double>();
     const bool known = all_finite(pos) && all_finite(rpy);
-    const Eigen::Matrix3d rotation = known ? rotation_from_rpy(rpy) : Eigen::Matrix3d::Identity();
-    for (std::size_t l = 0; l < feet_points_ && f * feet_points_ + l < height.size(); ++l) {
+    const Eigen::Matrix3d rotation = known && oriented_feet_ ? rotation_from_rpy(rpy) : Eigen::Matrix3d::Identity();
+    for (std::size_t l = 0; l < feet_points_; ++l) {
       const Eigen::Vector3d p(params_.points[l][0], params_.points[l][1], 0.0);
-      height[f * feet_points_ + l] = known ? pos[2] + rotation.row(2).dot(p) : 0.0;
+      height_[f * feet_points_ + l] = known ? pos[2] + rotation.row(2).dot(p) : 0.0;
     }
   }
 
   // Evidence, channel by channel.
   const double tick_noise =
       std::sqrt(6.0 * (params_.noise_std_N * params_.noise_std_N + repeat_band_N_ * repeat_band_N_)) * params_.noise_factor;
-  for (std::size_t f = 0; f < 2; ++f) {
+  double last_touchdown_s = -1e9;  // of any foot
+  for (std::size_t f = 0; f < feet_; ++f) {
     bool any = false;
-    for (std::size_t l = 0; l < feet_points_ && f * feet_points_ + l < height.size(); ++l) {
-      any = any || height[f * feet_points_ + l] > params_.touchdown_height_m;
-    }
+    for (std::size_t l = 0; l < feet_points_; ++l) any = any || height_[f * feet_points_ + l] > params_.touchdown_height_m;
     if (foot_airborne_[f] && !any) last_touchdown_s_[f] = t;
-    foot_airborne_[f] = any;
+    foot_airborne_[f] = any ? 1 : 0;
+    last_touchdown_s = std::max(last_touchdown_s, last_touchdown_s_[f]);
   }
-  const bool touching_down = t - std::max(last_touchdown_s_[0], last_touchdown_s_[1]) < params_.touchdown_guard_s;
+  const bool touching_down = t - last_touchdown_s < params_.touchdown_guard_s;
   // The second difference of each foot's summed reading: load moving between the pads of a foot
   // (a rocking or chattering foot) leaves it small, a pad's own noise does not. Unknown (taken as
   // large) while a pad has no value.
-  std::array<double, 2> foot_d2{};
-  for (std::size_t f = 0; f < 2; ++f) {
+  for (std::size_t f = 0; f < feet_; ++f) {
     double sum = 0.0;
     bool known = true;
     for (std::size_t l = 0; l < feet_points_; ++l) {
@@ -362,8 +380,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       known = known && std::isfinite(x);
       sum += x;
     }
-    foot_d2[f] = known && foot_sum_ticks_[f] >= 2 ? std::abs(sum - 2.0 * foot_sum_[f][0] + foot_sum_[f][1])
-                                                  : std::numeric_limits<double>::infinity();
+    foot_d2_[f] = known && foot_sum_ticks_[f] >= 2 ? std::abs(sum - 2.0 * foot_sum_[f][0] + foot_sum_[f][1])
+                                                   : std::numeric_limits<double>::infinity();
     foot_sum_[f][1] = foot_sum_[f][0];
     foot_sum_[f][0] = sum;
     foot_sum_ticks_[f] = known ? std::min(foot_sum_ticks_[f] + 1, 2) : 0;
@@ -376,7 +394,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
-    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    const bool airborne = height_[j] > params_.airborne_height_m;
     if (!std::isfinite(x)) {
       all_finite_readings = false;
       raise(c, FaultType::invalid, t);
@@ -413,7 +431,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
       c.second_diff[c.second_diff_next] = std::abs(innovation);
       c.noisy_tick[c.second_diff_next] =
-          std::abs(innovation) > tick_noise && foot_d2[std::min<std::size_t>(j / feet_points_, 1)] > foot_noise ? 1 : 0;
+          std::abs(innovation) > tick_noise && foot_d2_[j / feet_points_] > foot_noise ? 1 : 0;
       c.noisy_count += c.noisy_tick[c.second_diff_next];
       c.first_diff[c.second_diff_next] = std::abs(change);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
@@ -485,10 +503,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   bool substituting_loaded = false;
   bool substituting_rolling = false;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
-    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    const bool airborne = height_[j] > params_.airborne_height_m;
     const bool substituted = channels_[j].type != FaultType::none && !corrects(channels_[j].type) && !airborne;
     substituting_loaded = substituting_loaded || substituted;
-    substituting_rolling = substituting_rolling || (substituted && foot_airborne_[std::min<std::size_t>(j / feet_points_, 1)]);
+    substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
   }
   if (substituting_rolling) group_pending_ = false;
   const double confirm_N = substituting_loaded ? 3.0 * params_.jump_confirm_N : params_.jump_confirm_N;
@@ -580,7 +598,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
     // Not raised while its foot's landing rings in the window (the foot bounces on its pads for
     // tens of milliseconds: a few ticks of a slow log).
-    const bool own_foot_landing = t - last_touchdown_s_[std::min<std::size_t>(j / feet_points_, 1)] < params_.touchdown_guard_s;
+    const bool own_foot_landing = t - last_touchdown_s_[j / feet_points_] < params_.touchdown_guard_s;
     if (noisy * 2 > noise_window_ticks_ && rough && !own_foot_landing) {
       raise(c, FaultType::noise, t);
     } else if (c.type == FaultType::noise && noisy * 4 < noise_window_ticks_) {
@@ -662,7 +680,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
-    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    const bool airborne = height_[j] > params_.airborne_height_m;
     double value = x;
     bool unknown = false;
     if (c.type == FaultType::offset || c.type == FaultType::drift) {
@@ -691,7 +709,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   double total = known_sum;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
-    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    const bool airborne = height_[j] > params_.airborne_height_m;
     const bool own_estimate = corrects(c.type) || c.type == FaultType::noise || c.type == FaultType::spikes;
     if (c.type != FaultType::none && !own_estimate && !airborne) {
       recovered[j] = fz_ok ? share : c.recovered;
@@ -700,7 +718,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
-    const bool airborne = j < height.size() && height[j] > params_.airborne_height_m;
+    const bool airborne = height_[j] > params_.airborne_height_m;
     virtual_force[j] = airborne ? 0.0
                        : fz_ok  ? std::max(0.0, fz - (total - recovered[j]))
                                 : std::numeric_limits<double>::quiet_NaN();

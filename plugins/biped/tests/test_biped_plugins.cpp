@@ -100,8 +100,7 @@ struct ContractSetup<biped::ContactForceFdi> {
       for (std::size_t i = 0; i < v.size(); ++i) v[i] = 120.0 + 3.0 * static_cast<double>(i);
     }
     if (port == "total_force") v[2] = 1044.0;  // the sum of the nominal pads
-    if (port == "l_foot_pos") v[1] = 0.1;
-    if (port == "r_foot_pos") v[1] = -0.1;
+    if (port == "foot_pos") v[1] = 0.1, v[4] = -0.1;  // two feet, the input's default
   }
   static double sample_period_s() { return 1e-3; }
 };

@@ -28,23 +28,21 @@ void UrdfKinematics::Params::describe(ParamSchema<Params>& schema) {
              "movable joints not read (no encoder in the log), held at q = 0");
   schema.add("base_link", &Params::base_link, "link whose world pose inputs base_pos and base_rpy give").required();
   schema.add("imu_link", &Params::imu_link, "link (frame) of the IMU whose specific force is used").required();
-  schema.add("left_sole_link", &Params::left_sole_link, "link (frame) of the left sole, on the sole plane").required();
-  schema.add("right_sole_link", &Params::right_sole_link, "link (frame) of the right sole, on the sole plane")
-      .required();
-  schema.add("left_sole_points_m", &Params::left_sole_points_m,
-             "sole outline points (x, y) in the left sole frame, for the contact test; empty: the frame origin")
-      .unit("m").plausible(plausible::foot_point_m());
-  schema.add("right_sole_points_m", &Params::right_sole_points_m,
-             "sole outline points (x, y) in the right sole frame, for the contact test; empty: the frame origin")
+  schema.add("foot_links", &Params::foot_links,
+             "links (frames) of the feet, on the contact plane: soles, or point feet at their contact point")
+      .count_at_least(1).required();
+  schema.add("foot_points_m", &Params::foot_points_m,
+             "contact points (x, y) of each foot in its frame, every foot alike (a sole outline), for the contact "
+             "test; empty: the frame origin (point feet)")
       .unit("m").plausible(plausible::foot_point_m());
   schema.add_choice("ground_reference", &Params::ground_reference,
-                    "the ground the sole heights are measured from: the plane z = ground_height_m, or the "
-                    "lower foot's lowest sole point",
-                    {{"plane", Params::GroundReference::plane}, {"lowest_sole", Params::GroundReference::lowest_sole}});
+                    "the ground the foot heights are measured from: the plane z = ground_height_m, or the "
+                    "lowest point of all feet",
+                    {{"plane", Params::GroundReference::plane}, {"lowest_foot", Params::GroundReference::lowest_foot}});
   schema.add("ground_height_m", &Params::ground_height_m, "height of the ground plane, world frame (ground_reference = plane)")
       .unit("m").plausible(plausible::ground_height_m());
   schema.add("contact_height_m", &Params::contact_height_m,
-             "a foot is in contact when its lowest sole point is below this height above the ground")
+             "a foot is in contact when its lowest contact point is below this height above the ground")
       .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
 }
 
@@ -56,16 +54,19 @@ Ports UrdfKinematics::declare_ports(const Params& params) {
   ports.add_input(PortSpec{"joint_positions", params.joints.size(), "rad", "positions q of the joints listed in `joints`"}
                       .sized_by("len(params.joints)"));
   ports.add_output(PortSpec{"com", 3, "m", "centre of mass c_W of the whole robot"}.in_frame("world"));
-  ports.add_output(PortSpec{"l_sole_pos", 3, "m", "left sole frame origin"}.in_frame("world"));
-  ports.add_output(PortSpec{"l_sole_rpy", 3, "rad", "left sole orientation: roll, pitch, yaw"}
-                       .in_frame("sole in world"));
-  ports.add_output(PortSpec{"r_sole_pos", 3, "m", "right sole frame origin"}.in_frame("world"));
-  ports.add_output(PortSpec{"r_sole_rpy", 3, "rad", "right sole orientation: roll, pitch, yaw"}
-                       .in_frame("sole in world"));
+  const std::size_t feet = params.foot_links.size();
+  ports.add_output(PortSpec{"foot_pos", 3 * feet, "m", "foot frame origins (x, y, z), foot after foot"}
+                       .in_frame("world")
+                       .sized_by("3 len(params.foot_links)"));
+  ports.add_output(PortSpec{"foot_rpy", 3 * feet, "rad", "foot orientations: roll, pitch, yaw, foot after foot"}
+                       .in_frame("foot in world")
+                       .sized_by("3 len(params.foot_links)"));
   ports.add_output(PortSpec{"imu_rpy", 3, "rad", "IMU frame orientation R_WB R_B,IMU: roll, pitch, yaw"}
                        .in_frame("imu in world"));
-  ports.add_output({"sole_height", 2, "m", "lowest sole point above the ground (left, right)"});
-  ports.add_output({"contact", 2, "1", "kinematic contact state (left, right): sole_height < contact_height_m"});
+  ports.add_output(PortSpec{"foot_height", feet, "m", "lowest contact point of each foot above the ground"}
+                       .sized_by("len(params.foot_links)"));
+  ports.add_output(PortSpec{"contact", feet, "1", "kinematic contact state per foot: foot_height < contact_height_m"}
+                       .sized_by("len(params.foot_links)"));
   ports.add_output({"mass", 1, "kg", "total mass M of the URDF's links"});
   return ports;
 }
@@ -88,8 +89,10 @@ UrdfKinematics::UrdfKinematics(const Params& params, const StageContext& context
     return 0;
   };
   const std::size_t base = link("base_link", params.base_link);
-  const std::vector<std::size_t> frames{link("imu_link", params.imu_link), link("left_sole_link", params.left_sole_link),
-                                        link("right_sole_link", params.right_sole_link)};
+  std::vector<std::size_t> frames{link("imu_link", params.imu_link)};
+  for (std::size_t i = 0; i < params.foot_links.size(); ++i) {
+    frames.push_back(link(json_pointer_append("foot_links", i), params.foot_links[i]));
+  }
   std::vector<std::optional<std::size_t>> sources(tree.joints().size());
   std::vector<bool> listed(tree.joints().size(), false);
   const std::vector<std::string> movable = tree.movable_joint_names();
@@ -155,26 +158,26 @@ void UrdfKinematics::step(const StepIO& io) noexcept {
     for (int i = 0; i < 3; ++i) out[static_cast<std::size_t>(i)] = v[i];
   };
   write(io.out(kCom), kinematics_->com_world());
-  const RigidPose& left = kinematics_->frame_pose(kLeftSoleFrame);
-  const RigidPose& right = kinematics_->frame_pose(kRightSoleFrame);
-  write(io.out(kLeftSolePos), left.translation);
-  write(io.out(kLeftSoleRpy), biped::rpy_from_rotation(left.rotation));
-  write(io.out(kRightSolePos), right.translation);
-  write(io.out(kRightSoleRpy), biped::rpy_from_rotation(right.rotation));
   write(io.out(kImuRpy), biped::rpy_from_rotation(kinematics_->frame_pose(kImuFrame).rotation));
-  const auto lowest = [&](const RigidPose& sole, const std::vector<std::array<double, 2>>& points) {
-    if (points.empty()) return sole.translation.z();
-    double z = std::numeric_limits<double>::infinity();
-    for (const auto& p : points) z = std::min(z, sole.rotation.row(2).head<2>().dot(Eigen::Vector2d(p[0], p[1])));
-    return sole.translation.z() + z;
-  };
-  double heights[2] = {lowest(left, params_.left_sole_points_m), lowest(right, params_.right_sole_points_m)};
-  const double ground = params_.ground_reference == Params::GroundReference::plane ? params_.ground_height_m
-                                                                                   : std::min(heights[0], heights[1]);
-  for (double& h : heights) h -= ground;
-  for (std::size_t i = 0; i < 2; ++i) {
-    io.out(kSoleHeight)[i] = heights[i];
-    io.out(kContact)[i] = heights[i] < params_.contact_height_m ? 1.0 : 0.0;
+  const auto foot_pos = io.out(kFootPos);
+  const auto foot_rpy = io.out(kFootRpy);
+  const auto height = io.out(kFootHeight);
+  double ground = params_.ground_height_m;
+  if (params_.ground_reference == Params::GroundReference::lowest_foot) ground = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < height.size(); ++i) {
+    const RigidPose& foot = kinematics_->frame_pose(kImuFrame + 1 + i);
+    write(foot_pos.subspan(3 * i, 3), foot.translation);
+    write(foot_rpy.subspan(3 * i, 3), biped::rpy_from_rotation(foot.rotation));
+    double lowest = params_.foot_points_m.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+    for (const auto& p : params_.foot_points_m) {
+      lowest = std::min(lowest, foot.rotation.row(2).head<2>().dot(Eigen::Vector2d(p[0], p[1])));
+    }
+    height[i] = foot.translation.z() + lowest;
+    if (params_.ground_reference == Params::GroundReference::lowest_foot) ground = std::min(ground, height[i]);
+  }
+  for (std::size_t i = 0; i < height.size(); ++i) {
+    height[i] -= ground;
+    io.out(kContact)[i] = height[i] < params_.contact_height_m ? 1.0 : 0.0;
   }
 }
 

@@ -47,7 +47,7 @@ IcubRun run_icub() {
   }
   const char* foot_columns[2][3] = {{"l_foot/pos_x_m", "l_foot/pos_y_m", "l_foot/pos_z_m"},
                                     {"r_foot/pos_x_m", "r_foot/pos_y_m", "r_foot/pos_z_m"}};
-  const SignalRef sole[2] = {pipeline.signal("fk.l_sole_pos"), pipeline.signal("fk.r_sole_pos")};
+  const SignalRef sole = pipeline.signal("fk.foot_pos");  // left, then right
   const SignalRef contact = pipeline.signal("fk.contact");
   const Monitor& m = pipeline.monitor();
   IcubRun run;
@@ -68,7 +68,7 @@ IcubRun run_icub() {
     for (int f = 0; f < 2; ++f) {
       double squared = 0.0;
       for (int a = 0; a < 3; ++a) {
-        const double d = pipeline.values(sole[f])[static_cast<std::size_t>(a)] - row[*log.find_column(foot_columns[f][a])];
+        const double d = pipeline.values(sole)[static_cast<std::size_t>(3 * f + a)] - row[*log.find_column(foot_columns[f][a])];
         squared += d * d;
         if (a == 2) run.fk_error_z_m[f].push_back(d);
       }

@@ -21,8 +21,7 @@ ftsense::Json arm_params() {
           {"held_joints", {"wrist"}},
           {"base_link", "base"},
           {"imu_link", "imu"},
-          {"left_sole_link", "tip"},
-          {"right_sole_link", "fore"}};
+          {"foot_links", {"tip", "fore"}}};
 }
 
 }  // namespace
@@ -130,7 +129,7 @@ TEST(Frames, RpyRoundTripsEveryRotationIncludingGimbalLock) {
 // height and contact state, the URDF mass.
 TEST(UrdfKinematics, OutputsTheArmsFramesComAndContact) {
   Json params = arm_params();
-  params["left_sole_points_m"] = {{0.0, 0.0}, {0.1, 0.0}};
+  params["foot_points_m"] = {{0.0, 0.0}, {0.1, 0.0}};
   params["contact_height_m"] = 0.05;
   Diagnostics diag;
   const auto p = load_params<UrdfKinematics::Params>(params, "/params", UrdfKinematics::name, diag);
@@ -149,10 +148,13 @@ TEST(UrdfKinematics, OutputsTheArmsFramesComAndContact) {
   in[2] = {q[0], q[1]};
   plugin.step(io);
   const double tip_z = 0.04 - kL1;
-  EXPECT_NEAR(out[UrdfKinematics::kLeftSolePos][0], kL2, 1e-12);          // fore horizontal, +x
-  EXPECT_NEAR(out[UrdfKinematics::kLeftSolePos][2], tip_z, 1e-12);
-  // The sole point (0.1, 0) of the tip frame is 0.1 m further along +x, same height.
-  EXPECT_NEAR(out[UrdfKinematics::kSoleHeight][0], tip_z, 1e-12);
+  EXPECT_NEAR(out[UrdfKinematics::kFootPos][0], kL2, 1e-12);          // fore horizontal, +x
+  EXPECT_NEAR(out[UrdfKinematics::kFootPos][2], tip_z, 1e-12);
+  // The second foot, the fore link's origin at the elbow: kL1 below the base, x = 0.
+  EXPECT_NEAR(out[UrdfKinematics::kFootPos][3], 0.0, 1e-12);
+  EXPECT_NEAR(out[UrdfKinematics::kFootPos][5], tip_z, 1e-12);
+  // The point (0.1, 0) of the tip frame is 0.1 m further along +x, same height.
+  EXPECT_NEAR(out[UrdfKinematics::kFootHeight][0], tip_z, 1e-12);
   EXPECT_EQ(out[UrdfKinematics::kContact][0], 1.0);                       // below 0.05 m
   EXPECT_NEAR(out[UrdfKinematics::kMass][0], kM0 + kM1 + kM2, 1e-12);
   const Eigen::Vector3d com =

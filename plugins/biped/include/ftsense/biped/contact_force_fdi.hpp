@@ -1,6 +1,7 @@
 #pragma once
 // Fault detection, isolation, classification and recovery for the contact-point force sensors of
-// both feet, from what is known accurately (beyond the paper; method.md section 7).
+// a legged robot's feet (any number: a biped's two soles of four pads, a quadruped's four point
+// feet of one sensor each), from what is known accurately (beyond the paper; method.md section 7).
 //
 // The paper judges each point against a per-point virtual force that is off by ~100 N in stance.
 // This plugin uses three facts that hold to a few newtons instead:
@@ -102,7 +103,11 @@
 // channel flagged, or while the gain test's fit is strong but no channel stands out in it: a
 // fault of the virtual sensor's own inputs (IMU) or one that cannot be isolated, reported as such
 // rather than blamed on a force sensor.
-// Channel order: the left foot's points, then the right foot's, each in the order of `points`.
+// Feet: as many as `foot_pos` stacks (x, y, z) origins, each with the contact points `points`
+// (foot frame; all feet alike; [[0, 0]] for a point foot). `foot_rpy` stacks the feet's roll,
+// pitch, yaw and is a port only when a point lies off the foot origin (a point foot's height is
+// its origin's, whatever its orientation).
+// Channel order: the first foot's points, then the next foot's, each in the order of `points`.
 
 #include <algorithm>
 #include <array>
@@ -158,7 +163,7 @@ class ContactForceFdi {
     static void describe(ParamSchema<Params>& schema);
   };
 
-  enum Input : std::size_t { kMeasured, kTotalForce, kLeftPos, kLeftRpy, kRightPos, kRightRpy };
+  enum Input : std::size_t { kMeasured, kTotalForce, kFootPos, kFootRpy };
   enum Output : std::size_t {
     kFault, kFaultType, kFaultEstimate, kRecovered, kVirtual, kSumResidual, kUnisolated, kVirtualReady };
 
@@ -248,6 +253,9 @@ class ContactForceFdi {
   Params params_;
   double period_s_;
   std::size_t feet_points_;
+  std::size_t feet_ = 2;
+  bool oriented_feet_ = true;  // a point lies off the foot origin: foot_rpy is read
+  std::vector<double> height_;  // per channel: the pad's height above the ground [m], this tick
   std::vector<Channel> channels_;
   std::vector<double> residual_ring_;  // sum residual history, 2 * jump window
   std::size_t residual_next_ = 0;
@@ -258,10 +266,12 @@ class ContactForceFdi {
   int group_age_ = 0;
   double group_sum_ = 0.0;
   int group_size_ = 0;
-  std::array<double, 2> last_touchdown_s_{-1e9, -1e9};
-  std::array<bool, 2> foot_airborne_{false, false};
-  std::array<std::array<double, 2>, 2> foot_sum_{};  // per foot: summed reading one and two ticks ago
-  std::array<int, 2> foot_sum_ticks_{0, 0};          // consecutive ticks with every pad's value, up to 2
+  // Per foot.
+  std::vector<double> last_touchdown_s_;
+  std::vector<char> foot_airborne_;
+  std::vector<std::array<double, 2>> foot_sum_;  // summed reading one and two ticks ago
+  std::vector<int> foot_sum_ticks_;              // consecutive ticks with every pad's value, up to 2
+  std::vector<double> foot_d2_;                  // second difference of the summed reading, this tick
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
   int frozen_ticks_ = 2;        // n_f, the frozen test's run length
