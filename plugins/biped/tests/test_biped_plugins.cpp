@@ -138,10 +138,23 @@ struct ContractSetup<biped::TotalGroundForce> {
   static double sample_period_s() { return 1e-3; }
 };
 
+template <>
+struct ContractSetup<biped::LipmZmp> {
+  static Json params() { return {{"com_offset_x_m", 0.002}, {"com_offset_y_m", -0.01}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "total_force") v[2] = 324.0;
+    if (port == "com") v[1] = 0.08, v[2] = 0.53;
+    if (port == "foot_pos") v[1] = 0.16;  // left foot at y = 0.16, right at the origin
+  }
+  static double sample_period_s() { return 1e-2; }
+};
+
 using BipedPluginTypes = ::testing::Types<biped::LipmComEstimator, biped::LegForceSplit, biped::FootCop,
                                           biped::ContactForceDistribution, biped::ZmpFromContactForces,
                                           biped::ContactForceFdi, biped::SupportForceDistribution,
-                                          biped::TotalGroundForce>;
+                                          biped::TotalGroundForce, biped::LipmZmp>;
 INSTANTIATE_TYPED_TEST_SUITE_P(Biped, PluginContract, BipedPluginTypes);
 
 }  // namespace ftsense::testing
@@ -579,6 +592,44 @@ TEST(ZmpFromContactForces, IsTheCentreOfPressureOfAllPads) {
   h.inputs()[1] = {0.0, 0.0, 0.0, 0.0};  // right foot unloaded: ZMP at the left foot's centre
   h.step(0.001);
   EXPECT_NEAR(h.outputs()[0][1], 0.1, 1e-12);
+}
+
+// lipm_zmp: p = c + (dx, dy) - (c_z - z_g) F_xy / F_z, the ground at the lowest foot.
+TEST(LipmZmp, TheForceLineThroughTheComMeetsTheGroundAtTheZmp) {
+  PluginHarness<LipmZmp> h;  // offset (0.002, -0.01) m (the contract setup)
+  auto& in = h.inputs();
+  // CoM 0.55 m above the lower foot (z = -0.02; the other at -0.01), accelerating at
+  // a = (1, -2) m/s^2 with F_z = 300 N: p = c + offset - 0.55 (30, -60) / 300.
+  in[LipmZmp::kTotalForce] = {30.0, -60.0, 300.0};
+  in[LipmZmp::kCom] = {0.10, 0.05, 0.53};
+  in[LipmZmp::kFootPos] = {0.0, 0.16, -0.01, 0.2, 0.0, -0.02};
+  h.step(0.0);
+  EXPECT_DOUBLE_EQ(h.outputs()[LipmZmp::kZmp][0], 0.10 + 0.002 - 0.55 * 0.1);   // 0.047 m
+  EXPECT_DOUBLE_EQ(h.outputs()[LipmZmp::kZmp][1], 0.05 - 0.01 + 0.55 * 0.2);    // 0.15 m
+  // Standing still (F vertical) the ZMP is the corrected CoM's projection.
+  in[LipmZmp::kTotalForce] = {0.0, 0.0, 324.0};
+  h.step(0.01);
+  EXPECT_DOUBLE_EQ(h.outputs()[LipmZmp::kZmp][0], 0.102);
+  EXPECT_DOUBLE_EQ(h.outputs()[LipmZmp::kZmp][1], 0.04);
+}
+
+TEST(LipmZmp, NoZmpWithoutAPushOnTheGroundOrAFiniteInput) {
+  PluginHarness<LipmZmp> h;  // offset (0.002, -0.01) m
+  auto& in = h.inputs();
+  in[LipmZmp::kCom] = {0.0, 0.0, 0.5};
+  in[LipmZmp::kFootPos] = {0.0, 0.1, 0.0, 0.0, -0.1, 0.0};
+  in[LipmZmp::kTotalForce] = {0.0, 0.0, 0.0};  // flight: nothing pushes
+  h.step(0.0);
+  EXPECT_TRUE(std::isnan(h.outputs()[LipmZmp::kZmp][0]));
+  EXPECT_TRUE(std::isnan(h.outputs()[LipmZmp::kZmp][1]));
+  in[LipmZmp::kTotalForce] = {0.0, 0.0, 300.0};
+  in[LipmZmp::kFootPos][5] = std::numeric_limits<double>::quiet_NaN();  // a foot not known
+  h.step(0.01);
+  EXPECT_TRUE(std::isnan(h.outputs()[LipmZmp::kZmp][0]));
+  in[LipmZmp::kFootPos][5] = 0.0;
+  h.step(0.02);
+  EXPECT_DOUBLE_EQ(h.outputs()[LipmZmp::kZmp][0], 0.002);  // the corrected CoM's projection
+  EXPECT_DOUBLE_EQ(h.outputs()[LipmZmp::kZmp][1], -0.01);
 }
 
 // support_force_distribution: N feet. Oracles: the lever rule (2 feet), barycentric coordinates

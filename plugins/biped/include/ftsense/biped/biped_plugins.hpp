@@ -6,6 +6,7 @@
 #include "ftsense/biped/foot_cop.hpp"
 #include "ftsense/biped/leg_force_split.hpp"
 #include "ftsense/biped/lipm_com_estimator.hpp"
+#include "ftsense/biped/lipm_zmp.hpp"
 #include "ftsense/biped/support_force_distribution.hpp"
 #include "ftsense/biped/total_ground_force.hpp"
 #include "ftsense/biped/zmp_from_contact_forces.hpp"
@@ -15,6 +16,6 @@ namespace ftsense::biped {
 
 using biped_plugins =
     PluginSet<LipmComEstimator, LegForceSplit, FootCop, ContactForceDistribution, ZmpFromContactForces,
-              ContactForceFdi, SupportForceDistribution, TotalGroundForce>;
+              ContactForceFdi, SupportForceDistribution, TotalGroundForce, LipmZmp>;
 
 }  // namespace ftsense::biped
