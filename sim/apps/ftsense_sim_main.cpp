@@ -96,7 +96,15 @@ int main(int argc, char** argv) {
       std::cerr << "ftsense-sim: " << sum.message << "; log up to the fall written to " << out_path << "\n";
       return 1;
     }
-    if (!quiet)
+    if (!quiet && sc.robot_kind == ftsense::sim::RobotKind::quadruped) {
+      std::fprintf(stderr, "ftsense-sim: %s; %lld rows, CPU %.2f s, stance force/mg %.4f, CoM error rms %.4f m, "
+                   "planned stability margin %.4f m, lift-offs/touchdowns",
+                   sum.message.c_str(), static_cast<long long>(sum.ticks), sum.cpu_s, sum.quiet_stance_force_ratio,
+                   sum.com_error_rms_m, sum.planned_stability_margin_m);
+      for (std::size_t f = 0; f < sum.foot_names.size(); ++f)
+        std::fprintf(stderr, " %s %d/%d", sum.foot_names[f].c_str(), sum.liftoffs[f], sum.touchdowns[f]);
+      std::fprintf(stderr, "\n");
+    } else if (!quiet)
       std::fprintf(stderr,
                    "ftsense-sim: %s; %lld rows, CPU %.2f s, stance force/mg %.4f, ZMP error rms %.4f m "
                    "max %.4f m, CoM error rms %.4f m max %.4f m\n",
