@@ -160,9 +160,32 @@ SimulationSummary simulate_quadruped(const Scenario& sc, std::uint64_t seed, std
   d->qpos[3] = 1.0;
   for (std::size_t j = 0; j < kJoints; ++j) d->qpos[qadr[j]] = r0.q[j];
 
+  mj_forward(m, d);
+
   std::array<double, kJoints> qpre{};
-  // One controller tick: joint references from the plan, then the servo torques (MuJoCo clamps
-  // them to the actuators' ctrlrange). Reads the state before mj_step.
+  // Rolling drift: a sphere foot rolls as its shank turns in stance, so its centre creeps forward
+  // (about 5 mm per cycle). The plan is re-anchored to where the feet are: the CoM and every foot
+  // target are shifted by the mean (x, y) drift of the planned stance feet from their footholds,
+  // low-passed (time constant kDriftFilter_s) so that the switch of the stance set at lift-off
+  // does not jump the references.
+  constexpr double kDriftFilter_s = 0.5;
+  Eigen::Vector2d drift = Eigen::Vector2d::Zero();
+  auto anchored = [&](CrawlSample s) {
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    int n = 0;
+    for (std::size_t leg = 0; leg < kLegs; ++leg) {
+      if (!s.contact[leg]) continue;
+      const mjtNum* x = d->xpos + 3 * foot_body[leg];
+      mean += Eigen::Vector2d(x[0], x[1]) - s.foot[leg].head<2>();
+      ++n;
+    }
+    if (n > 0) drift += (dt / kDriftFilter_s) * (mean / n - drift);
+    s.com += drift;
+    for (auto& f : s.foot) f.head<2>() += drift;
+    return s;
+  };
+  // One controller tick: joint references from the (re-anchored) plan, then the servo torques
+  // (MuJoCo clamps them to the actuators' ctrlrange). Reads the state before mj_step.
   auto control = [&](const CrawlSample& s) {
     const QuadrupedController::Refs ref = ctl.solve(s);
     for (std::size_t j = 0; j < kJoints; ++j) {
@@ -176,7 +199,7 @@ SimulationSummary simulate_quadruped(const Scenario& sc, std::uint64_t seed, std
   {
     const auto settle_ticks = static_cast<int>(std::lround(opt.settle_s / dt));
     for (int i = 0; i < settle_ticks; ++i) {
-      (void)control(s0);
+      (void)control(anchored(s0));
       mj_step(m, d);
     }
     d->time = 0.0;
@@ -206,7 +229,7 @@ SimulationSummary simulate_quadruped(const Scenario& sc, std::uint64_t seed, std
   const double ticks_per_s = static_cast<double>(std::llround(1.0 / dt));
   for (std::int64_t k = 0; k < n_ticks; ++k) {
     const double t = static_cast<double>(k) / ticks_per_s;
-    const CrawlSample s = plan.sample(t);
+    const CrawlSample s = anchored(plan.sample(t));
     if (!control(s)) ++sum.ik_unreachable_ticks;
     mj_step(m, d);  // derived quantities (contacts, xpos, sensors) now belong to time t
 
