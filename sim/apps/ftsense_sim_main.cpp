@@ -1,4 +1,5 @@
 // ftsense-sim --scenario S.json --out LOG.csv [--seed N] [--quiet]
+// ftsense-sim --write-urdf PATH --robot quadruped
 // Exit status: 0 ok, 2 usage or scenario error, 1 runtime failure (e.g. the robot fell).
 #include <charconv>
 #include <cstdint>
@@ -10,13 +11,16 @@
 #include <string_view>
 
 #include "ftsense/sim/mujoco_model.hpp"
+#include "ftsense/sim/quadruped_urdf.hpp"
 #include "ftsense/sim/simulator.hpp"
 
 namespace {
 
 constexpr const char* kUsage =
     "usage: ftsense-sim --scenario S.json --out LOG.csv [--seed N] [--quiet]\n"
-    "  Simulates the SURALP-like biped walking the scenario and writes the CSV log.\n"
+    "       ftsense-sim --write-urdf PATH --robot quadruped\n"
+    "  Simulates the scenario's robot (\"robot\": the SURALP-like biped by default, or the\n"
+    "  quadruped) walking and writes the CSV log; or writes the quadruped's URDF.\n"
     "  --seed N   seed for the sensor noise and faults (default: the scenario's \"seed\")\n"
     "  --quiet    no progress output on stderr\n"
     "exit status: 0 ok, 2 usage or scenario error, 1 runtime failure (e.g. the robot fell)\n";
@@ -29,7 +33,7 @@ int usage_error(const std::string& msg) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scenario_path, out_path;
+  std::string scenario_path, out_path, urdf_path, robot;
   std::optional<std::uint64_t> seed;
   bool quiet = false;
   for (int i = 1; i < argc; ++i) {
@@ -57,12 +61,35 @@ int main(int argc, char** argv) {
       if (res.ec != std::errc() || res.ptr != v->data() + v->size())
         return usage_error("--seed = \"" + *v + "\" is not a non-negative integer");
       seed = s;
+    } else if (a == "--write-urdf") {
+      auto v = value();
+      if (!v) return usage_error("--write-urdf needs a file name");
+      urdf_path = *v;
+    } else if (a == "--robot") {
+      auto v = value();
+      if (!v) return usage_error("--robot needs a robot name");
+      robot = *v;
     } else if (a == "--quiet") {
       quiet = true;
     } else {
       return usage_error("unknown argument \"" + std::string(a) + "\"");
     }
   }
+  if (!urdf_path.empty()) {
+    if (!scenario_path.empty() || !out_path.empty())
+      return usage_error("--write-urdf does not simulate: give it without --scenario and --out");
+    if (robot != "quadruped")
+      return usage_error("--write-urdf needs --robot quadruped (the only robot with a generated URDF)");
+    std::ofstream urdf(urdf_path, std::ios::binary);
+    urdf << ftsense::sim::quadruped_urdf();
+    urdf.close();
+    if (!urdf) {
+      std::cerr << "ftsense-sim: cannot write " << urdf_path << "\n";
+      return 1;
+    }
+    return 0;
+  }
+  if (!robot.empty()) return usage_error("--robot goes with --write-urdf (a scenario names its robot)");
   if (scenario_path.empty()) return usage_error("--scenario is required");
   if (out_path.empty()) return usage_error("--out is required");
 
@@ -96,7 +123,15 @@ int main(int argc, char** argv) {
       std::cerr << "ftsense-sim: " << sum.message << "; log up to the fall written to " << out_path << "\n";
       return 1;
     }
-    if (!quiet)
+    if (!quiet && sc.robot_kind == ftsense::sim::RobotKind::quadruped) {
+      std::fprintf(stderr, "ftsense-sim: %s; %lld rows, CPU %.2f s, stance force/mg %.4f, CoM error rms %.4f m, "
+                   "planned stability margin %.4f m, lift-offs/touchdowns",
+                   sum.message.c_str(), static_cast<long long>(sum.ticks), sum.cpu_s, sum.quiet_stance_force_ratio,
+                   sum.com_error_rms_m, sum.planned_stability_margin_m);
+      for (std::size_t f = 0; f < sum.foot_names.size(); ++f)
+        std::fprintf(stderr, " %s %d/%d", sum.foot_names[f].c_str(), sum.liftoffs[f], sum.touchdowns[f]);
+      std::fprintf(stderr, "\n");
+    } else if (!quiet)
       std::fprintf(stderr,
                    "ftsense-sim: %s; %lld rows, CPU %.2f s, stance force/mg %.4f, ZMP error rms %.4f m "
                    "max %.4f m, CoM error rms %.4f m max %.4f m\n",

@@ -124,11 +124,13 @@ class ObjectReader {
     }
     out = v->get<std::string>();
   }
-  /// Returns the value if it is a string among `choices`, else records a problem.
-  std::optional<std::string> choice(const std::string& key, const std::vector<std::string_view>& choices) {
+  /// Returns the value if it is a string among `choices`, else records a problem (absent and
+  /// not required: nullopt, no problem).
+  std::optional<std::string> choice(const std::string& key, const std::vector<std::string_view>& choices,
+                                    bool required = true) {
     std::string s;
     const std::size_t before = errors_.size();
-    string(key, s, true);
+    string(key, s, required);
     if (errors_.size() != before || !j_.contains(key)) return std::nullopt;
     if (std::find(choices.begin(), choices.end(), s) == choices.end()) {
       std::vector<std::string> c(choices.begin(), choices.end());
@@ -209,6 +211,22 @@ void read_gait(const json& j, const std::string& path, GaitParams& g, std::vecto
   r.number("foot_half_spacing_m", g.foot_half_spacing_m, false, closed(0.08, 0.15));
   r.number("com_feedback_gain", g.com_feedback_gain, false, closed(0.0, 10.0));
   r.number("com_feedback_integral_gain_1_s", g.com_feedback_integral_gain_1_s, false, closed(0.0, 20.0));
+  r.finish();
+}
+
+void read_crawl(const json& j, const std::string& path, CrawlParams& g, std::vector<std::string>& e) {
+  ObjectReader r(j, path, e);
+  r.number("stride_m", g.stride_m, false, closed(0.0, 0.15));
+  r.number("cycle_s", g.cycle_s, false, closed(2.0, 60.0));
+  r.number("swing_ratio", g.swing_ratio, false, closed(0.2, 0.8));
+  r.number("step_height_m", g.step_height_m, false, closed(0.0, 0.10));
+  r.number("body_height_m", g.body_height_m, false, closed(0.22, 0.36));
+  r.number("stance_half_width_m", g.stance_half_width_m, false, closed(0.08, 0.20));
+  r.number("stability_margin_m", g.stability_margin_m, false, closed(0.0, 0.05));
+  r.number("initial_stand_s", g.initial_stand_s, false, closed(0.5, 60.0));
+  std::int64_t n = g.num_cycles;
+  r.integer("num_cycles", n, false, 0, 10000);
+  g.num_cycles = static_cast<int>(n);
   r.finish();
 }
 
@@ -355,11 +373,30 @@ Scenario parse_scenario(const json& doc) {
   r.integer("seed", seed, false, 0, std::numeric_limits<std::int64_t>::max());
   s.seed = static_cast<std::uint64_t>(seed);
   r.number("log_period_s", s.log_period_s, Range{0.0, 1.0, false, true});
-  if (const json* g = r.object("gait", true)) read_gait(*g, r.at("gait"), s.gait, e);
+  const std::size_t before_robot = e.size();
+  const std::vector<std::string_view> robots(kRobotKindNames.begin(), kRobotKindNames.end());
+  if (const auto k = r.choice("robot", robots, false))
+    s.robot_kind = static_cast<RobotKind>(std::find(robots.begin(), robots.end(), *k) - robots.begin());
+  const bool quadruped = s.robot_kind == RobotKind::quadruped;
+  const bool robot_known = e.size() == before_robot;
+  if (quadruped) s.sensors.force_noise_std_N = kQuadrupedForceNoiseStdN;
+  if (!robot_known) {
+    // Unknown robot: its gait keys and channel names are unknown too; accept the keys unread.
+    (void)r.find("gait", false, "object");
+    (void)r.find("faults", false, "array");
+  } else if (quadruped) {
+    if (const json* g = r.object("gait", false)) read_crawl(*g, r.at("gait"), s.crawl, e);
+  } else {
+    if (const json* g = r.object("gait", true)) read_gait(*g, r.at("gait"), s.gait, e);
+  }
   if (const json* se = r.object("sensors", false)) read_sensors(*se, r.at("sensors"), s.sensors, e);
-  if (const json* fa = r.array("faults", true)) {
-    const std::vector<std::string_view> channels(kForceChannels.begin(), kForceChannels.end());
-    s.faults = parse_faults(*fa, r.at("faults"), channels, s.duration_s, e);
+  if (robot_known) {
+    if (const json* fa = r.array("faults", true)) {
+      const std::vector<std::string_view> channels =
+          quadruped ? std::vector<std::string_view>(kQuadrupedForceChannels.begin(), kQuadrupedForceChannels.end())
+                    : std::vector<std::string_view>(kForceChannels.begin(), kForceChannels.end());
+      s.faults = parse_faults(*fa, r.at("faults"), channels, s.duration_s, e);
+    }
   }
   r.finish();
   if (!e.empty()) throw ScenarioError(std::move(e));

@@ -9,40 +9,14 @@
 #include "ftsense/sim/leg_kinematics.hpp"
 #include "ftsense/sim/mujoco_model.hpp"
 #include "ftsense/sim/preview_control.hpp"
+#include "simulation_log.hpp"
 
 namespace ftsense::sim {
 
 namespace {
 
 constexpr std::array<const char*, 2> kSide = {"l", "r"};
-
-/// Row-at-a-time CSV writer: shortest round-trip numbers, "nan" for NaN.
-class CsvRow {
- public:
-  void num(double x) {
-    buf_ += ',';
-    if (std::isnan(x)) {
-      buf_ += "nan";
-      return;
-    }
-    char tmp[32];
-    auto res = std::to_chars(tmp, tmp + sizeof tmp, x);
-    buf_.append(tmp, res.ptr);
-  }
-  void first(double t) {
-    buf_.clear();
-    char tmp[32];
-    auto res = std::to_chars(tmp, tmp + sizeof tmp, t);
-    buf_.append(tmp, res.ptr);
-  }
-  void flush(std::ostream& os) {
-    buf_ += '\n';
-    os.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
-  }
-
- private:
-  std::string buf_;
-};
+using detail::CsvRow;
 
 struct Controller {
   const mjModel* m;
@@ -127,6 +101,19 @@ struct Controller {
 
 }  // namespace
 
+namespace detail {
+std::int64_t log_every_ticks(const Scenario& sc, double dt) {
+  if (!sc.log_period_s) return 1;
+  const std::int64_t every = std::llround(*sc.log_period_s / dt);
+  if (every < 1 || std::abs(static_cast<double>(every) * dt - *sc.log_period_s) > 1e-9) {
+    throw ScenarioError({"/log_period_s = " + std::to_string(*sc.log_period_s) +
+                         " s is not a whole multiple of the simulation tick " + std::to_string(dt) +
+                         " s; give a multiple such as 0.002 or 0.005"});
+  }
+  return every;
+}
+}  // namespace detail
+
 std::vector<std::string> log_columns() {
   std::vector<std::string> c{"time_s"};
   for (auto s : kSide)
@@ -159,8 +146,12 @@ std::vector<std::string> log_columns() {
 
 SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream& csv,
                            const SimulationOptions& opt) {
+  if (sc.robot_kind == RobotKind::quadruped) return simulate_quadruped(sc, seed, csv, opt);
   const std::clock_t cpu0 = std::clock();
   SimulationSummary sum;
+  sum.foot_names = {"l_foot", "r_foot"};
+  sum.liftoffs.assign(2, 0);
+  sum.touchdowns.assign(2, 0);
   const RobotParams& rp = sc.robot;
   MjModelPtr model = load_mjcf_string(suralp_mjcf(rp));
   const mjModel* m = model.get();
@@ -169,15 +160,7 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
   mjData* d = data.get();
   const double dt = m->opt.timestep;
   // The sensors sample every log_every ticks (the scenario's log period).
-  std::int64_t log_every = 1;
-  if (sc.log_period_s) {
-    log_every = std::llround(*sc.log_period_s / dt);
-    if (log_every < 1 || std::abs(static_cast<double>(log_every) * dt - *sc.log_period_s) > 1e-9) {
-      throw ScenarioError({"/log_period_s = " + std::to_string(*sc.log_period_s) +
-                           " s is not a whole multiple of the simulation tick " + std::to_string(dt) +
-                           " s; give a multiple such as 0.002 or 0.005"});
-    }
-  }
+  const std::int64_t log_every = detail::log_every_ticks(sc, dt);
 
   const int trunk = require_id(m, mjOBJ_BODY, "trunk");
   const int acc_adr = m->sensor_adr[require_id(m, mjOBJ_SENSOR, "imu_acc")];

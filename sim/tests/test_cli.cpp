@@ -106,3 +106,24 @@ TEST(Cli, LogPeriodWritesEveryNthTickAndRefusesAFraction) {
   fs::remove(sc);
   fs::remove(out);
 }
+
+TEST(Cli, QuadrupedScenarioWritesItsLogAndSummary) {
+  const fs::path sc = tmp("quad.json"), out = tmp("quad.csv");
+  std::ofstream(sc) << R"({"robot": "quadruped", "duration_s": 2.0, "faults": []})";
+  const Result r = cli("--scenario " + sc.string() + " --out " + out.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("lift-offs/touchdowns lf_foot 0/0 rf_foot 0/0 lh_foot 0/0 rh_foot 0/0"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("stance force/mg 1.00"), std::string::npos) << r.err;
+  std::ifstream in(out);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("time_s,lf_foot/force_N,rf_foot/force_N,lh_foot/force_N,rh_foot/force_N,", 0), 0u);
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, 2000);
+  EXPECT_EQ(cli("--scenario " + sc.string() + " --out " + out.string() + " --robot quadruped").status, 2);
+  EXPECT_EQ(cli("--write-urdf " + tmp("q.urdf").string()).status, 2);  // --robot quadruped missing
+  fs::remove(sc);
+  fs::remove(out);
+}

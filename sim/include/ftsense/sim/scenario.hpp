@@ -3,6 +3,7 @@
 // Loading is strict: unknown keys, missing required keys, wrong types and out-of-range values are
 // all collected and thrown together as one ScenarioError, each message starting with the JSON
 // Pointer of the offending value. The keys are documented in sim/README.md.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
@@ -13,11 +14,17 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "ftsense/sim/crawl_gait.hpp"
 #include "ftsense/sim/gait_plan.hpp"
+#include "ftsense/sim/quadruped_model.hpp"
 #include "ftsense/sim/robot_model.hpp"
 #include "ftsense/sim/sensor_models.hpp"
 
 namespace ftsense::sim {
+
+/// The simulated robots; the scenario key "robot" names one (kRobotKindNames, by enumerator value).
+enum class RobotKind { suralp = 0, quadruped = 1 };
+inline constexpr std::array<std::string_view, 2> kRobotKindNames = {"suralp", "quadruped"};
 
 struct Scenario {
   std::string name;
@@ -27,10 +34,13 @@ struct Scenario {
   /// absent: every tick.
   std::optional<double> log_period_s;
   std::uint64_t seed = 1;  ///< default seed; a command-line --seed overrides it
-  GaitParams gait;
+  RobotKind robot_kind = RobotKind::suralp;  ///< "robot"; decides how "gait" and the channels read
+  GaitParams gait;    ///< "gait" of the biped
+  CrawlParams crawl;  ///< "gait" of the quadruped
   SensorParams sensors;
   std::vector<FaultSpec> faults;
   RobotParams robot;  ///< not read from JSON: the paper's robot
+  QuadrupedParams quadruped;  ///< not read from JSON
 };
 
 /// Every problem found in a scenario; what() joins them with newlines.

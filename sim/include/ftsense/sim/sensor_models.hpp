@@ -50,13 +50,16 @@ class Rng {
   double spare_ = 0.0;
 };
 
-/// Force channels: 0..3 = l_foot/p1..p4, 4..7 = r_foot/p1..p4.
+/// Force channels of the biped: 0..3 = l_foot/p1..p4, 4..7 = r_foot/p1..p4.
 inline constexpr std::array<std::string_view, 8> kForceChannels = {
     "l_foot/p1", "l_foot/p2", "l_foot/p3", "l_foot/p4",
     "r_foot/p1", "r_foot/p2", "r_foot/p3", "r_foot/p4"};
+/// Force channels of the quadruped, one per foot, in kQuadrupedLegs order (lf, rf, lh, rh).
+inline constexpr std::array<std::string_view, 4> kQuadrupedForceChannels = {"lf_foot", "rf_foot", "lh_foot",
+                                                                            "rh_foot"};
 
 struct FaultSpec {
-  int channel = 0;  ///< index into kForceChannels
+  int channel = 0;  ///< index into the simulated robot's channel list (kForceChannels, kQuadrupedForceChannels)
   FaultType type = FaultType::offset;
   double start_s = 0.0;
   std::optional<double> end_s;     ///< absent: until the end
@@ -70,6 +73,10 @@ struct FaultSpec {
   double min_N = -1e300;           ///< saturation
   double max_N = 1e300;            ///< saturation
 };
+
+/// Default noise of the quadruped's foot force sensors (the biped's is SensorParams'): 0.5 N is
+/// 0.4 % of the 13 kg robot's weight, as 2 N is 0.2 % of the 114 kg biped's for one of 8 pads.
+inline constexpr double kQuadrupedForceNoiseStdN = 0.5;
 
 struct SensorParams {
   double force_noise_std_N = 2.0;

@@ -1,7 +1,8 @@
 #pragma once
 // The walking simulation: MuJoCo physics of the SURALP-like model, the open-loop walking
 // controller (ZMP preview control -> multibody CoM correction -> analytic leg IK -> joint position
-// servos), sensor models and fault injection, written as a CSV log (see sim/README.md).
+// servos), sensor models and fault injection, written as a CSV log (see sim/README.md). A scenario
+// with "robot": "quadruped" runs the quadruped's static crawl instead (simulate_quadruped).
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -21,6 +22,8 @@ struct SimulationOptions {
   /// Fall detection: the run stops when the pelvis height or the trunk tilt leaves these limits.
   double min_torso_height_m = 0.35;
   double max_torso_tilt_rad = 0.6;
+  /// The quadruped's height limit (trunk centre; it stands at 0.30 m), with max_torso_tilt_rad.
+  double min_quadruped_torso_height_m = 0.15;
   /// Standing time simulated (not logged) before t = 0 so the log starts settled on the pads.
   double settle_s = 0.5;
   /// A foot is in (true) contact when its pads carry more than this total normal force.
@@ -45,18 +48,28 @@ struct SimulationSummary {
   double com_error_rms_m = 0.0, com_error_max_m = 0.0;  ///< true CoM (xy) vs planned CoM
   double min_torso_height_m = std::numeric_limits<double>::infinity();
   double max_torso_tilt_rad = 0.0;
-  std::array<int, 2> liftoffs{};    ///< per foot (0 left, 1 right), from the true contact state
-  std::array<int, 2> touchdowns{};
+  std::vector<std::string> foot_names;  ///< biped: l_foot, r_foot; quadruped: kQuadrupedForceChannels
+  std::vector<int> liftoffs;    ///< per foot (foot_names order), from the true contact state
+  std::vector<int> touchdowns;
   int ik_unreachable_ticks = 0;
+  /// Quadruped: smallest planned distance of the CoM from the support triangle's edges in swing.
+  double planned_stability_margin_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The names of the CSV columns, in order (first is time_s).
 [[nodiscard]] std::vector<std::string> log_columns();
+/// The same for the quadruped's log (sim/README.md, "Quadruped").
+[[nodiscard]] std::vector<std::string> quadruped_log_columns();
 
 /// Runs the scenario with the given seed and writes the CSV log to `csv`.
 /// Throws ModelError on an internal model problem; a fall is reported in the summary
 /// (fell = true, the log ends at the fall).
 SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, std::ostream& csv,
                            const SimulationOptions& options = {});
+
+/// The quadruped crawling (static crawl, joint position servos); simulate() calls it for
+/// robot_kind quadruped.
+SimulationSummary simulate_quadruped(const Scenario& scenario, std::uint64_t seed, std::ostream& csv,
+                                     const SimulationOptions& options = {});
 
 }  // namespace ftsense::sim
