@@ -137,10 +137,12 @@ Json leave_one_out_config(const std::string& virtual_wire) {
       "r_rpy": {"columns": ["rr", "rp", "rw"], "unit": "rad"}
     },
     "stages": [
-      {"name": "fdi", "plugin": "contact_force_fdi",
+      {"name": "pads", "plugin": "contact_point_height",
        "params": {"points": [[0.1, 0.05], [0.1, -0.05], [-0.1, 0.05], [-0.1, -0.05]]},
-       "inputs": {"measured": "input.forces", "total_force": "input.total_force",
-                  "foot_pos": ["input.l_pos", "input.r_pos"], "foot_rpy": ["input.l_rpy", "input.r_rpy"]}},
+       "inputs": {"foot_pos": ["input.l_pos", "input.r_pos"], "foot_rpy": ["input.l_rpy", "input.r_rpy"]}},
+      {"name": "fdi", "plugin": "contact_force_fdi",
+       "params": {"points_per_foot": 4},
+       "inputs": {"measured": "input.forces", "total_force": "input.total_force", "point_height": "pads.point_height"}},
       {"name": "residual", "plugin": "difference_residual",
        "inputs": {"measured": "input.forces", "virtual": ")" + virtual_wire + R"("}}
     ]
@@ -155,7 +157,7 @@ TEST(Pipeline, LeaveOneOutVirtualSensorMayJudgeTheSensorsItLeavesOut) {
     FAIL() << "a recovered signal judged against its own sensors was accepted";
   } catch (const ConfigError& e) {
     ASSERT_EQ(e.problems().size(), 1u) << e.what();
-    EXPECT_EQ(e.problems()[0].path, "/stages/1/inputs/virtual");
+    EXPECT_EQ(e.problems()[0].path, "/stages/2/inputs/virtual");
     EXPECT_NE(e.problems()[0].message.find("independence rule"), std::string::npos) << e.what();
   }
 }

@@ -48,8 +48,10 @@ bool corrects(FaultType type) {
 }  // namespace
 
 void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
-  schema.add("points", &Params::points, "contact points (x, y) of each foot, foot frame (every foot alike; [[0, 0]] for point feet)")
-      .unit("m").count_at_least(1).count_at_most(8).required().plausible(plausible::foot_point_m());
+  schema.add("points_per_foot", &Params::points_per_foot,
+             "force channels per foot (contact points with a sensor: 4 for a sole of 4 pads, 1 for a point foot); "
+             "measured lists them foot after foot")
+      .at_least(1).at_most(64);
   schema.add("noise_std_N", &Params::noise_std_N, "nominal standard deviation of a healthy sensor's noise")
       .unit("N").greater_than(0.0)
       .plausible(1e-3, 200.0, "millinewtons (load cells) to tens of newtons (insoles)");
@@ -178,7 +180,7 @@ constexpr double kAirborneMeanWindow_s = 0.02;
 ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& context)
     : params_(params),
       period_s_(context.sample_period_s()),
-      feet_points_(params.points.size()),
+      feet_points_(static_cast<std::size_t>(std::max(1, params.points_per_foot))),
       noise_window_ticks_(window_ticks(params.noise_window_s, context.sample_period_s(), 4, "noise_window_s")),
       jump_window_ticks_(window_ticks(params.jump_window_s, context.sample_period_s(), 2, "jump_window_s")) {
   if (!(kAirborneMeanWindow_s / context.sample_period_s() <= kMaxWindowTicks)) {
@@ -210,32 +212,22 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                                                       format_number(params.airborne_threshold_N) +
                                                       " (airborne_threshold_N: re-admission needs a lower level)");
   }
-  // The feet: as many as foot_pos stacks origins (nothing wired sizes it for two).
-  const std::size_t foot_dim = context.wired_dim("foot_pos", 6);
-  if (foot_dim % 3 != 0 || foot_dim == 0) {
-    throw ConfigError("/inputs/foot_pos", "carries " + std::to_string(foot_dim) +
-                                              " values; foot_pos stacks the (x, y, z) origins of the feet, a "
-                                              "multiple of 3");
+  // The feet: as many as the measured channels make, points_per_foot each.
+  const std::size_t n = context.wired_dim("measured", 2 * feet_points_);
+  if (n == 0 || n % feet_points_ != 0) {
+    throw ConfigError("/inputs/measured", "carries " + std::to_string(n) + " channels, not a whole number of feet of " +
+                                              std::to_string(feet_points_) + " (points_per_foot)");
   }
-  feet_ = foot_dim / 3;
-  oriented_feet_ = std::any_of(params.points.begin(), params.points.end(),
-                               [](const std::array<double, 2>& p) { return p[0] != 0.0 || p[1] != 0.0; });
-  const std::size_t n = feet_ * feet_points_;
-  const std::string per_point = "feet x len(params.points): foot after foot";
+  feet_ = n / feet_points_;
+  const std::string per_point = "as wired: points_per_foot per foot";
   ports_.add_input(PortSpec{"measured", n, "N", "contact-point forces, foot after foot", PortRole::measured}
                        .sized_by(per_point));
   ports_.add_input(PortSpec{"total_force", 3, "N", "total ground reaction force m R_wb f_imu", PortRole::virtual_estimate}
                        .in_frame("world"));
-  ports_.add_input(PortSpec{"foot_pos", foot_dim, "m", "foot frame origins (x, y, z) stacked foot after foot (kinematics)"}
-                       .in_frame("world")
-                       .sized_by("as wired: 3 per foot"));
-  if (oriented_feet_) {
-    ports_.add_input(PortSpec{"foot_rpy", foot_dim, "rad",
-                              "foot orientations roll, pitch, yaw stacked foot after foot (kinematics); a port only "
-                              "when a point lies off the foot origin"}
-                         .in_frame("foot in world")
-                         .sized_by("3 per foot"));
-  }
+  ports_.add_input(PortSpec{"point_height", n, "m",
+                            "height of each channel's contact point above the ground (kinematics, e.g. "
+                            "contact_point_height); NaN: unknown, taken as on the ground"}
+                       .sized_by("as measured"));
   ports_.add_output(PortSpec{"fault", n, "1", "1 when the channel is judged faulty"}.sized_by(per_point));
   ports_.add_output(PortSpec{"fault_type", n, "1", "fault type code (fault_type.hpp)"}.sized_by(per_point));
   ports_.add_output(PortSpec{"fault_estimate", n, "N", "measured - recovered: the estimated fault contribution"}
@@ -261,7 +253,6 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
     c.noisy_tick.assign(static_cast<std::size_t>(noise_window_ticks_), 0);
   }
   residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
-  height_.assign(n, 0.0);
   last_touchdown_s_.assign(feet_, -1e9);
   foot_airborne_.assign(feet_, 0);
   foot_sum_.assign(feet_, {0.0, 0.0});
@@ -344,18 +335,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   if (!started_) start_time_s_ = t;
   const int ticks_since_start = started_ ? 2 : 0;
 
-  // Pad heights from kinematics (a foot with an unknown pose is taken as on the ground).
-  const auto foot_pos = io.in(kFootPos);
-  for (std::size_t f = 0; f < feet_; ++f) {
-    const auto pos = foot_pos.subspan(3 * f, 3);
-    const auto rpy = oriented_feet_ ? io.in(kFootRpy).subspan(3 * f, 3) : std::span<const double>();
-    const bool known = all_finite(pos) && all_finite(rpy);
-    const Eigen::Matrix3d rotation = known && oriented_feet_ ? rotation_from_rpy(rpy) : Eigen::Matrix3d::Identity();
-    for (std::size_t l = 0; l < feet_points_; ++l) {
-      const Eigen::Vector3d p(params_.points[l][0], params_.points[l][1], 0.0);
-      height_[f * feet_points_ + l] = known ? pos[2] + rotation.row(2).dot(p) : 0.0;
-    }
-  }
+  // Pad heights from kinematics (unknown, NaN, is taken as on the ground: every test below
+  // compares a height with "greater than").
+  const auto height = io.in(kPointHeight);
 
   // Evidence, channel by channel.
   const double tick_noise =
@@ -363,7 +345,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   double last_touchdown_s = -1e9;  // of any foot
   for (std::size_t f = 0; f < feet_; ++f) {
     bool any = false;
-    for (std::size_t l = 0; l < feet_points_; ++l) any = any || height_[f * feet_points_ + l] > params_.touchdown_height_m;
+    for (std::size_t l = 0; l < feet_points_; ++l) any = any || height[f * feet_points_ + l] > params_.touchdown_height_m;
     if (foot_airborne_[f] && !any) last_touchdown_s_[f] = t;
     foot_airborne_[f] = any ? 1 : 0;
     last_touchdown_s = std::max(last_touchdown_s, last_touchdown_s_[f]);
@@ -394,7 +376,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
-    const bool airborne = height_[j] > params_.airborne_height_m;
+    const bool airborne = height[j] > params_.airborne_height_m;
     if (!std::isfinite(x)) {
       all_finite_readings = false;
       raise(c, FaultType::invalid, t);
@@ -503,7 +485,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   bool substituting_loaded = false;
   bool substituting_rolling = false;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
-    const bool airborne = height_[j] > params_.airborne_height_m;
+    const bool airborne = height[j] > params_.airborne_height_m;
     const bool substituted = channels_[j].type != FaultType::none && !corrects(channels_[j].type) && !airborne;
     substituting_loaded = substituting_loaded || substituted;
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
@@ -680,7 +662,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
-    const bool airborne = height_[j] > params_.airborne_height_m;
+    const bool airborne = height[j] > params_.airborne_height_m;
     double value = x;
     bool unknown = false;
     if (c.type == FaultType::offset || c.type == FaultType::drift) {
@@ -709,7 +691,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   double total = known_sum;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
-    const bool airborne = height_[j] > params_.airborne_height_m;
+    const bool airborne = height[j] > params_.airborne_height_m;
     const bool own_estimate = corrects(c.type) || c.type == FaultType::noise || c.type == FaultType::spikes;
     if (c.type != FaultType::none && !own_estimate && !airborne) {
       recovered[j] = fz_ok ? share : c.recovered;
@@ -718,7 +700,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
-    const bool airborne = height_[j] > params_.airborne_height_m;
+    const bool airborne = height[j] > params_.airborne_height_m;
     virtual_force[j] = airborne ? 0.0
                        : fz_ok  ? std::max(0.0, fz - (total - recovered[j]))
                                 : std::numeric_limits<double>::quiet_NaN();

@@ -92,15 +92,14 @@ struct ContractSetup<biped::ZmpFromContactForces> {
 
 template <>
 struct ContractSetup<biped::ContactForceFdi> {
-  static Json params() { return {{"points", kSuralpFoot}}; }
+  static Json params() { return {{"points_per_foot", 4}}; }
   static std::size_t input_dim(std::string_view) { return 0; }
   static void nominal_input(std::string_view port, std::span<double> v) {
-    std::fill(v.begin(), v.end(), 0.0);
+    std::fill(v.begin(), v.end(), 0.0);  // every pad on the ground
     if (port == "measured") {
       for (std::size_t i = 0; i < v.size(); ++i) v[i] = 120.0 + 3.0 * static_cast<double>(i);
     }
     if (port == "total_force") v[2] = 1044.0;  // the sum of the nominal pads
-    if (port == "foot_pos") v[1] = 0.1, v[4] = -0.1;  // two feet, the input's default
   }
   static double sample_period_s() { return 1e-3; }
 };
@@ -557,12 +556,12 @@ TEST(ContactForceDistribution, WeightsMustMatchThePoints) {
 TEST(ContactForceFdi, WindowsTooLongForTheTickAreConfigErrors) {
   // Found by fuzzing: huge windows overflowed int or asked for gigabytes per channel.
   Diagnostics d;
-  (void)load_params<ContactForceFdi::Params>(Json{{"points", kSuralpFoot}, {"jump_window_s", 1.5e6}},
+  (void)load_params<ContactForceFdi::Params>(Json{{"points_per_foot", 4}, {"jump_window_s", 1.5e6}},
                                              "/stages/2/params", "contact_force_fdi", d);
   ASSERT_EQ(d.errors().size(), 1u);
   EXPECT_EQ(d.errors()[0].path, "/stages/2/params/jump_window_s");
   ContactForceFdi::Params p;
-  p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  p.points_per_foot = 4;
   try {
     const ContactForceFdi fdi(p, StageContext(1e-10, "fdi"));
     FAIL() << "a 1e-10 s tick makes the 0.05 s noise window 5e8 ticks long";

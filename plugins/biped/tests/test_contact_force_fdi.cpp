@@ -27,8 +27,7 @@ struct Feet {
   double t = 0.0;
   std::vector<double> measured = std::vector<double>(kChannels, 0.0);
   std::vector<double> total = {0.0, 0.0, 0.0};
-  std::vector<double> foot_pos = {0.0, 0.1, 0.0, 0.0, -0.1, 0.0};  // left, right
-  std::vector<double> foot_rpy = std::vector<double>(6, 0.0);
+  std::vector<double> height = std::vector<double>(kChannels, 0.0);  // pads above the ground [m]
   std::vector<std::vector<double>> outs;
 
   Feet(const ContactForceFdi::Params& p, double period_s) : fdi(p, StageContext(period_s, "fdi")), period(period_s) {
@@ -40,11 +39,13 @@ struct Feet {
     double sum = 0.0;
     for (double x : measured) sum += x;
     total[2] = std::isnan(fz) ? sum : fz;
-    const std::span<const double> ins[] = {measured, total, foot_pos, foot_rpy};
+    const std::span<const double> ins[] = {measured, total, height};
     std::vector<std::span<double>> out_spans(outs.begin(), outs.end());
     fdi.step(StepIO{t, ins, out_spans});
     t += period;
   }
+  // The left foot's four pads at height h.
+  void left_foot_at(double h) { std::fill(height.begin(), height.begin() + 4, h); }
   [[nodiscard]] FaultType type(std::size_t channel) const {
     return fault_type_from_code(outs[ContactForceFdi::kFaultType][channel]).value_or(FaultType::unclassified);
   }
@@ -52,7 +53,7 @@ struct Feet {
 
 ContactForceFdi::Params suralp(double resolution_N = 0.0) {
   ContactForceFdi::Params p;
-  p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  p.points_per_foot = 4;
   p.noise_std_N = 2.0;
   p.resolution_N = resolution_N;
   return p;
@@ -119,7 +120,7 @@ TEST(ContactForceFdi, NoiseTooSmallForItsResolutionIsAConfigError) {
 
 TEST(ContactForceFdi, UnloadedPadOnItsZeroLevelIsNoEvidenceOfAFrozenSensor) {
   Feet feet(suralp(), 1e-3);
-  feet.foot_pos[2] = 0.1;  // the left foot in the air: its pads carry nothing
+  feet.left_foot_at(0.1);  // the left foot in the air: its pads carry nothing
   for (int k = 0; k < 500; ++k) {
     for (std::size_t j = 4; j < kChannels; ++j) feet.measured[j] = moving(j, k, 0.0);
     feet.measured[0] = 0.0;  // a sensor that clips at zero: exact zeros, healthy
@@ -196,7 +197,7 @@ FaultType after_landing(bool frozen, double& recovered) {
   FaultType type = FaultType::none;
   for (int k = 0; k < 600; ++k) {
     const bool landed = k >= 200;
-    feet.foot_pos[2] = landed ? 0.0 : 0.1;
+    feet.left_foot_at(landed ? 0.0 : 0.1);
     const double load = landed ? std::min(400.0, 2.0 * (k - 200)) : 0.0;
     for (std::size_t j = 1; j < kChannels; ++j) feet.measured[j] = j < 4 ? (landed ? 100.0 + (k % 2) : k % 2) : moving(j, k, 0.0);
     double others = 0.0;
@@ -237,7 +238,7 @@ FaultType gain_held_then(bool healthy, FaultType& middle) {
   FaultType type = FaultType::none;
   for (int k = 0; k < 4000; ++k) {
     const bool lifted = k >= 300 && k < 500;
-    feet.foot_pos[2] = lifted ? 0.1 : 0.0;
+    feet.left_foot_at(lifted ? 0.1 : 0.0);
     const double load = lifted ? 0.0 : 100.0;
     for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = j < 4 ? load + (k % 2) : moving(j, k, 0.0);
     double truth = 0.0;
@@ -309,37 +310,37 @@ TEST(ContactForceFdi, ALoadedPadReadingMinusItsLoadIsASignFlipNotANegativeOffset
   EXPECT_EQ(flip.type(0), FaultType::none) << "right side up again under load: re-admitted";
 }
 
-// A quadruped: four point feet of one sensor each, as many feet as foot_pos stacks, and no
-// orientation port (a point foot's height is its origin's). The left front foot swings reading
+// A quadruped: four point feet of one sensor each, as many feet as measured carries channels.
+// The left front foot swings reading
 // +20 N (an offset), the other three carry the 130 N of a 13 kg robot: the airborne test raises
 // the swinging foot once its mean has 20 readings (0.02 s), the first taken on the 20th airborne
 // tick (airborne_settle_s): on the 39th airborne tick, with the offset as its estimate; once down, the foot is recovered by
 // subtracting it. No other foot is blamed.
-TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsFootPosStacks) {
+TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsMeasuredCarries) {
   ContactForceFdi::Params p;
-  p.points = {{0.0, 0.0}};
+  p.points_per_foot = 1;
   p.noise_std_N = 0.5;
-  ContactForceFdi fdi(p, StageContext(1e-3, "fdi", {{"foot_pos", 12}}));
+  ContactForceFdi fdi(p, StageContext(1e-3, "fdi", {{"measured", 4}}));
   std::vector<std::string> inputs;
   for (const auto& port : fdi.ports().inputs()) inputs.push_back(port.name);
-  EXPECT_EQ(inputs, (std::vector<std::string>{"measured", "total_force", "foot_pos"}));
+  EXPECT_EQ(inputs, (std::vector<std::string>{"measured", "total_force", "point_height"}));
   ASSERT_EQ(fdi.ports().inputs()[ContactForceFdi::kMeasured].dim, 4u);
   std::vector<std::vector<double>> outs;
   for (const auto& port : fdi.ports().outputs()) outs.emplace_back(port.dim, 0.0);
   fdi.reset();
   std::vector<double> measured(4), total{0.0, 0.0, 130.0};
-  std::vector<double> foot_pos{0.2, 0.1, 0.0, 0.2, -0.1, 0.0, -0.2, 0.1, 0.0, -0.2, -0.1, 0.0};
+  std::vector<double> height(4, 0.0);
   const int lift = 100, land = 300;
   int raised_at = -1;
   for (int k = 0; k < 400; ++k) {
     const bool swinging = k >= lift && k < land;
-    foot_pos[2] = swinging ? 0.03 : 0.0;
+    height[0] = swinging ? 0.03 : 0.0;
     const double wiggle = k % 2 == 0 ? 0.3 : -0.3;  // a noisy sensor never repeats itself
     const double loads[4] = {swinging ? 0.0 : 32.5, swinging ? 43.3 : 32.5, swinging ? 43.4 : 32.5,
                              swinging ? 43.3 : 32.5};
     for (std::size_t j = 0; j < 4; ++j) measured[j] = loads[j] + wiggle * (j % 2 == 0 ? 1.0 : -1.0);
     if (k >= lift) measured[0] += 20.0;  // the offset starts as the foot lifts
-    const std::span<const double> ins[] = {measured, total, foot_pos};
+    const std::span<const double> ins[] = {measured, total, height};
     std::vector<std::span<double>> out_spans(outs.begin(), outs.end());
     fdi.step(StepIO{k * 1e-3, ins, out_spans});
     const auto type = [&](std::size_t j) {

@@ -103,11 +103,10 @@
 // channel flagged, or while the gain test's fit is strong but no channel stands out in it: a
 // fault of the virtual sensor's own inputs (IMU) or one that cannot be isolated, reported as such
 // rather than blamed on a force sensor.
-// Feet: as many as `foot_pos` stacks (x, y, z) origins, each with the contact points `points`
-// (foot frame; all feet alike; [[0, 0]] for a point foot). `foot_rpy` stacks the feet's roll,
-// pitch, yaw and is a port only when a point lies off the foot origin (a point foot's height is
-// its origin's, whatever its orientation).
-// Channel order: the first foot's points, then the next foot's, each in the order of `points`.
+// Feet: as many as `measured` carries channels, `points_per_foot` each (4 pads of a sole, 1 for a
+// point foot); `point_height` gives each channel's contact point height above the ground, from
+// kinematics (contact_point_height: the pads' heights of 1. below).
+// Channel order: the first foot's points, then the next foot's.
 
 #include <algorithm>
 #include <array>
@@ -128,10 +127,10 @@ class ContactForceFdi {
       "the total force and signal continuity";
   // For the config reference's port table and the schema (plugin.hpp).
   static constexpr std::string_view example_params =
-      R"({"points": [[0.12, 0.075], [0.12, -0.075], [-0.12, 0.075], [-0.12, -0.075]], "noise_std_N": 2.0})";
+      R"({"points_per_foot": 4, "noise_std_N": 2.0})";
 
   struct Params {
-    std::vector<std::array<double, 2>> points;
+    int points_per_foot = 1;
     double noise_std_N = 2.0;
     double airborne_height_m = 0.005;
     double airborne_settle_s = 0.02;
@@ -163,7 +162,7 @@ class ContactForceFdi {
     static void describe(ParamSchema<Params>& schema);
   };
 
-  enum Input : std::size_t { kMeasured, kTotalForce, kFootPos, kFootRpy };
+  enum Input : std::size_t { kMeasured, kTotalForce, kPointHeight };
   enum Output : std::size_t {
     kFault, kFaultType, kFaultEstimate, kRecovered, kVirtual, kSumResidual, kUnisolated, kVirtualReady };
 
@@ -254,8 +253,6 @@ class ContactForceFdi {
   double period_s_;
   std::size_t feet_points_;
   std::size_t feet_ = 2;
-  bool oriented_feet_ = true;  // a point lies off the foot origin: foot_rpy is read
-  std::vector<double> height_;  // per channel: the pad's height above the ground [m], this tick
   std::vector<Channel> channels_;
   std::vector<double> residual_ring_;  // sum residual history, 2 * jump window
   std::size_t residual_next_ = 0;
