@@ -36,7 +36,7 @@ done
 # Progress counts to its total, walks are named by their length, and no carriage return reaches
 # a redirected log.
 last=$(grep -oE '^\[[0-9]+/[0-9]+\]' "$out/stdout" | tail -1)
-[ "$last" = "[12/12]" ] && ok "progress ends at [12/12]" || bad "progress ends at $last"
+[ "$last" = "[13/13]" ] && ok "progress ends at [13/13]" || bad "progress ends at $last"
 [ -s "$out/clean_9s_seed1_scenario.json" ] && [ ! -e "$out/clean_60s_seed1_scenario.json" ] && ok "quick walks named 9s" || bad "quick walks not named by their length"
 if grep -q $'\r' "$out/stderr" "$out/stdout"; then bad "a carriage return in the redirected output"; else ok "no carriage return in redirected output"; fi
 rows=$(($(wc -l < "$out/paper_run_reference.csv") - 1))
@@ -69,6 +69,21 @@ PY
 rows=$(sed -n '/^  scenario  *T \[s\]/,/^$/p' "$out/stdout" | grep -cE '^  (clean_|quantised|faults_|frozen|intermittent|heal)')
 [ "$rows" -eq 11 ] && ok "conditions table in the summary" || bad "conditions table in the summary: $rows rows"
 grep -q '^| scenario | log period \[s\] | resolution \[N\] |' "$out/report.md" && ok "report.md conditions table" || bad "report.md conditions table"
+# The quadruped by JSON alone (issue 14 acceptance 1): both walks scored, the virtual force per
+# foot in stance measured on every foot, the tables in report.md.
+/usr/bin/python3 - "$out" <<'PY' && ok "quadruped: walks scored, virtual force per foot" || bad "quadruped"
+import json, math, sys
+out = sys.argv[1]
+q = json.load(open(f"{out}/metrics.json"))["quadruped"]
+for walk in ("quadruped_clean", "quadruped_faults"):
+    json.load(open(f"{out}/{walk}/metrics.json"))
+    errors = q[walk]["stance_virtual_error"]
+    assert sorted(errors) == ["lf_foot", "lh_foot", "rf_foot", "rh_foot"], errors
+    for foot, e in errors.items():
+        assert e["stance_ticks"] > 4000 and math.isfinite(e["rms_N"]) and 0 < e["rms_N"] < e["p95_N"] * 2, (walk, foot, e)
+assert q["quadruped_faults"]["summary"]["faulty_channels"] >= 3, q["quadruped_faults"]["summary"]
+PY
+grep -q '^| walk | foot | stance ticks | virtual force RMS error \[N\] |' "$out/report.md" && ok "report.md quadruped table" || bad "report.md quadruped table"
 # The centred-band calibration wrote a centre per channel, and the demo printed that pipeline's rows.
 grep -q '"centers"' "$out/thresholds_reference_band.json" && ok "band thresholds have centres" || bad "band thresholds have no centres"
 grep -q "paper pipeline with centred bands" "$out/stdout" && ok "band pipeline summary" || bad "band pipeline summary"
