@@ -141,7 +141,7 @@ Json leave_one_out_config(const std::string& virtual_wire) {
        "params": {"points": [[0.1, 0.05], [0.1, -0.05], [-0.1, 0.05], [-0.1, -0.05]]},
        "inputs": {"foot_pos": ["input.l_pos", "input.r_pos"], "foot_rpy": ["input.l_rpy", "input.r_rpy"]}},
       {"name": "fdi", "plugin": "contact_force_fdi",
-       "params": {"points_per_foot": 4},
+       "params": {"points_per_foot": 4, "weight_N": 1000.0},
        "inputs": {"measured": "input.forces", "total_force": "input.total_force", "point_height": "pads.point_height"}},
       {"name": "residual", "plugin": "difference_residual",
        "inputs": {"measured": "input.forces", "virtual": ")" + virtual_wire + R"("}}

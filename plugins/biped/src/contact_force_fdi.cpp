@@ -55,18 +55,22 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("noise_std_N", &Params::noise_std_N, "nominal standard deviation of a healthy sensor's noise")
       .unit("N").greater_than(0.0)
       .plausible(1e-3, 200.0, "millinewtons (load cells) to tens of newtons (insoles)");
+  schema.add("weight_N", &Params::weight_N,
+             "the robot's weight m g, for the thresholds that follow from the load (0: unknown; then give "
+             "sum_threshold_N and gain_min_load_N)")
+      .unit("N").at_least(0.0).plausible(5.0, 5000.0, "a 0.5 kg toy to a 500 kg machine");
   schema.add("airborne_height_m", &Params::airborne_height_m, "a pad this high above the ground carries nothing")
       .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
   schema.add("airborne_settle_s", &Params::airborne_settle_s, "time a pad must be airborne before it is tested")
       .unit("s").at_least(0.0).plausible(0.0, 5.0, "a part of a swing phase (0.2 to 1 s)");
-  schema.add("airborne_threshold_N", &Params::airborne_threshold_N, "|mean reading| of an airborne pad that is a fault")
-      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
-  schema.add("airborne_clear_N", &Params::airborne_clear_N, "|mean reading| of an airborne pad that re-admits it")
-      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
-  schema.add("jump_threshold_N", &Params::jump_threshold_N, "one-tick change of a single channel that is a jump candidate")
-      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
-  schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump")
-      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
+  schema.add("airborne_threshold_N", &Params::airborne_threshold_N, "|mean reading| of an airborne pad that is a fault; 0: 4 noise_std_N")
+      .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
+  schema.add("airborne_clear_N", &Params::airborne_clear_N, "|mean reading| of an airborne pad that re-admits it; 0: 2 noise_std_N")
+      .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
+  schema.add("jump_threshold_N", &Params::jump_threshold_N, "one-tick change of a single channel that is a jump candidate; 0: 10 noise_std_N")
+      .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
+  schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump; 0: 12.5 noise_std_N")
+      .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("jump_window_s", &Params::jump_window_s, "window of the sum-residual step test")
       .unit("s").greater_than(0.0).at_most(1.0).plausible(1e-4, 1.0, "one tick at 10 kHz to a second");
   schema.add("touchdown_guard_s", &Params::touchdown_guard_s,
@@ -89,8 +93,8 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("false_alarm_interval_s", &Params::false_alarm_interval_s,
              "mean time between false alarms of the frozen test on one healthy channel (sets its run length)")
       .unit("s").greater_than(0.0).plausible(1.0, 1e9, "from a second (tests) to decades");
-  schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike")
-      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
+  schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike; 0: 30 noise_std_N")
+      .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("spike_hold_s", &Params::spike_hold_s, "the spikes flag stays this long after the last spike")
       .unit("s").at_least(0.0).plausible(plausible::flag_delay_s());
   schema.add("noise_window_s", &Params::noise_window_s, "window of the noise-burst test")
@@ -101,8 +105,8 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("sum_cutoff_hz", &Params::sum_cutoff_hz, "low-pass cut-off of the sum residual for the unisolated test")
       .unit("Hz").greater_than(0.0).plausible(plausible::cutoff_hz());
   schema.add("sum_threshold_N", &Params::sum_threshold_N,
-             "|low-passed sum residual| with no channel flagged that is an unisolated or virtual-sensor fault")
-      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
+             "|low-passed sum residual| with no channel flagged that is an unisolated or virtual-sensor fault; 0: 7 % of weight_N")
+      .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("clear_s", &Params::clear_s, "time the raising test must stay clear to re-admit a channel")
       .unit("s").at_least(0.0).plausible(plausible::flag_delay_s());
   schema.add("hold_s", &Params::hold_s, "a raised flag stays at least this long; spikes keep it this long after the last")
@@ -121,8 +125,8 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
              "share of the residual's power by which the blamed channel's fit must beat every other channel's")
       .greater_than(0.0).less_than(1.0);
   schema.add("gain_min_load_N", &Params::gain_min_load_N,
-             "RMS load a channel must carry over the gain window to be judged by the gain test")
-      .unit("N").greater_than(0.0).plausible(plausible::force_threshold_N());
+             "RMS load a channel must carry over the gain window to be judged by the gain test; 0: 2.5 % of weight_N")
+      .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("follow_ratio", &Params::follow_ratio,
              "an offset or drift whose reading spans less than this share of its leave-one-out force's span is "
              "a frozen output that keeps its noise")
@@ -175,6 +179,17 @@ int window_ticks(double window_s, double period_s, int minimum, const char* key)
 // about 0.5 N over 20 readings at 1 kHz, far below airborne_threshold_N. A length of its own, not
 // the settling time: one waits out the lift-off, the other averages the noise.
 constexpr double kAirborneMeanWindow_s = 0.02;
+
+// The thresholds a config leaves at 0, in the sensors' noise sigma (noise_std_N): an airborne
+// mean of 20 readings has sigma / 4.5, so 4 sigma is 18 of its sigmas; a healthy reading's
+// one-tick change has sqrt(2) sigma plus the load's own change, a jump needs 10 sigma; a spike
+// 30 sigma. They are the values the SURALP walk (sigma = 2 N) was run with.
+constexpr double kAirborneSigmas = 4.0, kAirborneClearSigmas = 2.0;
+constexpr double kJumpSigmas = 10.0, kJumpConfirmSigmas = 12.5, kSpikeSigmas = 30.0;
+// And in the robot's weight W = m g: the low-passed sum residual's bound (the unmodelled limb
+// dynamics, about 20 N RMS, 1.8 % of W, on the simulated SURALP) and the load a channel must carry for the
+// gain regression.
+constexpr double kSumThresholdWeight = 0.07, kGainMinLoadWeight = 0.025;
 }  // namespace
 
 ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& context)
@@ -207,9 +222,25 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   }
   smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * 10.0 * period_s_);
   min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
-  if (params.airborne_clear_N >= params.airborne_threshold_N) {
-    throw ConfigError("/params/airborne_clear_N", " = " + format_number(params.airborne_clear_N) + " violates < " +
-                                                      format_number(params.airborne_threshold_N) +
+  // Thresholds left at 0 follow from the sensors' noise sigma and the robot's weight W (header).
+  const double sigma = params.noise_std_N;
+  const auto derive = [](double& value, double derived) {
+    if (value == 0.0) value = derived;
+  };
+  derive(params_.airborne_threshold_N, kAirborneSigmas * sigma);
+  derive(params_.airborne_clear_N, kAirborneClearSigmas * sigma);
+  derive(params_.jump_threshold_N, kJumpSigmas * sigma);
+  derive(params_.jump_confirm_N, kJumpConfirmSigmas * sigma);
+  derive(params_.spike_threshold_N, kSpikeSigmas * sigma);
+  if (params.weight_N == 0.0 && (params.sum_threshold_N == 0.0 || params.gain_min_load_N == 0.0)) {
+    throw ConfigError("/params/weight_N", "is needed: sum_threshold_N and gain_min_load_N follow from the robot's "
+                                          "weight m g (N) unless both are given");
+  }
+  derive(params_.sum_threshold_N, kSumThresholdWeight * params.weight_N);
+  derive(params_.gain_min_load_N, kGainMinLoadWeight * params.weight_N);
+  if (params_.airborne_clear_N >= params_.airborne_threshold_N) {
+    throw ConfigError("/params/airborne_clear_N", " = " + format_number(params_.airborne_clear_N) + " violates < " +
+                                                      format_number(params_.airborne_threshold_N) +
                                                       " (airborne_threshold_N: re-admission needs a lower level)");
   }
   // The feet: as many as the measured channels make, points_per_foot each.

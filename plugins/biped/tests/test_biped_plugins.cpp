@@ -92,7 +92,7 @@ struct ContractSetup<biped::ZmpFromContactForces> {
 
 template <>
 struct ContractSetup<biped::ContactForceFdi> {
-  static Json params() { return {{"points_per_foot", 4}}; }
+  static Json params() { return {{"points_per_foot", 4}, {"weight_N", 1118.0}}; }
   static std::size_t input_dim(std::string_view) { return 0; }
   static void nominal_input(std::string_view port, std::span<double> v) {
     std::fill(v.begin(), v.end(), 0.0);  // every pad on the ground
@@ -556,12 +556,13 @@ TEST(ContactForceDistribution, WeightsMustMatchThePoints) {
 TEST(ContactForceFdi, WindowsTooLongForTheTickAreConfigErrors) {
   // Found by fuzzing: huge windows overflowed int or asked for gigabytes per channel.
   Diagnostics d;
-  (void)load_params<ContactForceFdi::Params>(Json{{"points_per_foot", 4}, {"jump_window_s", 1.5e6}},
+  (void)load_params<ContactForceFdi::Params>(Json{{"points_per_foot", 4}, {"weight_N", 1118.0}, {"jump_window_s", 1.5e6}},
                                              "/stages/2/params", "contact_force_fdi", d);
   ASSERT_EQ(d.errors().size(), 1u);
   EXPECT_EQ(d.errors()[0].path, "/stages/2/params/jump_window_s");
   ContactForceFdi::Params p;
   p.points_per_foot = 4;
+  p.weight_N = 1118.0;
   try {
     const ContactForceFdi fdi(p, StageContext(1e-10, "fdi"));
     FAIL() << "a 1e-10 s tick makes the 0.05 s noise window 5e8 ticks long";

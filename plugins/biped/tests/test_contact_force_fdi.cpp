@@ -4,6 +4,7 @@
 // evidence; the noise test tells white jitter from a fast smooth load and from a chattering foot;
 // a jump must be a surprise.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <span>
@@ -55,6 +56,8 @@ ContactForceFdi::Params suralp(double resolution_N = 0.0) {
   ContactForceFdi::Params p;
   p.points_per_foot = 4;
   p.noise_std_N = 2.0;
+  p.sum_threshold_N = 80.0;  // configs/suralp_robust.json's load thresholds
+  p.gain_min_load_N = 30.0;
   p.resolution_N = resolution_N;
   return p;
 }
@@ -311,15 +314,17 @@ TEST(ContactForceFdi, ALoadedPadReadingMinusItsLoadIsASignFlipNotANegativeOffset
 }
 
 // A quadruped: four point feet of one sensor each, as many feet as measured carries channels.
-// The left front foot swings reading
-// +20 N (an offset), the other three carry the 130 N of a 13 kg robot: the airborne test raises
-// the swinging foot once its mean has 20 readings (0.02 s), the first taken on the 20th airborne
-// tick (airborne_settle_s): on the 39th airborne tick, with the offset as its estimate; once down, the foot is recovered by
-// subtracting it. No other foot is blamed.
+// The left front foot swings reading +20 N (an offset that starts as it lifts), the other three
+// carry the 130 N of a 13 kg robot; the thresholds follow from the 0.5 N noise and the weight.
+// The 20 N step is 40 sigma, far above the derived 5 N jump threshold, and the sum residual steps
+// by as much: the jump is confirmed once jump_window_s (10 ticks) has seen it, on tick lift + 9.
+// The airborne mean then measures the offset; once down, the foot is recovered by subtracting it.
+// No other foot is blamed.
 TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsMeasuredCarries) {
   ContactForceFdi::Params p;
   p.points_per_foot = 1;
   p.noise_std_N = 0.5;
+  p.weight_N = 130.0;
   ContactForceFdi fdi(p, StageContext(1e-3, "fdi", {{"measured", 4}}));
   std::vector<std::string> inputs;
   for (const auto& port : fdi.ports().inputs()) inputs.push_back(port.name);
@@ -336,8 +341,10 @@ TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsMeasuredCarries) {
     const bool swinging = k >= lift && k < land;
     height[0] = swinging ? 0.03 : 0.0;
     const double wiggle = k % 2 == 0 ? 0.3 : -0.3;  // a noisy sensor never repeats itself
-    const double loads[4] = {swinging ? 0.0 : 32.5, swinging ? 43.3 : 32.5, swinging ? 43.4 : 32.5,
-                             swinging ? 43.3 : 32.5};
+    // The load leaves the foot over the 50 ticks before it lifts and returns over the 50 after
+    // it lands (a weight shift, not a step).
+    const double share = std::clamp(std::max(lift - k, k - land + 1) / 50.0, 0.0, 1.0);
+    const double loads[4] = {32.5 * share, 43.333 - 10.833 * share, 43.334 - 10.834 * share, 43.333 - 10.833 * share};
     for (std::size_t j = 0; j < 4; ++j) measured[j] = loads[j] + wiggle * (j % 2 == 0 ? 1.0 : -1.0);
     if (k >= lift) measured[0] += 20.0;  // the offset starts as the foot lifts
     const std::span<const double> ins[] = {measured, total, height};
@@ -349,7 +356,7 @@ TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsMeasuredCarries) {
     if (raised_at < 0 && type(0) != FaultType::none) raised_at = k;
     for (std::size_t j = 1; j < 4; ++j) ASSERT_EQ(type(j), FaultType::none) << "foot " << j << ", tick " << k;
   }
-  EXPECT_EQ(raised_at, lift + 38);
+  EXPECT_EQ(raised_at, lift + 9);
   EXPECT_EQ(fault_type_from_code(outs[ContactForceFdi::kFaultType][0]), FaultType::offset);
   EXPECT_NEAR(outs[ContactForceFdi::kFaultEstimate][0], 20.0, 0.1);
   EXPECT_NEAR(outs[ContactForceFdi::kRecovered][0], 32.5 + 0.3 * (399 % 2 == 0 ? 1.0 : -1.0), 0.1);

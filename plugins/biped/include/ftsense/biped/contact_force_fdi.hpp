@@ -14,6 +14,12 @@
 //   3. A healthy pad's force is continuous: it does not jump by tens of newtons in one tick while
 //      the total force stays put, and a noisy sensor never repeats a value exactly.
 //
+// Thresholds in newtons follow from what a user knows, unless given: the sensors' noise sigma
+// (noise_std_N): airborne 4 sigma, its clearing 2 sigma, jump 10 sigma, jump confirmation
+// 12.5 sigma, spike 30 sigma; and the robot's weight W = m g (weight_N): sum_threshold_N 7 % of W
+// (the bound of the virtual total force's low-passed error), gain_min_load_N 2.5 % of W. The
+// same config then holds for a 13 kg or a 114 kg robot.
+//
 // Tests, per channel j, each tick (thresholds are parameters):
 //   invalid   N_j not finite.
 //   frozen    N_j on one quantisation level (|N_j,k - N_j,k-1| <= q / 2, q = resolution_N; 0:
@@ -127,17 +133,18 @@ class ContactForceFdi {
       "the total force and signal continuity";
   // For the config reference's port table and the schema (plugin.hpp).
   static constexpr std::string_view example_params =
-      R"({"points_per_foot": 4, "noise_std_N": 2.0})";
+      R"({"points_per_foot": 4, "noise_std_N": 2.0, "weight_N": 1118.0})";
 
   struct Params {
     int points_per_foot = 1;
     double noise_std_N = 2.0;
+    double weight_N = 0.0;
     double airborne_height_m = 0.005;
     double airborne_settle_s = 0.02;
-    double airborne_threshold_N = 8.0;
-    double airborne_clear_N = 4.0;
-    double jump_threshold_N = 20.0;
-    double jump_confirm_N = 25.0;
+    double airborne_threshold_N = 0.0;
+    double airborne_clear_N = 0.0;
+    double jump_threshold_N = 0.0;
+    double jump_confirm_N = 0.0;
     double jump_window_s = 0.01;
     double touchdown_guard_s = 0.15;
     double touchdown_height_m = 0.001;
@@ -145,19 +152,19 @@ class ContactForceFdi {
     double upper_limit_N = 0.0;
     double frozen_min_s = 0.02;
     double false_alarm_interval_s = 86400.0;
-    double spike_threshold_N = 60.0;
+    double spike_threshold_N = 0.0;
     double spike_hold_s = 0.8;
     double noise_window_s = 0.05;
     double noise_factor = 4.0;
     double sum_cutoff_hz = 1.0;
-    double sum_threshold_N = 80.0;
+    double sum_threshold_N = 0.0;
     double clear_s = 0.05;
     double hold_s = 0.2;
     double gain_window_s = 2.0;
     double gain_threshold = 0.2;
     double gain_explained = 0.5;
     double gain_isolation_margin = 0.08;
-    double gain_min_load_N = 30.0;
+    double gain_min_load_N = 0.0;
     double follow_ratio = 0.25;
     static void describe(ParamSchema<Params>& schema);
   };
