@@ -185,6 +185,9 @@ void register_benchmarks() {
   }
   benchmark::RegisterBenchmark("stage/vfs_l [contact_force_distribution, solver ceres]",
                                [](benchmark::State& s) { bench_stage(s, suralp_config("ceres"), "vfs_l"); });
+  benchmark::RegisterBenchmark("stage/pads [contact_point_height, robust config]", [](benchmark::State& s) {
+    bench_stage(s, read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp_robust.json"), "pads");
+  });
   benchmark::RegisterBenchmark("stage/fdi [contact_force_fdi, robust config]", [](benchmark::State& s) {
     bench_stage(s, read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp_robust.json"), "fdi");
   });

@@ -179,7 +179,7 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
       {"configs", true, false, "the configs folder (default: the source tree's configs/)"},
       {"quick", false, false, "short walks (9 s) for a smoke test; the numbers are not the published ones"},
       {"no-logs", false, false,
-       "delete the simulated logs and the runs' CSV once they are scored (about 700 MB; keeps the metrics, "
+       "delete the simulated logs and the runs' CSV once they are scored (about 1.3 GB; keeps the metrics, "
        "reports, figures and HTML)"}};
   const auto options = parse_options(context.command("demo"), args, specs);
   if (options.count("help")) {
