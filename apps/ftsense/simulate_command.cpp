@@ -21,9 +21,10 @@ int simulate_command(const std::vector<std::string>& args) {
   const auto options = parse_options("ftsense simulate", args, specs);
   if (options.count("help")) {
     std::cout << usage_text("ftsense simulate",
-                            "Simulates the SURALP-like biped (MuJoCo) walking the scenario, with sensor\n"
-                            "models and injected faults, and writes the measured signals and the\n"
-                            "ground truth (truth/... columns) as a CSV log. Exit 1 if the robot falls.",
+                            "Simulates the scenario's robot (MuJoCo: the SURALP-like biped walking, or with\n"
+                            "\"robot\": \"quadruped\" the 13 kg quadruped crawling), with sensor models and\n"
+                            "injected faults, and writes the measured signals and the ground truth\n"
+                            "(truth/... columns) as a CSV log. Exit 1 if the robot falls.",
                             specs);
     return kExitOk;
   }

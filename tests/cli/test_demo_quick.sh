@@ -81,7 +81,13 @@ for walk in ("quadruped_clean", "quadruped_faults"):
     assert sorted(errors) == ["lf_foot", "lh_foot", "rf_foot", "rh_foot"], errors
     for foot, e in errors.items():
         assert e["stance_ticks"] > 4000 and math.isfinite(e["rms_N"]) and 0 < e["rms_N"] < e["p95_N"] * 2, (walk, foot, e)
-assert q["quadruped_faults"]["summary"]["faulty_channels"] >= 3, q["quadruped_faults"]["summary"]
+# In 9 s: the offset (from 5 s) and the gain (from 6 s) are found; the 3 N/s drift from 8 s has
+# grown to 3 N at most, below what the airborne test can see, so it is not asserted.
+delays = {c["channel"]: c["detection_delay_s"] for c in q["quadruped_faults"]["channels"]}
+assert delays["lf_foot"] is not None and delays["lf_foot"] < 0.1, delays
+assert delays["rh_foot"] is not None and delays["rh_foot"] < 3.0, delays
+for walk in ("quadruped_clean", "quadruped_faults", "quadruped_faults_200hz"):
+    assert q[walk]["summary"]["false_alarms_after_warmup"] == 0, (walk, q[walk]["summary"])
 PY
 grep -q '^| walk | foot | stance ticks | virtual force RMS error \[N\] |' "$out/report.md" && ok "report.md quadruped table" || bad "report.md quadruped table"
 # The centred-band calibration wrote a centre per channel, and the demo printed that pipeline's rows.
