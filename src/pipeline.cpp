@@ -4,6 +4,7 @@
 // builds it).
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace ftsense {
@@ -98,6 +99,11 @@ void Pipeline::step(double time_s) noexcept {
     s.stage->step(s.io);
   }
   for (const Copy& c : monitor_gathers_) std::copy_n(v + c.from, c.count, v + c.to);
+  if (derived_cannot_judge_.active) {
+    const double* from = v + derived_cannot_judge_.virtual_value.offset;
+    double* to = v + derived_cannot_judge_.cannot_judge.offset;
+    for (std::size_t i = 0; i < derived_cannot_judge_.cannot_judge.dim; ++i) to[i] = std::isnan(from[i]) ? 1.0 : 0.0;
+  }
 }
 
 }  // namespace ftsense

@@ -417,6 +417,11 @@ class PipelineBuilder {
     if (!ok) return;
     const auto measured = static_cast<std::size_t>(MonitorColumn::measured);
     const auto virtual_value = static_cast<std::size_t>(MonitorColumn::virtual_value);
+    const auto cannot_judge = static_cast<std::size_t>(MonitorColumn::cannot_judge);
+    if (!decl.columns[cannot_judge]) {  // not wired: the pipeline derives it from the virtual value
+      m.columns[cannot_judge] = allocate(m.channels.size());
+      pipeline_.derived_cannot_judge_ = {true, m.columns[virtual_value], m.columns[cannot_judge]};
+    }
     if (units[measured] != units[virtual_value]) {
       diag_.error("/monitor/virtual", "unit mismatch: measured is in '" + units[measured] + "' but virtual is in '" +
                                           units[virtual_value] + "'");

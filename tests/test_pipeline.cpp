@@ -1,6 +1,8 @@
 // Pipeline building and stepping on valid configs.
 
 #include <cmath>
+#include <vector>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -37,6 +39,28 @@ TEST(Pipeline, BuildsAndStepsTheBaseConfig) {
   EXPECT_EQ(p.values(p.monitor()[MonitorColumn::fault])[1], 1.0);
   EXPECT_EQ(p.values(p.monitor()[MonitorColumn::fault_type])[1], 1.0);  // unclassified
   EXPECT_EQ(p.values(p.monitor()[MonitorColumn::fault])[0], 0.0);
+}
+
+// The monitor's cannot_judge: without a wire, 1 exactly where the virtual value is NaN (the
+// virtual sensor not ready); with one, the wired signal.
+TEST(Pipeline, TheMonitorsCannotJudgeIsTheVirtualSensorNotReadyUnlessWired) {
+  Pipeline derived = build(test::base_config());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  set_inputs(derived, {10, 20, 30}, {10, nan, 30});
+  derived.step(0.0);
+  const auto cannot_judge = derived.values(derived.monitor()[MonitorColumn::cannot_judge]);
+  EXPECT_EQ(std::vector<double>(cannot_judge.begin(), cannot_judge.end()), (std::vector<double>{0.0, 1.0, 0.0}));
+  set_inputs(derived, {10, 20, 30}, {nan, 25, 30});
+  derived.step(1e-3);
+  EXPECT_EQ(std::vector<double>(cannot_judge.begin(), cannot_judge.end()), (std::vector<double>{1.0, 0.0, 0.0}));
+
+  Json config = test::base_config();
+  config["monitor"]["cannot_judge"] = "input.measured";  // any signal of one value per channel
+  Pipeline wired = build(config);
+  set_inputs(wired, {10, 20, 30}, {10, nan, 27});
+  wired.step(0.0);
+  const auto wired_column = wired.values(wired.monitor()[MonitorColumn::cannot_judge]);
+  EXPECT_EQ(std::vector<double>(wired_column.begin(), wired_column.end()), (std::vector<double>{10.0, 20.0, 30.0}));
 }
 
 TEST(Pipeline, RunOrderFollowsDependenciesNotListing) {

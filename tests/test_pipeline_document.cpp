@@ -31,7 +31,10 @@ TEST(PipelineDocument, ReadsDeclarationsAndResolvesNames) {
   EXPECT_EQ(doc.stages[2].upstream, std::vector<std::size_t>{1});
   ASSERT_TRUE(doc.monitor.has_value());
   EXPECT_EQ(doc.monitor->channels, (std::vector<std::string>{"c1", "c2", "c3"}));
-  for (std::size_t c = 0; c < kMonitorColumnCount; ++c) EXPECT_TRUE(doc.monitor->columns[c].has_value()) << c;
+  // Every required column is wired; the optional cannot_judge is not (the pipeline derives it).
+  for (const MonitorColumnInfo& column : kMonitorColumns) {
+    EXPECT_EQ(doc.monitor->columns[static_cast<std::size_t>(column.column)].has_value(), column.required) << column.key;
+  }
   EXPECT_EQ(doc.monitor->columns[static_cast<std::size_t>(MonitorColumn::fault)]->ends.at(0).text, "detect.fault");
 }
 
@@ -64,13 +67,14 @@ TEST(PipelineDocument, EveryDescribedKeyIsAcceptedAndNoOther) {
   EXPECT_NE(diag.errors()[0].message.find("unknown key in " + stage.what), std::string::npos);
 }
 
-TEST(PipelineDocument, TheMonitorSectionHasOneRequiredWirePerMonitorColumn) {
+TEST(PipelineDocument, TheMonitorSectionHasOneWirePerMonitorColumnRequiredAsTheTableSays) {
   const auto& monitor = document_section(DocumentSectionId::monitor);
   for (const MonitorColumnInfo& column : kMonitorColumns) {
     const DocumentKey& key = monitor.at(column.key);
     EXPECT_EQ(key.type, DocumentValue::wire);
-    EXPECT_TRUE(key.required);
+    EXPECT_EQ(key.required, column.required) << column.key;
   }
+  EXPECT_FALSE(monitor_column_info(MonitorColumn::cannot_judge).required);
 }
 
 TEST(PipelineDocument, ATypeErrorNamesTheElement) {
@@ -88,7 +92,7 @@ TEST(MonitorColumns, NamesFollowTheTable) {
   for (const MonitorColumnInfo& c : kMonitorColumns) names.push_back(monitor_column_name("l_foot/p1", c, "N"));
   EXPECT_EQ(names, (std::vector<std::string>{"l_foot/p1/measured_N", "l_foot/p1/virtual_N",
                                              "l_foot/p1/fault_estimate_N", "l_foot/p1/recovered_N",
-                                             "l_foot/p1/fault", "l_foot/p1/fault_type"}));
+                                             "l_foot/p1/fault", "l_foot/p1/fault_type", "l_foot/p1/cannot_judge"}));
   EXPECT_EQ(extra_column_name("c1", "stance", "1"), "c1/stance");
   EXPECT_EQ(extra_column_name("c1", "variance", "N^2"), "c1/variance_N^2");
 }

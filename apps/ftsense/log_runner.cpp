@@ -247,7 +247,7 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
         if (std::isnan(summary.first_fault_time_s[c])) summary.first_fault_time_s[c] = t;
         if (const auto type = fault_type_from_code(fault_type[c])) summary.fault_types_seen[c] |= fault_type_bit(*type);
       }
-      if (std::isfinite(columns[static_cast<std::size_t>(MonitorColumn::virtual_value)][c])) {
+      if (columns[static_cast<std::size_t>(MonitorColumn::cannot_judge)][c] == 0.0) {
         stretch_ticks[c] = 0;
       } else {
         summary.unjudged_ticks[c]++;

@@ -40,9 +40,9 @@ struct RunSummary {
   std::vector<double> first_fault_time_s;  // per channel; NaN when never flagged
   // Per channel: the fault types shown while flagged, one bit per type (fault_type_bit).
   std::vector<std::uint32_t> fault_types_seen;
-  // Per channel: ticks whose virtual value was not finite (the virtual sensor not ready: the
-  // channel could not be judged, so "no fault" says nothing), and the longest unbroken stretch of
-  // them (its first time and length; the first one of that length).
+  // Per channel: ticks whose cannot_judge column was not 0 (the virtual sensor not ready, or a
+  // fault no channel could be singled out for: "no fault" says nothing there), and the longest
+  // unbroken stretch of them (its first time and length; the first one of that length).
   std::vector<std::size_t> unjudged_ticks;
   std::vector<double> longest_unjudged_start_s;
   std::vector<std::size_t> longest_unjudged_ticks;

@@ -166,7 +166,8 @@ int run_command(const std::vector<std::string>& args, const Context& context) {
     summary_out << "  " << names << ": not judged for " << n << " tick" << (n == 1 ? "" : "s") << " (" << seconds(n)
                 << " s), the longest stretch " << seconds(longest) << " s from t = "
                 << format_number(summary.longest_unjudged_start_s[c])
-                << " s: the virtual sensor was not ready, so a fault there would go unseen\n";
+                << " s: the virtual sensor was not ready, or a fault could not be isolated, so a fault there "
+                   "would go unseen\n";
   }
   bool any_flagged = false;
   for (std::size_t c = 0; c < summary.first_fault_time_s.size(); ++c) {

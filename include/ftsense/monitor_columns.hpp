@@ -9,6 +9,10 @@
 //   c/recovered_<u>       x^     the recovered signal handed on              [u]
 //   c/fault               0/1    1 while the channel is flagged faulty       [1]
 //   c/fault_type          code   FaultType code (fault_type.hpp)             [1]
+//   c/cannot_judge        0/1    1 while the channel cannot be judged: its    [1]
+//                                virtual sensor is not ready, or a fault no
+//                                channel can be singled out for (optional
+//                                wire; without one, 1 where virtual is NaN)
 // then the monitor's optional `extra` signals as c/<name>_<unit> (no suffix when dimensionless).
 // <u> is the unit of the measured signal. The config's `monitor` object has one wire per row
 // (its key), the pipeline stores one SignalRef per row, `run` writes its header and rows from
@@ -22,22 +26,28 @@
 
 namespace ftsense {
 
-enum class MonitorColumn : std::size_t { measured, virtual_value, fault_estimate, recovered, fault, fault_type };
+enum class MonitorColumn : std::size_t {
+  measured, virtual_value, fault_estimate, recovered, fault, fault_type, cannot_judge };
 
 struct MonitorColumnInfo {
   MonitorColumn column;
   std::string_view key;      // the monitor config key, and the column name after "<channel>/"
   bool in_signal_unit;       // the column name ends in "_<unit of the measured signal>"
   std::string_view meaning;  // for the config reference
+  bool required = true;      // a monitor must wire it; an optional one has a derived default
 };
 
-inline constexpr std::array<MonitorColumnInfo, 6> kMonitorColumns{{
+inline constexpr std::array<MonitorColumnInfo, 7> kMonitorColumns{{
     {MonitorColumn::measured, "measured", true, "the sensor's reading"},
     {MonitorColumn::virtual_value, "virtual", true, "the virtual sensor's estimate of the reading"},
     {MonitorColumn::fault_estimate, "fault_estimate", true, "the estimated fault f in y = x + f"},
     {MonitorColumn::recovered, "recovered", true, "the recovered signal handed to the controller"},
     {MonitorColumn::fault, "fault", false, "1 while the channel is flagged faulty, else 0"},
     {MonitorColumn::fault_type, "fault_type", false, "the fault type code (docs/architecture.md)"},
+    {MonitorColumn::cannot_judge, "cannot_judge", false,
+     "1 while the channel cannot be judged: its virtual sensor is not ready, or a fault no channel can be "
+     "singled out for; optional, without a wire 1 where the virtual value is NaN",
+     false},
 }};
 inline constexpr std::size_t kMonitorColumnCount = kMonitorColumns.size();
 

@@ -172,6 +172,13 @@ class Pipeline {
   std::vector<StageRun> stages_;
   std::vector<Copy> monitor_gathers_;
   bool has_monitor_ = false;
+  // The monitor's cannot_judge when no stage gives it: 1 where the virtual value is NaN.
+  struct DerivedCannotJudge {
+    bool active = false;
+    SignalRef virtual_value;
+    SignalRef cannot_judge;
+  };
+  DerivedCannotJudge derived_cannot_judge_;
   Monitor monitor_;
   std::vector<Diagnostic> warnings_;
   std::vector<double> values_;

@@ -76,7 +76,7 @@ class SmallDictConfig(unittest.TestCase):
         self.assertEqual(self.p.channels, ["c1", "c2", "c3"])
         self.assertEqual(self.p.columns[:7], ["time_s", "c1/measured_N", "c1/virtual_N", "c1/fault_estimate_N",
                                               "c1/recovered_N", "c1/fault", "c1/fault_type"])
-        self.assertEqual(len(self.p.columns), 1 + 3 * 6)
+        self.assertEqual(len(self.p.columns), 1 + 3 * 7)
         self.assertEqual(self.p.monitor["fault"], "detect.fault")
         self.assertEqual(self.p.monitor["measured"], "input.measured")
         self.assertEqual(self.p.sample_period_s, 0.001)

@@ -85,21 +85,23 @@ ScoredRun load_scored_run(const std::string& run_path, const std::string& truth_
       break;
     }
   }
-  // The channels: every prefix that names a last monitor column (fault_type) in this unit.
+  // The channels: every prefix that names a fault_type column in this unit.
+  const MonitorColumnInfo& marker = monitor_column_info(MonitorColumn::fault_type);
   for (const auto& n : r.run.names) {
     const auto parsed = parse_monitor_column(n, r.unit);
-    if (parsed && parsed->column == kMonitorColumns.back().column) r.channels.push_back(RunChannel{parsed->channel, {}});
+    if (parsed && parsed->column == marker.column) r.channels.push_back(RunChannel{parsed->channel, {}});
   }
   if (r.channels.empty()) {
-    throw ConfigError(run_path, "has no <channel>/" + std::string(kMonitorColumns.back().key) +
-                                    " columns; is it an output of ftsense run?");
+    throw ConfigError(run_path, "has no <channel>/" + std::string(marker.key) + " columns; is it an output of ftsense run?");
   }
   if (r.unit.empty()) {
     throw ConfigError(run_path, "has no " + monitor_column_name(r.channels.front().name, measured, "<unit>") + " column");
   }
   for (RunChannel& ch : r.channels) {
     for (const MonitorColumnInfo& c : kMonitorColumns) {
-      ch.columns[static_cast<std::size_t>(c.column)] = &r.run.at(monitor_column_name(ch.name, c, r.unit));
+      const std::string name = monitor_column_name(ch.name, c, r.unit);
+      // A run written before an optional column existed lacks it: null.
+      ch.columns[static_cast<std::size_t>(c.column)] = c.required ? &r.run.at(name) : r.run.find(name);
     }
     ch.raw_fault_estimate = r.run.find(extra_column_name(ch.name, "fault_estimate_raw", r.unit));
     if (r.has_truth()) {

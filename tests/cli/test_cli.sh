@@ -95,7 +95,7 @@ done
 "$ftsense" run --help > "$work/out"; check help_shows_short_flags 0 $? "^  -c, --config" "$work/out" "^  -i, --input" "$work/out" "^  -o, --output" "$work/out"
 "$ftsense" report --help > "$work/out"; check help_report_flags 0 $? "^  -t, --truth" "$work/out" "^  -o, --output" "$work/out" "usage: ftsense report --run FILE \[--truth FILE\] --output DIR" "$work/out"
 head -1 "$work/o.csv" > "$work/header"
-check run_output_header 0 0 "^time_s,c1/measured_N,c1/virtual_N,c1/fault_estimate_N,c1/recovered_N,c1/fault,c1/fault_type,c2/measured_N" "$work/header"
+check run_output_header 0 0 "^time_s,c1/measured_N,c1/virtual_N,c1/fault_estimate_N,c1/recovered_N,c1/fault,c1/fault_type,c1/cannot_judge,c2/measured_N" "$work/header"
 rows=$(($(wc -l < "$work/o.csv") - 1))
 [ "$rows" -eq 3000 ] && { passes=$((passes + 1)); echo "ok   run_output_rows"; } || { failures=$((failures + 1)); echo "FAIL run_output_rows: $rows"; }
 grep -q "c1: fault" "$work/out" && { failures=$((failures + 1)); echo "FAIL run_no_false_alarm"; } || { passes=$((passes + 1)); echo "ok   run_no_false_alarm"; }

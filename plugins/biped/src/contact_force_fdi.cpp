@@ -270,6 +270,10 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   ports_.add_output({"sum_residual", 1, "N", "low-passed sum of recovered forces - F_z"});
   ports_.add_output({"unisolated", 1, "1", "1 while the sum residual is off with no channel to blame (virtual sensor fault)"});
   ports_.add_output({"virtual_ready", 1, "1", "1 while the total force F_z is finite (0: virtual sensor not ready)"});
+  ports_.add_output(PortSpec{"cannot_judge", n, "1",
+                             "1 for a channel not flagged while unisolated is 1: the virtual sensor is not ready, or "
+                             "the sum residual is off with no channel to blame"}
+                        .sized_by(per_point));
   gain_window_ticks_ = window_ticks(params.gain_window_s, context.sample_period_s(), 10, "gain_window_s");
   gain_forgetting_ = std::exp(-1.0 / gain_window_ticks_);
   gain_xx_.assign(n, 0.0);
@@ -764,6 +768,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   io.out(kUnisolated)[0] =
       (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any) || gain_unisolated_) ? 1.0 : 0.0;
   io.out(kVirtualReady)[0] = fz_ok ? 1.0 : 0.0;
+  // A channel not flagged is judged only while the sum residual can speak for it: not while the
+  // total force is unknown, nor while its residual is off with no channel to blame.
+  const bool blind = io.out(kUnisolated)[0] != 0.0;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    io.out(kCannotJudge)[j] = blind && channels_[j].type == FaultType::none ? 1.0 : 0.0;
+  }
   started_ = true;
 }
 

@@ -35,11 +35,13 @@ struct Feet {
     for (const auto& port : fdi.ports().outputs()) outs.emplace_back(port.dim, 0.0);
     fdi.reset();
   }
-  // One tick; F_z is the pads' sum unless given.
-  void step(double fz = std::nan("")) {
+  // One tick; F_z is the pads' sum unless given (or unknown: NaN, the virtual sensor not ready).
+  void step(double fz = std::nan(""), bool total_known = true) {
     double sum = 0.0;
-    for (double x : measured) sum += x;
-    total[2] = std::isnan(fz) ? sum : fz;
+    for (double x : measured) {
+      if (std::isfinite(x)) sum += x;
+    }
+    total[2] = !total_known ? std::nan("") : std::isnan(fz) ? sum : fz;
     const std::span<const double> ins[] = {measured, total, height};
     std::vector<std::span<double>> out_spans(outs.begin(), outs.end());
     fdi.step(StepIO{t, ins, out_spans});
@@ -118,6 +120,22 @@ TEST(ContactForceFdi, NoiseTooSmallForItsResolutionIsAConfigError) {
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.problems()[0].path, "/params/resolution_N");
     EXPECT_NE(e.problems()[0].message.find("give the sensors' real noise"), std::string::npos) << e.what();
+  }
+}
+
+// Without the total force no channel can be judged against the sum: every channel not flagged
+// says so (cannot_judge 1) for exactly the ticks F_z is unknown, and a flagged one keeps its flag.
+TEST(ContactForceFdi, ChannelsSayTheyCannotBeJudgedWhileTheTotalForceIsUnknown) {
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 300; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = moving(j, k, 0.0);
+    if (k >= 100) feet.measured[5] = std::nan("");  // a dropout: flagged invalid, judged
+    const bool unknown = k >= 200 && k < 250;
+    feet.step(std::nan(""), !unknown);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double expected = unknown && j != 5 ? 1.0 : 0.0;
+      ASSERT_EQ(feet.outs[ContactForceFdi::kCannotJudge][j], expected) << "channel " << j << ", tick " << k;
+    }
   }
 }
 

@@ -34,7 +34,7 @@ struct LogTable {
 
 struct RunChannel {
   std::string name;
-  std::array<const std::vector<double>*, kMonitorColumnCount> columns{};  // every one present
+  std::array<const std::vector<double>*, kMonitorColumnCount> columns{};  // null: an optional one absent
   const std::vector<double>* raw_fault_estimate = nullptr;  // extra `fault_estimate_raw`, if written
   // From the truth, when given and present for this channel; else null.
   const std::vector<double>* true_force = nullptr;

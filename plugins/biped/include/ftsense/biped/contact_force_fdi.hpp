@@ -108,7 +108,9 @@
 // `unisolated` is 1 while the low-passed sum residual exceeds sum_threshold_N with no
 // channel flagged, or while the gain test's fit is strong but no channel stands out in it: a
 // fault of the virtual sensor's own inputs (IMU) or one that cannot be isolated, reported as such
-// rather than blamed on a force sensor.
+// rather than blamed on a force sensor. `cannot_judge` (per channel) is 1 for every channel not
+// flagged while `unisolated` is: silence there is no verdict of health (the monitor's
+// cannot_judge column).
 // Feet: as many as `measured` carries channels, `points_per_foot` each (4 pads of a sole, 1 for a
 // point foot); `point_height` gives each channel's contact point height above the ground, from
 // kinematics (contact_point_height: the pads' heights of 1. below).
@@ -171,7 +173,7 @@ class ContactForceFdi {
 
   enum Input : std::size_t { kMeasured, kTotalForce, kPointHeight };
   enum Output : std::size_t {
-    kFault, kFaultType, kFaultEstimate, kRecovered, kVirtual, kSumResidual, kUnisolated, kVirtualReady };
+    kFault, kFaultType, kFaultEstimate, kRecovered, kVirtual, kSumResidual, kUnisolated, kVirtualReady, kCannotJudge };
 
   ContactForceFdi(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
