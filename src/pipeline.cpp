@@ -102,7 +102,7 @@ void Pipeline::step(double time_s) noexcept {
   if (derived_cannot_judge_.active) {
     const double* from = v + derived_cannot_judge_.virtual_value.offset;
     double* to = v + derived_cannot_judge_.cannot_judge.offset;
-    for (std::size_t i = 0; i < derived_cannot_judge_.cannot_judge.dim; ++i) to[i] = std::isnan(from[i]) ? 1.0 : 0.0;
+    for (std::size_t i = 0; i < derived_cannot_judge_.cannot_judge.dim; ++i) to[i] = std::isfinite(from[i]) ? 0.0 : 1.0;
   }
 }
 

@@ -12,7 +12,8 @@
 //   c/cannot_judge        0/1    1 while the channel cannot be judged: its    [1]
 //                                virtual sensor is not ready, or a fault no
 //                                channel can be singled out for (optional
-//                                wire; without one, 1 where virtual is NaN)
+//                                wire; without one, 1 where virtual is not
+//                                finite)
 // then the monitor's optional `extra` signals as c/<name>_<unit> (no suffix when dimensionless).
 // <u> is the unit of the measured signal. The config's `monitor` object has one wire per row
 // (its key), the pipeline stores one SignalRef per row, `run` writes its header and rows from
@@ -46,7 +47,7 @@ inline constexpr std::array<MonitorColumnInfo, 7> kMonitorColumns{{
     {MonitorColumn::fault_type, "fault_type", false, "the fault type code (docs/architecture.md)"},
     {MonitorColumn::cannot_judge, "cannot_judge", false,
      "1 while the channel cannot be judged: its virtual sensor is not ready, or a fault no channel can be "
-     "singled out for; optional, without a wire 1 where the virtual value is NaN",
+     "singled out for; optional, without a wire 1 where the virtual value is not finite",
      false},
 }};
 inline constexpr std::size_t kMonitorColumnCount = kMonitorColumns.size();

@@ -172,7 +172,7 @@ class Pipeline {
   std::vector<StageRun> stages_;
   std::vector<Copy> monitor_gathers_;
   bool has_monitor_ = false;
-  // The monitor's cannot_judge when no stage gives it: 1 where the virtual value is NaN.
+  // The monitor's cannot_judge when no stage gives it: 1 where the virtual value is not finite.
   struct DerivedCannotJudge {
     bool active = false;
     SignalRef virtual_value;

@@ -51,7 +51,7 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("points_per_foot", &Params::points_per_foot,
              "force channels per foot (contact points with a sensor: 4 for a sole of 4 pads, 1 for a point foot); "
              "measured lists them foot after foot")
-      .at_least(1).at_most(64);
+      .at_least(1).at_most(64).required();
   schema.add("noise_std_N", &Params::noise_std_N, "nominal standard deviation of a healthy sensor's noise")
       .unit("N").greater_than(0.0)
       .plausible(1e-3, 200.0, "millinewtons (load cells) to tens of newtons (insoles)");
@@ -239,8 +239,12 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   derive(params_.sum_threshold_N, kSumThresholdWeight * params.weight_N);
   derive(params_.gain_min_load_N, kGainMinLoadWeight * params.weight_N);
   if (params_.airborne_clear_N >= params_.airborne_threshold_N) {
-    throw ConfigError("/params/airborne_clear_N", " = " + format_number(params_.airborne_clear_N) + " violates < " +
-                                                      format_number(params_.airborne_threshold_N) +
+    const auto shown = [](double given, double used) {
+      return format_number(used) + (given == 0.0 ? " (derived from noise_std_N)" : "");
+    };
+    throw ConfigError("/params/airborne_clear_N", " = " + shown(params.airborne_clear_N, params_.airborne_clear_N) +
+                                                      " violates < " +
+                                                      shown(params.airborne_threshold_N, params_.airborne_threshold_N) +
                                                       " (airborne_threshold_N: re-admission needs a lower level)");
   }
   // The feet: as many as the measured channels make, points_per_foot each.

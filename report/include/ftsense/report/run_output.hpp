@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -41,9 +42,15 @@ struct RunChannel {
   const std::vector<double>* true_fault = nullptr;
   const std::vector<double>* contact = nullptr;
 
+  // A required column (always there); an optional one may be absent: see has().
   [[nodiscard]] const std::vector<double>& operator[](MonitorColumn c) const {
-    return *columns[static_cast<std::size_t>(c)];
+    const std::vector<double>* column = columns[static_cast<std::size_t>(c)];
+    if (column == nullptr) {
+      throw std::out_of_range("run channel " + name + " has no " + std::string(monitor_column_info(c).key) + " column");
+    }
+    return *column;
   }
+  [[nodiscard]] bool has(MonitorColumn c) const { return columns[static_cast<std::size_t>(c)] != nullptr; }
   // The spans metrics take (truth spans empty when absent).
   [[nodiscard]] ChannelSeries series() const;
 };
