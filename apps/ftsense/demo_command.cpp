@@ -163,6 +163,34 @@ int run_quietly(const std::vector<std::string>& args, const Context& context) {
   return rc;
 }
 
+// One scenario of configs/scenarios/ end to end, without figures: simulated (cut to duration_s for
+// --quick), `config` told the log's period and resolution (config_for_log, copy at
+// `config_copy`), run into `run_out` with `extra_run_args`, and scored into `report_dir`. The
+// log is out/<scenario>.csv. Returns the first failing step's exit status, else kExitOk.
+struct ScoredRun {
+  Json scenario;
+  Report report;
+};
+int simulate_run_score(const std::string& configs, const std::string& out, const std::string& name, double duration_s,
+                       const std::string& config, const std::string& config_copy, const std::string& run_out,
+                       const std::vector<std::string>& extra_run_args, const std::string& report_dir,
+                       const std::string& title, const Context& context, ScoredRun& result) {
+  const std::string copy =
+      scenario_copy(configs + "/scenarios/" + name + ".json", out + "/" + name + "_scenario.json", duration_s);
+  result.scenario = parse_json_text(read_text_file(copy, "scenario"), copy);
+  const std::string log = out + "/" + name + ".csv";
+  if (int rc = simulate_command({"--scenario", copy, "--out", log, "--quiet"}); rc != kExitOk) return rc;
+  std::vector<std::string> run_args{"--config", config_for_log(config, result.scenario, config_copy), "--input", log,
+                                    "--output", run_out};
+  run_args.insert(run_args.end(), extra_run_args.begin(), extra_run_args.end());
+  if (int rc = run_quietly(run_args, context); rc != kExitOk) return rc;
+  ReportOptions ro;
+  ro.title = title;
+  ro.figures = false;
+  result.report = make_report(run_out, log, report_dir, ro);
+  return kExitOk;
+}
+
 // Removes a file if it is there; returns its size (0 when there was none).
 std::uintmax_t remove_file(const std::string& path) {
   std::error_code ec;
@@ -283,22 +311,16 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
                                   "longest delay [s]", "worst recovered RMSE [N]", "false alarms"},
                                  {}};
   for (const auto& s : kConditions) {
-    const std::string copy =
-        scenario_copy(configs + "/scenarios/" + s + ".json", out + "/" + s + "_scenario.json", duration);
-    const Json scenario = parse_json_text(read_text_file(copy, "scenario"), copy);
-    if (int rc = simulate_command({"--scenario", copy, "--out", out + "/" + s + ".csv", "--quiet"}); rc != kExitOk) {
-      return rc;
-    }
-    const std::string config = config_for_log(configs + "/suralp_robust.json", scenario, out + "/robust_" + s + "_config.json");
     const std::string run_out = out + "/" + s + "_run_robust.csv";
-    if (int rc = run_quietly({"--config", config, "--input", out + "/" + s + ".csv", "--output", run_out}, context);
+    ScoredRun scored_run;
+    if (int rc = simulate_run_score(configs, out, s, duration, configs + "/suralp_robust.json",
+                                    out + "/robust_" + s + "_config.json", run_out, {}, out + "/robust_" + s,
+                                    "robust pipeline, condition " + s, context, scored_run);
         rc != kExitOk) {
       return rc;
     }
-    ReportOptions ro;
-    ro.title = "robust pipeline, condition " + s;
-    ro.figures = false;
-    const Report r = make_report(run_out, out + "/" + s + ".csv", out + "/robust_" + s, ro);
+    const Json& scenario = scored_run.scenario;
+    const Report& r = scored_run.report;
     metrics["conditions"][s] = r.json;
     const Row row = summarise(r.json);
     const Json::json_pointer resolution("/sensors/force/resolution_N");
@@ -333,24 +355,16 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   std::string quadruped_fault_table;
   for (const std::string s : {"quadruped_clean", "quadruped_faults", "quadruped_more_faults", "quadruped_quiet_faults",
                               "quadruped_faults_200hz"}) {
-    const std::string copy =
-        scenario_copy(configs + "/scenarios/" + s + ".json", out + "/" + s + "_scenario.json", duration);
-    if (int rc = simulate_command({"--scenario", copy, "--out", out + "/" + s + ".csv", "--quiet"}); rc != kExitOk) {
-      return rc;
-    }
-    const Json scenario = parse_json_text(read_text_file(copy, "scenario"), copy);
-    const std::string config = config_for_log(configs + "/quadruped.json", scenario, out + "/" + s + "_config.json");
     const std::string run_out = out + "/" + s + "_run.csv";
-    if (int rc = run_quietly({"--config", config, "--input", out + "/" + s + ".csv", "--output", run_out, "--record",
-                              "split.forces"},
-                             context);
+    ScoredRun scored_run;
+    if (int rc = simulate_run_score(configs, out, s, duration, configs + "/quadruped.json", out + "/" + s + "_config.json",
+                                    run_out, {"--record", "split.forces"}, out + "/" + s,
+                                    "quadruped (configs/quadruped.json), scenario " + s, context, scored_run);
         rc != kExitOk) {
       return rc;
     }
-    ReportOptions ro;
-    ro.title = "quadruped (configs/quadruped.json), scenario " + s;
-    ro.figures = false;
-    const Report r = make_report(run_out, out + "/" + s + ".csv", out + "/" + s, ro);
+    const Json& scenario = scored_run.scenario;
+    const Report& r = scored_run.report;
     metrics["quadruped"][s] = r.json;
     const Row row = summarise(r.json);
     const std::vector<std::string> c = cells(row);

@@ -324,17 +324,7 @@ SimulationSummary simulate_quadruped(const Scenario& sc, std::uint64_t seed, std
       opt.progress(t, sc.duration_s);
       next_progress += opt.progress_interval_s;
     }
-    if (height < opt.min_quadruped_torso_height_m || tilt > opt.max_torso_tilt_rad || !std::isfinite(height)) {
-      sum.fell = true;
-      sum.fall_time_s = t;
-      std::ostringstream msg;
-      msg.imbue(std::locale::classic());
-      msg << "robot fell at t = " << t << " s (torso height " << height << " m, tilt " << tilt
-          << " rad; limits: height >= " << opt.min_quadruped_torso_height_m << " m, tilt <= "
-          << opt.max_torso_tilt_rad << " rad)";
-      sum.message = msg.str();
-      break;
-    }
+    if (detail::record_fall(t, height, tilt, opt.min_quadruped_torso_height_m, opt.max_torso_tilt_rad, sum)) break;
   }
   csv.flush();
   if (com_n > 0) sum.com_error_rms_m = std::sqrt(com_se / static_cast<double>(com_n));

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "ftsense/biped/frames.hpp"
+#include "ftsense/biped/stacked_feet.hpp"
 
 namespace ftsense::biped {
 
@@ -16,13 +17,8 @@ void LipmZmp::Params::describe(ParamSchema<Params>& schema) {
 
 LipmZmp::LipmZmp(const Params& params, const StageContext& context) : params_(params) {
   // Nothing wired sizes it for two feet; the pipeline reports the wire.
-  const std::size_t dim = context.wired_dim("foot_pos", 6);
-  if (dim % 3 != 0 || dim == 0) {
-    throw ConfigError("/inputs/foot_pos", "carries " + std::to_string(dim) +
-                                              " values; foot_pos stacks the (x, y, z) origins of the feet, a "
-                                              "multiple of 3");
-  }
-  feet_ = dim / 3;
+  feet_ = stacked_feet(context, 2);
+  const std::size_t dim = 3 * feet_;
   ports_.add_input(PortSpec{"total_force", 3, "N", "total ground reaction force F (e.g. m R_wb f_imu, low-passed)"}
                        .in_frame("world"));
   ports_.add_input(PortSpec{"com", 3, "m", "CoM position c"}.in_frame("world"));

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "ftsense/biped/contact_force_qp.hpp"
+#include "ftsense/biped/stacked_feet.hpp"
 
 namespace ftsense::biped {
 
@@ -18,13 +19,8 @@ void SupportForceDistribution::Params::describe(ParamSchema<Params>& schema) {
 SupportForceDistribution::SupportForceDistribution(const Params& params, const StageContext& context)
     : weight_m2_(params.weight_m2) {
   // Nothing wired sizes it for two feet; the pipeline reports the wire.
-  const std::size_t dim = context.wired_dim("foot_pos", 6);
-  if (dim % 3 != 0 || dim == 0) {
-    throw ConfigError("/inputs/foot_pos", "carries " + std::to_string(dim) +
-                                              " values; foot_pos stacks the (x, y, z) origins of the feet, a "
-                                              "multiple of 3");
-  }
-  feet_ = dim / 3;
+  feet_ = stacked_feet(context, 2);
+  const std::size_t dim = 3 * feet_;
   if (feet_ > static_cast<std::size_t>(kMaxContactPoints)) {
     throw ConfigError("/inputs/foot_pos", "stacks " + std::to_string(feet_) + " feet; at most " +
                                               std::to_string(kMaxContactPoints) + " are supported");

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ftsense/biped/stacked_feet.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::robot_model {
@@ -35,14 +36,9 @@ ContactFromFootHeight::ContactFromFootHeight(const Params& params, const StageCo
     : ground_height_m_(params.ground_height_m),
       touchdown_height_m_(params.touchdown_height_m),
       liftoff_height_m_(params.liftoff_threshold_m()) {
-  // Nothing wired (or an empty list) sizes it for one foot; the pipeline reports the wire.
-  const std::size_t dim = context.wired_dim("foot_pos", 3);
-  if (dim % 3 != 0) {
-    throw ConfigError("/inputs/foot_pos", "carries " + std::to_string(dim) +
-                                              " values; foot_pos stacks the (x, y, z) origins of the feet, a "
-                                              "multiple of 3");
-  }
-  const std::size_t feet = dim / 3;
+  // Nothing wired sizes it for one foot; the pipeline reports the wire.
+  const std::size_t feet = biped::stacked_feet(context, 1);
+  const std::size_t dim = 3 * feet;
   ports_.add_input(PortSpec{"foot_pos", dim, "m", "foot frame origins (x, y, z) stacked foot after foot"}
                        .in_frame("world")
                        .sized_by("as wired: 3 per foot"));

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "ftsense/biped/frames.hpp"
+#include "ftsense/biped/stacked_feet.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::robot_model {
@@ -29,13 +30,8 @@ void ContactPointHeight::Params::describe(ParamSchema<Params>& schema) {
 
 ContactPointHeight::ContactPointHeight(const Params& params, const StageContext& context) : params_(params) {
   // Nothing wired sizes it for two feet; the pipeline reports the wire.
-  const std::size_t dim = context.wired_dim("foot_pos", 6);
-  if (dim % 3 != 0 || dim == 0) {
-    throw ConfigError("/inputs/foot_pos", "carries " + std::to_string(dim) +
-                                              " values; foot_pos stacks the (x, y, z) origins of the feet, a "
-                                              "multiple of 3");
-  }
-  feet_ = dim / 3;
+  feet_ = biped::stacked_feet(context, 2);
+  const std::size_t dim = 3 * feet_;
   if (params_.points.empty()) params_.points = {{0.0, 0.0}};
   oriented_ = std::any_of(params_.points.begin(), params_.points.end(),
                           [](const std::array<double, 2>& p) { return p[0] != 0.0 || p[1] != 0.0; });
