@@ -220,7 +220,9 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
     }
     frozen_ticks_ = std::max(2, static_cast<int>(std::ceil(ticks - 1e-9)));
   }
-  smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * 10.0 * period_s_);
+  smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * kSmoothingHz * period_s_);
+  // Five time constants of that low-pass: a step has settled to within e^-5 (under 1 %).
+  smoother_settle_s_ = 5.0 / (2.0 * 3.141592653589793 * kSmoothingHz);
   min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
   // Thresholds left at 0 follow from the sensors' noise sigma and the robot's weight W (header).
   const double sigma = params.noise_std_N;
@@ -443,8 +445,18 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       } else if (!unloaded_zero) {
         c.stale_count = std::min(c.stale_count + 1, kCountCap);
       }
+      // A pad's own landing: a pad on the ground left no load by the others, reading its zero
+      // level, takes its load back as the foot rolls onto it. That contact is as abrupt as a
+      // foot's touchdown and rings alike (at 200 Hz: tens of newtons in one tick, chatter on and
+      // off), so the jump and spike tests leave the pad alone for touchdown_guard_s after it; a
+      // fault that starts then is left to the sum residual and the air test.
+      if (!airborne && std::isfinite(c.last_virtual) && c.last_virtual < params_.airborne_threshold_N &&
+          std::abs(c.previous) <= params_.airborne_threshold_N && x > params_.airborne_threshold_N) {
+        c.last_pad_landing_s = t;
+      }
+      const bool pad_landing = t - c.last_pad_landing_s < params_.touchdown_guard_s;
       const double spike = c.previous - 0.5 * (x + c.previous2);
-      if (!touching_down && std::abs(spike) > params_.spike_threshold_N &&
+      if (!touching_down && !pad_landing && std::abs(spike) > params_.spike_threshold_N &&
           std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N) {
         c.last_spike_s = t - period_s_;
       }
@@ -459,7 +471,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.jump_pending = false;
       // Any time but a landing: a rolling foot's pads change a few newtons per tick, far below
       // jump_threshold_N, and the sum-residual confirmation rejects what is not a sensor step.
-      const bool may_jump = !touching_down;
+      const bool may_jump = !touching_down && !pad_landing;
       if (std::abs(change) > params_.jump_threshold_N && std::abs(innovation) > params_.jump_threshold_N && may_jump &&
           !group_pending_) {
         c.jump_pending = true;
@@ -743,7 +755,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     virtual_force[j] = airborne ? 0.0
                        : fz_ok  ? std::max(0.0, fz - (total - recovered[j]))
                                 : std::numeric_limits<double>::quiet_NaN();
-    follow_test(c, measured[j], virtual_force[j]);
+    follow_test(c, measured[j], virtual_force[j], t);
     fault[j] = c.type != FaultType::none ? 1.0 : 0.0;
     type[j] = fault_code(c.type);
     const double x = measured[j];
@@ -781,10 +793,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   started_ = true;
 }
 
-void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_force) noexcept {
+void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_force, double t) noexcept {
   const bool judged = c.type == FaultType::offset || c.type == FaultType::drift ||
                       (c.type == FaultType::frozen && c.frozen_by_follow);
-  if (!judged) {
+  // The span is the fault's own output's: it starts once the smoothed reading has settled after
+  // the step that raised the flag (a frozen output that jumped to 150 N would otherwise span the
+  // smoother's rise to it).
+  if (!judged || t - c.flagged_since < smoother_settle_s_) {
     c.following = false;
     return;
   }

@@ -203,6 +203,35 @@ TEST(ContactForceFdi, AJumpMustBeASurpriseNotAFastRamp) {
   EXPECT_NEAR(step.outs[ContactForceFdi::kFaultEstimate][2], 29.0, 1e-9);
 }
 
+TEST(ContactForceFdi, APadTakingItsLoadBackIsALandingNotAJumpOrASpike) {
+  // 200 Hz, both feet flat, F_z steady (the trunk IMU does not see a pad's contact). Pad 2 sits on
+  // the ground with no load (the others carry F_z, its leave-one-out force is 0) and reads its
+  // zero level; at tick 20 it takes 45 N in one tick and chatters (45, -5, 70 N) before it
+  // settles at 80 N: the sum residual steps like a sensor's would, but a pad's own landing is
+  // not a jump and its ringing is not a spike. The same 60 N step on a loaded pad is an offset,
+  // as it is on the landed pad once touchdown_guard_s (0.15 s = 30 ticks) has passed.
+  const std::array<double, 4> landing{45.0, -5.0, 70.0, 80.0};
+  Feet landed(suralp(), 5e-3), loaded(suralp(), 5e-3);
+  double fz = 0.0;
+  for (std::size_t j = 0; j < kChannels; ++j) fz += j == 2 ? 0.0 : moving(j, 0, 0.0);
+  for (int k = 0; k < 80; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) landed.measured[j] = loaded.measured[j] = moving(j, k, 0.0);
+    const double alternation = k % 2 == 0 ? 0.0 : 1.0;
+    landed.measured[2] = k < 20 ? alternation : k < 24 ? landing[static_cast<std::size_t>(k - 20)] : 80.0 + alternation;
+    if (k >= 60) landed.measured[2] += 60.0;  // 0.2 s after its landing: a sensor step
+    if (k >= 20) loaded.measured[2] += 60.0;
+    landed.step(fz);
+    loaded.step(fz + moving(2, 0, 0.0));
+    ASSERT_EQ(landed.type(2), k >= 61 ? FaultType::offset : FaultType::none) << "tick " << k;
+    ASSERT_EQ(loaded.type(2), k >= 21 ? FaultType::offset : FaultType::none) << "tick " << k;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 2) {
+        ASSERT_EQ(landed.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ftsense::biped
 
@@ -233,6 +262,35 @@ FaultType after_landing(bool frozen, double& recovered) {
   }
   recovered = feet.outs[ContactForceFdi::kRecovered][0];
   return type;
+}
+
+// The same swing and landing, but pad 0 reads its zero level until tick 100 and then freezes at
+// 300 N +- 1 N in the air: a jump, raised as an offset 10 ticks later (the 0.01 s confirmation
+// window), when its 10 Hz smoothed reading has covered only half the step. The span that tells a
+// frozen output is the output's own, from when that smoothing has settled: without the wait, the
+// rise alone (about 140 N) is more than follow_ratio of the 400 N the load spans.
+FaultType frozen_by_a_jump_in_the_air(int& raised_at) {
+  Feet feet(suralp(), 1e-3);
+  raised_at = -1;
+  for (int k = 0; k < 600; ++k) {
+    const bool landed = k >= 200;
+    feet.left_foot_at(landed ? 0.0 : 0.1);
+    const double load = landed ? std::min(400.0, 2.0 * (k - 200)) : 0.0;
+    for (std::size_t j = 1; j < kChannels; ++j) feet.measured[j] = j < 4 ? (landed ? 100.0 + (k % 2) : k % 2) : moving(j, k, 0.0);
+    double others = 0.0;
+    for (std::size_t j = 1; j < kChannels; ++j) others += feet.measured[j];
+    const double noise = k % 2 == 0 ? 1.0 : -1.0;
+    feet.measured[0] = (k < 100 ? 0.0 : 300.0) + noise;
+    feet.step(others + load);
+    if (raised_at < 0 && feet.type(0) != FaultType::none) raised_at = k;
+  }
+  return feet.type(0);
+}
+
+TEST(ContactForceFdi, AFrozenOutputsSpanStartsAfterTheStepThatRaisedIt) {
+  int raised_at = -1;
+  EXPECT_EQ(frozen_by_a_jump_in_the_air(raised_at), FaultType::frozen);
+  EXPECT_EQ(raised_at, 109) << "a jump confirmed at the end of its 10-tick window";
 }
 
 TEST(ContactForceFdi, AnOffsetWhoseReadingDoesNotFollowTheLoadIsAFrozenOutputThatKeepsItsNoise) {

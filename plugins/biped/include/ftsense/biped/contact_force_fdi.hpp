@@ -34,7 +34,8 @@
 //             shown, or when the channel sticks again at the value of its previous stuck episode
 //             (a clipped load returns to the same ceiling).
 //   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree (not
-//             within touchdown_guard_s of a touchdown: a landing heel rings like a spike); the flag
+//             within touchdown_guard_s of a touchdown or of the pad's own landing: a landing heel
+//             rings like a spike); the flag
 //             stays spike_hold_s after the last spike.
 //   noise     over noise_window_s, more than half of the second differences d2 exceed
 //             noise_factor * sqrt(6 (sigma^2 + q^2 / 4)) (their healthy standard deviation, q / 2
@@ -51,7 +52,10 @@
 //             prediction 2 N_j,k-1 - N_j,k-2 (a step is a surprise, a fast healthy load change
 //             at a slow log rate is not), with no foot touching down within
 //             touchdown_guard_s (a landing impact jumps pads and, unseen by the trunk IMU, the
-//             sum residual; a rolling foot's pads change only a few N per tick); confirmed when the sum
+//             sum residual; a rolling foot's pads change only a few N per tick), nor within
+//             touchdown_guard_s of the pad's own landing (a pad on the ground left no load by the
+//             others, on its zero level, that takes load back: tens of N in one tick at 200 Hz,
+//             unseen by the IMU like any contact); confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
 //             each other): an abrupt fault, isolated at once. While a loaded channel is
@@ -77,7 +81,9 @@
 //             touchdown_guard_s of a touchdown (impacts).
 //   follow    a channel raised as offset or drift whose smoothed reading spans less than
 //             follow_ratio of what its leave-one-out force (smoothed alike) spans since, once that force has moved
-//             by 2 sum_threshold_N (beyond its own error): the reading does not follow the load,
+//             by 2 sum_threshold_N (beyond its own error), both spans taken from when the
+//             smoothing has settled after the flag was raised (five time constants of its 10 Hz
+//             low-pass, so the step that raised it is not counted): the reading does not follow the load,
 //             a frozen output that keeps its noise; re-typed frozen and substituted. Re-admitted
 //             when the reading spans half the force's move again.
 //   negative  a pad only pushes: a loaded pad (leave-one-out force above gain_min_load_N)
@@ -212,6 +218,7 @@ class ContactForceFdi {
     int stale_episodes = 0;            // consecutive stuck episodes at that same value
     double max_seen = 0.0;
     double last_spike_s = -1e9;
+    double last_pad_landing_s = -1e9;  // the pad last took load back from its zero level
     std::vector<double> second_diff;  // ring of |d2|, noise test
     std::vector<double> first_diff;   // ring of |d1| at the same ticks (whiteness)
     std::size_t second_diff_next = 0;
@@ -255,7 +262,7 @@ class ContactForceFdi {
   void restart_gain_window() noexcept;
   void clear(Channel& c) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
-  void follow_test(Channel& c, double reading, double virtual_force) noexcept;
+  void follow_test(Channel& c, double reading, double virtual_force, double t) noexcept;
 
   Ports ports_;
   Params params_;
@@ -284,7 +291,9 @@ class ContactForceFdi {
   double repeat_band_N_ = 0.0;  // q / 2
   int jump_window_ticks_;
   int min_airborne_samples_ = 10;
-  double smoothing_ = 1.0;  // gain of the 10 Hz low-pass of `smoothed` and `virtual_smoothed` per tick
+  static constexpr double kSmoothingHz = 10.0;  // cutoff of `smoothed` and `virtual_smoothed`
+  double smoothing_ = 1.0;  // gain of that low-pass per tick
+  double smoother_settle_s_ = 0.0;  // its settling time (five time constants)
   // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.
   std::vector<double> gain_xx_;
   std::vector<double> gain_xr_;
