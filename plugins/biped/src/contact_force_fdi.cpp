@@ -773,6 +773,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   // The corrected sum residual: what no channel explains.
   const double residual = fz_ok ? total - fz : 0.0;
+  if (fz_ok) {
+    for (std::size_t j = 0; j < channels_.size(); ++j) {
+      offset_or_gain_test(channels_[j], measured[j], height[j] > params_.airborne_height_m, residual);
+    }
+  }
   gain_regression(measured, recovered, residual, fz_ok && all_finite_readings && !touching_down && !substituting_loaded,
                   t);
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
@@ -807,6 +812,7 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
   const double smoothed = c.smoothed;
   if (!c.following) {
     c.following = true;
+    c.offset_power = c.gain_power = 0.0;
     c.virtual_smoothed = virtual_force;
     c.reading_lo = c.reading_hi = smoothed;
     c.virtual_lo = c.virtual_hi = virtual_force;
@@ -826,6 +832,27 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
     c.following = false;  // judge re-admission on a fresh span
   } else if (c.frozen_by_follow && reading_span >= 0.5 * load_span) {
     clear(c);  // the reading follows the load again
+  }
+}
+
+void ContactForceFdi::offset_or_gain_test(Channel& c, double reading, bool airborne, double residual) noexcept {
+  // Raised by a jump on a loaded pad and not yet seen in the air: x = L + b and x = k L, with
+  // k = 1 + b / L0 (L0 the load before the jump), fit the onset alike; they part as the load moves.
+  if (c.type != FaultType::offset || c.fit_has_air || !c.following || !std::isfinite(reading)) return;
+  if (!(c.jump_load_before > params_.gain_min_load_N) || !(std::abs(c.offset) > 0.1 * c.jump_load_before)) return;
+  const double k = 1.0 + c.offset / c.jump_load_before;
+  if (std::abs(k) < kMinGain) return;  // a dead output, not a scale: left to the air test
+  // The residual takes this channel as x - b; taken as x / k instead it moves by x / k - (x - b).
+  const double as_gain = airborne ? residual : residual - (reading - c.offset) + reading / k;
+  c.offset_power += residual * residual;
+  c.gain_power += as_gain * as_gain;
+  // Judged once the load has moved beyond the total force's own error, as the follow test; the
+  // gain must leave under half the offset's residual power (a clear win, not a tie on noise).
+  if (c.virtual_hi - c.virtual_lo < 2.0 * params_.sum_threshold_N) return;
+  if (c.gain_power < 0.5 * c.offset_power) {
+    c.type = FaultType::gain;
+    c.gain = k;
+    c.sign_fault = k < 0.0;
   }
 }
 

@@ -293,6 +293,37 @@ TEST(ContactForceFdi, AFrozenOutputsSpanStartsAfterTheStepThatRaisedIt) {
   EXPECT_EQ(raised_at, 109) << "a jump confirmed at the end of its 10-tick window";
 }
 
+// Both feet flat, F_z exact. Pad 2 carries 200 N (+ its 1 N alternation) when, at tick 50, its
+// reading doubles (gain x2) or gains 200 N (offset): the same jump, raised as an offset 10 ticks
+// later. Then its load rises by 1 N per tick to 500 N. Taken as x - b, a gain leaves a sum
+// residual that grows with the load; taken as x / k, k = 1 + jump / load before = 1 + 199 / 201,
+// it leaves none: re-typed gain once the load has moved by 2 sum_threshold_N. An offset's residual
+// stays at zero taken as x - b: it stays an offset.
+FaultType after_a_jump_under_a_rising_load(bool gain, double& recovered, double& load) {
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 600; ++k) {
+    load = (k < 100 ? 200.0 : std::min(500.0, 200.0 + (k - 100))) + (k % 2 == 0 ? 0.0 : 1.0);
+    double fz = load;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j == 2) continue;
+      feet.measured[j] = moving(j, k, 0.0);
+      fz += feet.measured[j];
+    }
+    feet.measured[2] = k < 50 ? load : gain ? 2.0 * load : load + 200.0;
+    feet.step(fz);
+  }
+  recovered = feet.outs[ContactForceFdi::kRecovered][2];
+  return feet.type(2);
+}
+
+TEST(ContactForceFdi, AJumpUnderLoadIsAGainWhenTheResidualGrowsWithTheLoadAsAnOffset) {
+  double recovered = 0.0, load = 0.0;
+  EXPECT_EQ(after_a_jump_under_a_rising_load(true, recovered, load), FaultType::gain);
+  EXPECT_NEAR(recovered, 2.0 * load / (1.0 + 199.0 / 201.0), 1e-9) << "x / k, k from the onset jump";
+  EXPECT_EQ(after_a_jump_under_a_rising_load(false, recovered, load), FaultType::offset);
+  EXPECT_NEAR(recovered, load + 1.0, 1e-9) << "x - b, b = 199 N: the jump";
+}
+
 TEST(ContactForceFdi, AnOffsetWhoseReadingDoesNotFollowTheLoadIsAFrozenOutputThatKeepsItsNoise) {
   double recovered = 0.0;
   EXPECT_EQ(after_landing(true, recovered), FaultType::frozen);

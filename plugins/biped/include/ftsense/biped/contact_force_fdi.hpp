@@ -86,6 +86,12 @@
 //             low-pass, so the step that raised it is not counted): the reading does not follow the load,
 //             a frozen output that keeps its noise; re-typed frozen and substituted. Re-admitted
 //             when the reading spans half the force's move again.
+//   offset or gain  a jump on a loaded pad (load L0 > gain_min_load_N before it) is an offset
+//             b or a gain k = 1 + b / L0 alike at its onset; as the load moves they part. Over the
+//             follow test's span, the corrected sum residual r (the channel taken as x - b) and
+//             r - (x - b) + x / k (taken as x / k) accumulate their power; once the leave-one-out
+//             force has moved by 2 sum_threshold_N, the gain is taken when it leaves under half
+//             the offset's power (a gain x2 raised on its jump no longer waits for the swing).
 //   negative  a pad only pushes: a loaded pad (leave-one-out force above gain_min_load_N)
 //             reading below -airborne_threshold_N for as many ticks as the airborne mean takes
 //             is a gain fault with k < 0 (a sign flip) when the least-squares line of the reading
@@ -248,6 +254,9 @@ class ContactForceFdi {
     bool frozen_by_follow = false;
     double reading_lo = 0.0, reading_hi = 0.0, virtual_lo = 0.0, virtual_hi = 0.0;
     double virtual_smoothed = 0.0;  // the same 10 Hz low-pass as `smoothed`: both lag alike
+    // Offset or gain? Over the same span, the corrected sum residual's power with the offset's
+    // correction and with the gain k = 1 + jump / load that the same onset jump implies.
+    double offset_power = 0.0, gain_power = 0.0;
     // A pad that reads below zero under load (sign flip): the run, its regression on the load.
     double last_virtual = 0.0;  // the leave-one-out force of the previous tick
     int negative_ticks = 0, positive_ticks = 0;
@@ -263,6 +272,8 @@ class ContactForceFdi {
   void clear(Channel& c) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
   void follow_test(Channel& c, double reading, double virtual_force, double t) noexcept;
+  // The offset-or-gain test (header comment), once the corrected sum residual of this tick is known.
+  void offset_or_gain_test(Channel& c, double reading, bool airborne, double residual) noexcept;
 
   Ports ports_;
   Params params_;
