@@ -56,6 +56,8 @@ InsoleVirtualSensor::InsoleVirtualSensor(const Params& params, const ftsense::St
   ports_.add_output({"residual", n, "N", "r_j = s_j - s_hat_j"});
   ports_.add_output({"stance", n, "1", "1 when the other sensors say the foot is loaded"});
   ports_.add_output({"available", n, "1", "0 when a sensor s_hat_j needs is not finite"});
+  ports_.add_output({"signature", n * n, "1",
+                     "d r_j / d s_k, n x n row-major: 1 on the diagonal, -c_jk in stance, 0 in swing"});
 }
 // [end-snippet]
 
@@ -66,6 +68,7 @@ void InsoleVirtualSensor::step(const ftsense::StepIO& io) noexcept {
   const auto residual = io.out(kResidual);
   const auto stance = io.out(kStance);
   const auto available = io.out(kAvailable);
+  const auto signature = io.out(kSignature);
   const std::size_t n = sensor_count_;
   for (std::size_t j = 0; j < n; ++j) {
     const double* row = coefficients_.data() + j * n;  // [a_j, c_jk for k != j]
@@ -85,6 +88,15 @@ void InsoleVirtualSensor::step(const ftsense::StepIO& io) noexcept {
     if (!finite) estimate[j] = std::numeric_limits<double>::quiet_NaN();
     else estimate[j] = on_ground ? sum : 0.0;  // swing: an unloaded insole reads 0
     residual[j] = measured[j] - estimate[j];
+    // How a fault on s_k moves r_j: fully for k = j, by -c_jk while s_hat_j is the regression.
+    for (std::size_t k = 0, column = 1; k < n; ++k) {
+      if (k == j) {
+        signature[j * n + k] = 1.0;
+        continue;
+      }
+      const double c_jk = row[column++];
+      signature[j * n + k] = on_ground ? -c_jk : 0.0;
+    }
   }
 }
 // [end-snippet]

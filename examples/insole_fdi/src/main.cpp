@@ -6,11 +6,13 @@
 //
 //   insole_fdi fit --config config/insole_fdi.json --input data/GaCo01_01.csv [--write]
 //       fits the virtual sensor's coefficients on the healthy stretch [0, 40) s, prints the fit,
-//       and checks them against the config (exit 1 when they differ); --write stores them.
+//       measures each signature_isolator's fault-free residual noise there, and checks both
+//       against the config (exit 1 when they differ); --write stores them.
 //   insole_fdi evaluate --config config/insole_fdi.json --input data/GaCo01_01.csv
 //       runs the pipeline over the walk twice: as recorded (virtual-sensor error, false alarms)
-//       and with the fault schedule below injected (detection delay, false alarms). Exit 1 when
-//       an injected fault is missed or an alarm is raised outside the faults.
+//       and with the fault schedule below injected (detection delay, type shown, false and cross
+//       alarms). Exit 1 when an injected fault is missed, an alarm is raised outside the faults, or
+//       a healthy sensor is flagged while another is faulty (a cross alarm: not isolated).
 //
 // Exit status: 0 success, 1 a check failed, 2 a usage, config or data error.
 
@@ -93,6 +95,50 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
+// Runs the pipeline over the whole log; `faults` are injected into the measured columns.
+// `on_tick(k, pipeline)` sees every tick after the step.
+template <class OnTick>
+void run_pipeline(ftsense::Pipeline& pipeline, const Log& log, const std::vector<InjectedFault>& faults,
+                  const std::vector<std::vector<std::size_t>>& input_columns, OnTick&& on_tick) {
+  pipeline.reset();
+  std::vector<double> row(log.columns.size());
+  std::map<std::size_t, double> frozen_value;  // column -> value held
+  std::vector<std::size_t> fault_columns;
+  for (const auto& f : faults) fault_columns.push_back(column_index(log, f.channel + "/force_N", "schedule"));
+  for (std::size_t k = 0; k < log.rows.size(); ++k) {
+    const double t = log.time_s[k];
+    row = log.rows[k];
+    for (std::size_t i = 0; i < faults.size(); ++i) {
+      const auto& f = faults[i];
+      if (t < f.start_s || t >= f.end_s) continue;
+      double& value = row[fault_columns[i]];
+      switch (f.type) {
+        case FaultType::offset: value += f.size; break;
+        case FaultType::drift: value += f.size * (t - f.start_s); break;
+        case FaultType::frozen: value = frozen_value.try_emplace(fault_columns[i], value).first->second; break;
+        default: break;  // the schedule holds only the three types above
+      }
+    }
+    for (std::size_t in = 0; in < input_columns.size(); ++in) {
+      auto values = pipeline.input_values(in);
+      for (std::size_t c = 0; c < values.size(); ++c) values[c] = row[input_columns[in][c]];
+    }
+    pipeline.step(t);
+    on_tick(k, pipeline);
+  }
+}
+
+// The log's column of every pipeline input value, input by input.
+std::vector<std::vector<std::size_t>> input_columns_of(const ftsense::Pipeline& pipeline, const Log& log,
+                                                       const std::string& data_path) {
+  std::vector<std::vector<std::size_t>> columns;
+  for (const auto& in : pipeline.inputs()) {
+    columns.emplace_back();
+    for (const auto& c : in.columns) columns.back().push_back(column_index(log, c, data_path));
+  }
+  return columns;
+}
+
 // ---------------------------------------------------------------------------------------------
 // fit
 
@@ -101,6 +147,57 @@ double round_significant(double value, int digits) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*g", digits, value);
   return std::stod(text);
+}
+
+// Every signature_isolator's residual_noise_std: the RMS of the fault-free residual it judges,
+// through the pipeline with the fitted coefficients over the healthy stretch, from the end of the
+// warm-up of the detector that raises its alarms (whose filters start there). Rounded to 3
+// significant digits and stored in `config`; returns whether the config held those values.
+bool isolator_noise(ftsense::Json& config, const std::string& config_path, const Log& log,
+                    const std::string& data_path) {
+  bool all_match = true;
+  for (auto& stage : config.at("stages")) {
+    if (stage.at("plugin") != "signature_isolator") continue;
+    const std::string stage_name = stage.at("name").get<std::string>();
+    const auto& inputs = stage.at("inputs");
+    if (!inputs.at("residual").is_string() || !inputs.at("alarm").is_string()) {
+      throw UsageError(config_path + ": stage " + stage_name + ": fit needs 'residual' and 'alarm' wired to one signal each");
+    }
+    const std::string alarm_wire = inputs.at("alarm").get<std::string>();
+    double warmup_s = 0.0;
+    for (const auto& other : config.at("stages")) {
+      if (other.at("name") == alarm_wire.substr(0, alarm_wire.find('.')) && other.contains("params")) {
+        warmup_s = other.at("params").value("warmup_s", 0.0);
+      }
+    }
+    ftsense::Pipeline pipeline = ftsense::Pipeline::build(config, insole::plugins::registry());
+    const ftsense::SignalRef residual = pipeline.signal(inputs.at("residual").get<std::string>());
+    std::vector<double> sum_sq;
+    std::size_t samples = 0;
+    run_pipeline(pipeline, log, {}, input_columns_of(pipeline, log, data_path),
+                 [&](std::size_t k, const ftsense::Pipeline& p) {
+                   const double t = log.time_s[k];
+                   if (t - log.time_s.front() < warmup_s || t >= kFitEndS) return;
+                   const auto r = p.values(residual);
+                   sum_sq.resize(r.size(), 0.0);
+                   for (std::size_t i = 0; i < r.size(); ++i) sum_sq[i] += std::isfinite(r[i]) ? r[i] * r[i] : 0.0;
+                   ++samples;
+                 });
+    if (samples == 0) throw UsageError(data_path + ": no sample after the warm-up in the healthy stretch");
+    std::vector<double> noise;
+    for (double s : sum_sq) noise.push_back(round_significant(std::sqrt(s / static_cast<double>(samples)), 3));
+    auto& params = stage["params"];
+    const auto it = params.find("residual_noise_std");
+    bool match = it != params.end() && it->is_array() && it->size() == noise.size();
+    for (std::size_t i = 0; match && i < noise.size(); ++i) match = (*it)[i].get<double>() == noise[i];
+    std::cout << "stage " << stage_name << ": residual noise (RMS over " << samples << " fault-free samples from "
+              << warmup_s << " s):";
+    for (double v : noise) std::cout << ' ' << v;
+    std::cout << " N\n  residual_noise_std in the config: " << (match ? "matches" : "DIFFERS") << '\n';
+    params["residual_noise_std"] = noise;
+    all_match = all_match && match;
+  }
+  return all_match;
 }
 
 int fit_command(const std::string& config_path, const std::string& data_path, bool write) {
@@ -160,6 +257,7 @@ int fit_command(const std::string& config_path, const std::string& data_path, bo
     params["coefficients"] = rounded;
   }
   if (!any_stage) throw UsageError(config_path + ": no stage uses plugin insole_virtual_sensor");
+  all_match = isolator_noise(config, config_path, log, data_path) && all_match;
   if (write) {
     std::ofstream out(config_path);
     out << config.dump(2) << '\n';
@@ -187,44 +285,12 @@ struct ChannelStats {
   double healthy_alarm_s = 0.0;
   // faulty run
   std::optional<double> detection_delay_s;
+  std::map<FaultType, std::size_t> shown;  // ticks per type shown while the channel's fault is active
   int false_alarms = 0;  // raised while no fault is active anywhere (nor clearing)
   double false_alarm_s = 0.0;
   int cross_alarms = 0;  // raised on this healthy channel while another channel is faulty
   double cross_alarm_s = 0.0;
 };
-
-// Runs the pipeline over the whole log; `faults` are injected into the measured columns.
-// `on_tick(k, pipeline)` sees every tick after the step.
-template <class OnTick>
-void run_pipeline(ftsense::Pipeline& pipeline, const Log& log, const std::vector<InjectedFault>& faults,
-                  const std::vector<std::vector<std::size_t>>& input_columns, OnTick&& on_tick) {
-  pipeline.reset();
-  std::vector<double> row(log.columns.size());
-  std::map<std::size_t, double> frozen_value;  // column -> value held
-  std::vector<std::size_t> fault_columns;
-  for (const auto& f : faults) fault_columns.push_back(column_index(log, f.channel + "/force_N", "schedule"));
-  for (std::size_t k = 0; k < log.rows.size(); ++k) {
-    const double t = log.time_s[k];
-    row = log.rows[k];
-    for (std::size_t i = 0; i < faults.size(); ++i) {
-      const auto& f = faults[i];
-      if (t < f.start_s || t >= f.end_s) continue;
-      double& value = row[fault_columns[i]];
-      switch (f.type) {
-        case FaultType::offset: value += f.size; break;
-        case FaultType::drift: value += f.size * (t - f.start_s); break;
-        case FaultType::frozen: value = frozen_value.try_emplace(fault_columns[i], value).first->second; break;
-        default: break;  // the schedule holds only the three types above
-      }
-    }
-    for (std::size_t in = 0; in < input_columns.size(); ++in) {
-      auto values = pipeline.input_values(in);
-      for (std::size_t c = 0; c < values.size(); ++c) values[c] = row[input_columns[in][c]];
-    }
-    pipeline.step(t);
-    on_tick(k, pipeline);
-  }
-}
 
 int evaluate_command(const std::string& config_path, const std::string& data_path) {
   const auto registry = insole::plugins::registry();
@@ -232,11 +298,7 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
       ftsense::Pipeline::build(ftsense::parse_json_text(read_text(config_path), config_path), registry);
   if (!pipeline.has_monitor()) throw UsageError(config_path + ": needs a 'monitor' section");
   const Log log = read_log(data_path);
-  std::vector<std::vector<std::size_t>> input_columns;
-  for (const auto& in : pipeline.inputs()) {
-    input_columns.emplace_back();
-    for (const auto& c : in.columns) input_columns.back().push_back(column_index(log, c, data_path));
-  }
+  const auto input_columns = input_columns_of(pipeline, log, data_path);
   const ftsense::Monitor& monitor = pipeline.monitor();
   const std::size_t n = monitor.channels.size();
   std::optional<ftsense::SignalRef> stance;
@@ -281,6 +343,7 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
   run_pipeline(pipeline, log, kSchedule, input_columns, [&](std::size_t k, const ftsense::Pipeline& p) {
     const double t = log.time_s[k];
     const auto fault = p.values(monitor[ftsense::MonitorColumn::fault]);
+    const auto fault_type = p.values(monitor[ftsense::MonitorColumn::fault_type]);
     bool any_fault_active = false;
     for (const auto& f : kSchedule) any_fault_active = any_fault_active || (t >= f.start_s && t < f.end_s + kClearGraceS);
     for (std::size_t c = 0; c < n; ++c) {
@@ -291,6 +354,7 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
         const auto& f = kSchedule[*fault_of[c]];
         if (t >= f.start_s && t < f.end_s) {
           if (!stats[c].detection_delay_s) stats[c].detection_delay_s = t - f.start_s;
+          ++stats[c].shown[ftsense::fault_type_from_code(fault_type[c]).value_or(FaultType::unclassified)];
           continue;
         }
         if (t >= f.end_s && t < f.end_s + kClearGraceS) continue;  // clearing
@@ -319,10 +383,10 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
     if (f.type == FaultType::frozen) std::printf(", held at the value read at %.1f s", f.start_s);
     std::printf("\n");
   }
-  std::printf("\n%-9s | %9s %9s | %14s | %-6s %9s | %14s | %14s\n", "channel", "rms err", "stance", "alarms",
-              "fault", "delay", "false alarms", "cross alarms");
-  std::printf("%-9s | %9s %9s | %14s | %-6s %9s | %14s | %14s\n", "", "[N]", "rms [N]", "recorded n/s",
-              "", "[s]", "injected n/s", "injected n/s");
+  std::printf("\n%-9s | %9s %9s | %14s | %-6s %9s %-12s | %14s | %14s\n", "channel", "rms err", "stance", "alarms",
+              "fault", "delay", "type shown", "false alarms", "cross alarms");
+  std::printf("%-9s | %9s %9s | %14s | %-6s %9s %-12s | %14s | %14s\n", "", "[N]", "rms [N]", "recorded n/s",
+              "", "[s]", "", "injected n/s", "injected n/s");
   int missed = 0;
   int false_alarms = 0;
   int cross_alarms = 0;
@@ -333,6 +397,14 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
         s.stance_samples > 0 ? std::sqrt(s.stance_sum_sq_error / static_cast<double>(s.stance_samples)) : NAN;
     std::string type = "-";
     std::string delay = "-";
+    std::string shown = "-";  // the type the pipeline showed most while the fault was active
+    std::size_t most = 0;
+    for (const auto& [t, ticks] : s.shown) {
+      if (ticks > most) {
+        most = ticks;
+        shown = std::string(to_string(t));
+      }
+    }
     if (fault_of[c]) {
       type = to_string(kSchedule[*fault_of[c]].type);
       if (s.detection_delay_s) {
@@ -346,15 +418,15 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
     }
     false_alarms += s.healthy_alarms + s.false_alarms;
     cross_alarms += s.cross_alarms;
-    std::printf("%-9s | %9.2f %9.2f | %6d %6.2f s | %-6s %9s | %6d %6.2f s | %6d %6.2f s\n",
+    std::printf("%-9s | %9.2f %9.2f | %6d %6.2f s | %-6s %9s %-12s | %6d %6.2f s | %6d %6.2f s\n",
                 monitor.channels[c].c_str(), rms, stance_rms, s.healthy_alarms, s.healthy_alarm_s,
-                type.c_str(), delay.c_str(), s.false_alarms, s.false_alarm_s, s.cross_alarms,
+                type.c_str(), delay.c_str(), shown.c_str(), s.false_alarms, s.false_alarm_s, s.cross_alarms,
                 s.cross_alarm_s);
   }
   std::printf("\nmissed faults %d, false alarms %d (recorded walk, and injected walk outside the faults "
               "and %.0f s after each), cross alarms %d (healthy channels flagged while another is faulty)\n",
               missed, false_alarms, kClearGraceS, cross_alarms);
-  if (missed > 0 || false_alarms > 0) {
+  if (missed > 0 || false_alarms > 0 || cross_alarms > 0) {
     std::printf("FAIL\n");
     return 1;
   }
@@ -411,8 +483,9 @@ int main(int argc, char** argv) {
        [](const std::vector<std::string>& args, const ftsense::app::Context& context) {
          return own_verb(context.command("fit"), args, kFitOptions,
                          "Fits each insole_virtual_sensor stage's coefficients on the healthy stretch [0, 40) s\n"
-                         "of --input, prints the fit and checks the config's coefficients against it\n"
-                         "(exit 1 when they differ); --write stores the fitted ones in --config.",
+                         "of --input, prints the fit, measures each signature_isolator's fault-free\n"
+                         "residual noise there (through the pipeline with the fitted coefficients), and\n"
+                         "checks both against the config (exit 1 when they differ); --write stores them.",
                          [](const ftsense::app::Options& o) {
                            return fit_command(o.at("config"), o.at("input"), o.count("write") > 0);
                          });
@@ -422,8 +495,9 @@ int main(int argc, char** argv) {
          return own_verb(context.command("evaluate"), args, kEvaluateOptions,
                          "Runs the pipeline over the walk as recorded (virtual-sensor error on the held-out\n"
                          "part, false alarms) and with a fixed fault schedule injected (offset, drift,\n"
-                         "frozen: detection delay, false and cross alarms). Exit 1 when an injected fault\n"
-                         "is missed or an alarm is raised outside the faults.",
+                         "frozen: detection delay, type shown, false and cross alarms). Exit 1 when an\n"
+                         "injected fault is missed, an alarm is raised outside the faults, or a healthy\n"
+                         "sensor is flagged while another is faulty.",
                          [](const ftsense::app::Options& o) { return evaluate_command(o.at("config"), o.at("input")); });
        }}};
   return ftsense::app::main(argc, argv, registry,

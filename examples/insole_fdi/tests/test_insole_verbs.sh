@@ -38,7 +38,7 @@ channels="left/L1 left/L2 left/L3 left/L4 left/L5 left/L6 left/L7 left/L8 right/
 "$insole" plugins > "$work/out" 2> "$work/err"
 check plugins_lists_its_own 0 $? "^insole_virtual_sensor$" "$work/out" "^low_pass$" "$work/out"
 "$insole" check -c "$config" > "$work/out" 2> "$work/err"
-check check_with_its_plugin 0 $? "^ok: .*insole_fdi.json: 2 inputs, 5 stages, 16 monitored channels$" "$work/out"
+check check_with_its_plugin 0 $? "^ok: .*insole_fdi.json: 2 inputs, 7 stages, 16 monitored channels$" "$work/out"
 "$ftsense" check -c "$config" > "$work/out" 2> "$work/err"
 check ftsense_does_not_know_it 2 $? "unknown plugin 'insole_virtual_sensor'" "$work/err"
 

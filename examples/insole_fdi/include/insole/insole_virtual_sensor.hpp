@@ -18,10 +18,11 @@
 //
 // Ports: input `measured` [N], n values (n from the wiring); outputs `virtual` [N],
 // `residual` [N] (r_j = s_j - s_hat_j), `stance` [1] (stance_j as 0/1) and `available` [1] (0/1),
-// n values each. ftsense's independence rule, in a stage as in the monitor, accepts a leave-one-out
-// output as the virtual sensor of exactly the measured signal it leaves out, so `virtual` could
-// also be wired into a difference_residual next to `measured`; the `residual` output saves that
-// stage.
+// n values each; `signature` [1], n x n: d r_j / d s_k (1 for k = j; -c_jk in stance, 0 in swing),
+// how a fault on one sensor moves every residual, for signature_isolator. ftsense's independence
+// rule, in a stage as in the monitor, accepts a leave-one-out output as the virtual sensor of
+// exactly the measured signal it leaves out, so `virtual` could also be wired into a
+// difference_residual next to `measured`; the `residual` output saves that stage.
 
 // [snippet:plugin_struct]
 #include <cstddef>
@@ -46,6 +47,7 @@ class InsoleVirtualSensor {
   static constexpr std::size_t kResidual = 1;
   static constexpr std::size_t kStance = 2;
   static constexpr std::size_t kAvailable = 3;
+  static constexpr std::size_t kSignature = 4;
 
   struct Params {
     double body_weight_N = 0.0;

@@ -9,6 +9,7 @@
 #include "ftsense/generic/orientation_to_rpy.hpp"
 #include "ftsense/generic/random_walk_fault_filter.hpp"
 #include "ftsense/generic/signal_validator.hpp"
+#include "ftsense/generic/signature_isolator.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
 #include "ftsense/generic/unloaded_reading_residual.hpp"
 #include "ftsense/plugin_set.hpp"
@@ -17,6 +18,6 @@ namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
-                                  UnloadedReadingResidual>;
+                                  UnloadedReadingResidual, SignatureIsolator>;
 
 }  // namespace ftsense::generic
