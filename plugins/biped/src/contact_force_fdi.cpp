@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "ftsense/biped/frames.hpp"
 #include "ftsense/fault_type.hpp"
@@ -671,12 +672,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           // Raised by a jump, zero in the air: a gain fault if the pad was loaded, else over. A
           // pad that kept under a tenth of its load reads nothing, not a scale of it: its output
           // is dead (frozen near zero) and is substituted; dividing by k would blow it up.
-          if (c.jump_load_before > params_.gain_min_load_N && std::abs(c.offset) > 0.1 * c.jump_load_before) {
-            const double k = 1.0 + c.offset / c.jump_load_before;
-            if (std::abs(k) >= kMinGain) {
-              c.type = FaultType::gain;
-              c.gain = k;
-              c.sign_fault = k < 0.0;  // re-admitted when it reads right side up under load
+          if (const auto k = onset_gain(c)) {
+            if (std::abs(*k) >= kMinGain) {
+              take_gain(c, *k);
             } else {
               c.type = FaultType::frozen;
               c.frozen_by_follow = true;  // re-admitted only when the reading follows the load again
@@ -839,21 +837,29 @@ void ContactForceFdi::offset_or_gain_test(Channel& c, double reading, bool airbo
   // Raised by a jump on a loaded pad and not yet seen in the air: x = L + b and x = k L, with
   // k = 1 + b / L0 (L0 the load before the jump), fit the onset alike; they part as the load moves.
   if (c.type != FaultType::offset || c.fit_has_air || !c.following || !std::isfinite(reading)) return;
-  if (!(c.jump_load_before > params_.gain_min_load_N) || !(std::abs(c.offset) > 0.1 * c.jump_load_before)) return;
-  const double k = 1.0 + c.offset / c.jump_load_before;
-  if (std::abs(k) < kMinGain) return;  // a dead output, not a scale: left to the air test
+  const auto k = onset_gain(c);
+  if (!k || std::abs(*k) < kMinGain) return;  // none, or a dead output (not a scale): left to the air test
   // The residual takes this channel as x - b; taken as x / k instead it moves by x / k - (x - b).
-  const double as_gain = airborne ? residual : residual - (reading - c.offset) + reading / k;
+  const double as_gain = airborne ? residual : residual - (reading - c.offset) + reading / *k;
   c.offset_power += residual * residual;
   c.gain_power += as_gain * as_gain;
   // Judged once the load has moved beyond the total force's own error, as the follow test; the
   // gain must leave under half the offset's residual power (a clear win, not a tie on noise).
   if (c.virtual_hi - c.virtual_lo < 2.0 * params_.sum_threshold_N) return;
-  if (c.gain_power < 0.5 * c.offset_power) {
-    c.type = FaultType::gain;
-    c.gain = k;
-    c.sign_fault = k < 0.0;
+  if (c.gain_power < 0.5 * c.offset_power) take_gain(c, *k);
+}
+
+std::optional<double> ContactForceFdi::onset_gain(const Channel& c) const noexcept {
+  if (!(c.jump_load_before > params_.gain_min_load_N) || !(std::abs(c.offset) > 0.1 * c.jump_load_before)) {
+    return std::nullopt;
   }
+  return 1.0 + c.offset / c.jump_load_before;
+}
+
+void ContactForceFdi::take_gain(Channel& c, double k) noexcept {
+  c.type = FaultType::gain;
+  c.gain = k;
+  c.sign_fault = k < 0.0;  // re-admitted when it reads right side up under load
 }
 
 void ContactForceFdi::gain_regression(std::span<const double> measured, std::span<const double> recovered,

@@ -238,13 +238,11 @@ TEST(ContactForceFdi, APadTakingItsLoadBackIsALandingNotAJumpOrASpike) {
 namespace ftsense::biped {
 namespace {
 
-// The left foot swings with pad 0 reading 150 N +- 1 N (raised as an offset by the airborne test),
-// then lands and pad 0's true load rises smoothly to 400 N. A frozen output keeps reading 150 N:
-// re-typed frozen once the leave-one-out force has spanned 2 sum_threshold_N = 160 N; an offset
-// reads load + 150 N and stays an offset.
-FaultType after_landing(bool frozen, double& recovered) {
-  Feet feet(suralp(), 1e-3);
-  FaultType type = FaultType::none;
+// The left foot swings for 200 ticks, then lands and pad 0's true load rises smoothly to 400 N
+// (2 N per tick) while the foot's other pads read 100 N and the right foot's move. Pad 0 reads
+// `reading(k, load)` +- 1 N; `each(k, feet)` sees every tick after its step.
+template <class Reading, class Each>
+void swing_then_landing(Feet& feet, Reading reading, Each each) {
   for (int k = 0; k < 600; ++k) {
     const bool landed = k >= 200;
     feet.left_foot_at(landed ? 0.0 : 0.1);
@@ -253,15 +251,26 @@ FaultType after_landing(bool frozen, double& recovered) {
     double others = 0.0;
     for (std::size_t j = 1; j < kChannels; ++j) others += feet.measured[j];
     const double noise = k % 2 == 0 ? 1.0 : -1.0;
-    feet.measured[0] = (frozen ? 150.0 : load + 150.0) + noise;
+    feet.measured[0] = reading(k, load) + noise;
     feet.step(others + load);
-    if (k == 150) {
-      EXPECT_EQ(feet.type(0), FaultType::offset) << "the airborne test raises it";
-    }
-    type = feet.type(0);
+    each(k, feet);
   }
+}
+
+// Pad 0 reads 150 N in the swing (raised as an offset by the airborne test). A frozen output keeps
+// reading 150 N: re-typed frozen once the leave-one-out force has spanned 2 sum_threshold_N =
+// 160 N; an offset reads load + 150 N and stays an offset.
+FaultType after_landing(bool frozen, double& recovered) {
+  Feet feet(suralp(), 1e-3);
+  swing_then_landing(
+      feet, [&](int, double load) { return frozen ? 150.0 : load + 150.0; },
+      [](int k, const Feet& f) {
+        if (k == 150) {
+          EXPECT_EQ(f.type(0), FaultType::offset) << "the airborne test raises it";
+        }
+      });
   recovered = feet.outs[ContactForceFdi::kRecovered][0];
-  return type;
+  return feet.type(0);
 }
 
 // The same swing and landing, but pad 0 reads its zero level until tick 100 and then freezes at
@@ -272,18 +281,11 @@ FaultType after_landing(bool frozen, double& recovered) {
 FaultType frozen_by_a_jump_in_the_air(int& raised_at) {
   Feet feet(suralp(), 1e-3);
   raised_at = -1;
-  for (int k = 0; k < 600; ++k) {
-    const bool landed = k >= 200;
-    feet.left_foot_at(landed ? 0.0 : 0.1);
-    const double load = landed ? std::min(400.0, 2.0 * (k - 200)) : 0.0;
-    for (std::size_t j = 1; j < kChannels; ++j) feet.measured[j] = j < 4 ? (landed ? 100.0 + (k % 2) : k % 2) : moving(j, k, 0.0);
-    double others = 0.0;
-    for (std::size_t j = 1; j < kChannels; ++j) others += feet.measured[j];
-    const double noise = k % 2 == 0 ? 1.0 : -1.0;
-    feet.measured[0] = (k < 100 ? 0.0 : 300.0) + noise;
-    feet.step(others + load);
-    if (raised_at < 0 && feet.type(0) != FaultType::none) raised_at = k;
-  }
+  swing_then_landing(
+      feet, [](int k, double) { return k < 100 ? 0.0 : 300.0; },
+      [&](int k, const Feet& f) {
+        if (raised_at < 0 && f.type(0) != FaultType::none) raised_at = k;
+      });
   return feet.type(0);
 }
 

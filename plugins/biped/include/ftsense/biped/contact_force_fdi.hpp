@@ -130,6 +130,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -274,6 +275,10 @@ class ContactForceFdi {
   void follow_test(Channel& c, double reading, double virtual_force, double t) noexcept;
   // The offset-or-gain test (header comment), once the corrected sum residual of this tick is known.
   void offset_or_gain_test(Channel& c, double reading, bool airborne, double residual) noexcept;
+  // The gain k = 1 + b / L0 that a jump b raised on a loaded pad (load L0 > gain_min_load_N before
+  // it) implies; none when the pad was not loaded or the jump is under a tenth of its load.
+  [[nodiscard]] std::optional<double> onset_gain(const Channel& c) const noexcept;
+  void take_gain(Channel& c, double k) noexcept;
 
   Ports ports_;
   Params params_;
