@@ -6,8 +6,9 @@
 //
 //   insole_fdi fit --config config/insole_fdi.json --input data/GaCo01_01.csv [--write]
 //       fits the virtual sensor's coefficients on the healthy stretch [0, 40) s, prints the fit,
-//       measures each signature_isolator's fault-free residual noise there, and checks both
-//       against the config (exit 1 when they differ); --write stores them.
+//       measures each signature_isolator's fault-free residual noise and each fault_classifier's
+//       noise density there, and checks them against the config (exit 1 when they differ);
+//       --write stores them.
 //   insole_fdi evaluate --config config/insole_fdi.json --input data/GaCo01_01.csv
 //       runs the pipeline over the walk twice: as recorded (virtual-sensor error, false alarms)
 //       and with the fault schedule below injected (detection delay, type shown, false and cross
@@ -31,6 +32,7 @@
 
 #include "ftsense/app/app.hpp"
 #include "ftsense/fault_type.hpp"
+#include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/pipeline.hpp"
 #include "insole/insole_fit.hpp"
@@ -46,16 +48,17 @@ constexpr double kClearGraceS = 5.0;
 using ftsense::FaultType;
 struct InjectedFault {
   std::string channel;  // monitor channel, e.g. "left/L3"; the log column is channel + "/force_N"
-  FaultType type;       // offset, drift or frozen: the models run_pipeline applies
+  FaultType type;       // offset, drift, frozen or gain: the models run_pipeline applies
   double start_s;
   double end_s;
-  double size;  // offset [N], drift rate [N/s]; unused for frozen (holds the value at start_s)
+  double size;  // offset [N], drift rate [N/s], gain [1]; unused for frozen (holds the value at start_s)
 };
 // The fault schedule (deterministic: no random numbers). One fault at a time, 5 s apart at least.
 const std::vector<InjectedFault> kSchedule = {
     {"left/L3", FaultType::offset, 50.0, 65.0, 80.0},
     {"right/R6", FaultType::drift, 70.0, 85.0, 8.0},
     {"right/R2", FaultType::frozen, 95.0, 110.0, 0.0},
+    {"left/L7", FaultType::gain, 115.0, 121.0, 2.0},
 };
 
 struct UsageError : std::runtime_error {
@@ -116,7 +119,8 @@ void run_pipeline(ftsense::Pipeline& pipeline, const Log& log, const std::vector
         case FaultType::offset: value += f.size; break;
         case FaultType::drift: value += f.size * (t - f.start_s); break;
         case FaultType::frozen: value = frozen_value.try_emplace(fault_columns[i], value).first->second; break;
-        default: break;  // the schedule holds only the three types above
+        case FaultType::gain: value *= f.size; break;
+        default: break;  // the schedule holds only the four types above
       }
     }
     for (std::size_t in = 0; in < input_columns.size(); ++in) {
@@ -200,6 +204,71 @@ bool isolator_noise(ftsense::Json& config, const std::string& config_path, const
   return all_match;
 }
 
+// Every fault_classifier's residual_noise_density: the noise density of e = measured - virtual
+// at the time scale the classifier fits (seconds): the RMS of e's means over consecutive
+// kDensityWindowS windows times sqrt(kDensityWindowS), over the healthy stretch from the first
+// window (the filters' start-up left out). Rounded to 3 significant digits and stored in
+// `config`; returns whether the config held those values.
+constexpr double kDensityWindowS = 2.0;
+
+bool classifier_noise_density(ftsense::Json& config, const Log& log, const std::string& data_path) {
+  bool all_match = true;
+  for (auto& stage : config.at("stages")) {
+    if (stage.at("plugin") != ftsense::generic::FaultClassifier::name) continue;
+    const std::string stage_name = stage.at("name").get<std::string>();
+    ftsense::Pipeline pipeline = ftsense::Pipeline::build(config, insole::plugins::registry());
+    std::size_t run_index = 0;
+    while (pipeline.stage_name(run_index) != stage_name) ++run_index;
+    const ftsense::SignalRef measured =
+        pipeline.stage_input(run_index, ftsense::generic::FaultClassifier::kMeasured);
+    const ftsense::SignalRef reference =
+        pipeline.stage_input(run_index, ftsense::generic::FaultClassifier::kVirtual);
+    std::vector<double> window_sum(measured.dim, 0.0), sum_sq_means(measured.dim, 0.0);
+    std::vector<std::size_t> window_count(measured.dim, 0);
+    std::size_t windows = 0;
+    double window_start = log.time_s.front() + kDensityWindowS;  // the first window is start-up
+    run_pipeline(pipeline, log, {}, input_columns_of(pipeline, log, data_path),
+                 [&](std::size_t k, const ftsense::Pipeline& p) {
+                   const double t = log.time_s[k];
+                   if (t < window_start || t >= kFitEndS) return;
+                   if (t >= window_start + kDensityWindowS) {  // a window is complete
+                     for (std::size_t i = 0; i < measured.dim; ++i) {
+                       const double mean = window_count[i] > 0 ? window_sum[i] / window_count[i] : 0.0;
+                       sum_sq_means[i] += mean * mean;
+                       window_sum[i] = 0.0;
+                       window_count[i] = 0;
+                     }
+                     ++windows;
+                     window_start += kDensityWindowS;
+                   }
+                   const auto x = p.values(measured);
+                   const auto v = p.values(reference);
+                   for (std::size_t i = 0; i < measured.dim; ++i) {
+                     if (!std::isfinite(x[i] - v[i])) continue;
+                     window_sum[i] += x[i] - v[i];
+                     ++window_count[i];
+                   }
+                 });
+    if (windows == 0) throw UsageError(data_path + ": the healthy stretch holds no whole window of " +
+                                       ftsense::format_number(kDensityWindowS) + " s");
+    std::vector<double> density;
+    for (double s : sum_sq_means) {
+      density.push_back(round_significant(std::sqrt(s / static_cast<double>(windows) * kDensityWindowS), 3));
+    }
+    auto& params = stage["params"];
+    const auto it = params.find("residual_noise_density");
+    bool match = it != params.end() && it->is_array() && it->size() == density.size();
+    for (std::size_t i = 0; match && i < density.size(); ++i) match = (*it)[i].get<double>() == density[i];
+    std::cout << "stage " << stage_name << ": noise density of measured - virtual (means over " << windows << " windows of "
+              << kDensityWindowS << " s):";
+    for (double v : density) std::cout << ' ' << v;
+    std::cout << " N sqrt(s)\n  residual_noise_density in the config: " << (match ? "matches" : "DIFFERS") << '\n';
+    params["residual_noise_density"] = density;
+    all_match = all_match && match;
+  }
+  return all_match;
+}
+
 int fit_command(const std::string& config_path, const std::string& data_path, bool write) {
   ftsense::Json config = ftsense::parse_json_text(read_text(config_path), config_path);
   const Log log = read_log(data_path);
@@ -258,6 +327,7 @@ int fit_command(const std::string& config_path, const std::string& data_path, bo
   }
   if (!any_stage) throw UsageError(config_path + ": no stage uses plugin insole_virtual_sensor");
   all_match = isolator_noise(config, config_path, log, data_path) && all_match;
+  all_match = classifier_noise_density(config, log, data_path) && all_match;
   if (write) {
     std::ofstream out(config_path);
     out << config.dump(2) << '\n';
@@ -285,6 +355,10 @@ struct ChannelStats {
   double healthy_alarm_s = 0.0;
   // faulty run
   std::optional<double> detection_delay_s;
+  std::optional<double> typed_delay_s;  // from the fault's start to the first tick of its own type
+  double fault_sum_sq_raw = 0.0;        // (measured - true)^2 from the detection to the fault's end
+  double fault_sum_sq_recovered = 0.0;  // (recovered - true)^2 over the same ticks
+  std::size_t fault_samples = 0;
   std::map<FaultType, std::size_t> shown;  // ticks per type shown while the channel's fault is active
   int false_alarms = 0;  // raised while no fault is active anywhere (nor clearing)
   double false_alarm_s = 0.0;
@@ -340,13 +414,27 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
     fault_of[static_cast<std::size_t>(it - monitor.channels.begin())] = i;
   }
   std::fill(previous.begin(), previous.end(), 0.0);
+  std::vector<std::size_t> true_column(n);  // the recorded (true) value of each channel
+  for (std::size_t c = 0; c < n; ++c) true_column[c] = column_index(log, monitor.channels[c] + "/force_N", data_path);
   run_pipeline(pipeline, log, kSchedule, input_columns, [&](std::size_t k, const ftsense::Pipeline& p) {
     const double t = log.time_s[k];
     const auto fault = p.values(monitor[ftsense::MonitorColumn::fault]);
     const auto fault_type = p.values(monitor[ftsense::MonitorColumn::fault_type]);
+    const auto measured = p.values(monitor[ftsense::MonitorColumn::measured]);
+    const auto recovered = p.values(monitor[ftsense::MonitorColumn::recovered]);
     bool any_fault_active = false;
     for (const auto& f : kSchedule) any_fault_active = any_fault_active || (t >= f.start_s && t < f.end_s + kClearGraceS);
     for (std::size_t c = 0; c < n; ++c) {
+      if (fault_of[c]) {
+        const auto& f = kSchedule[*fault_of[c]];
+        const double truth = log.rows[k][true_column[c]];
+        // From the detection on: before it, the recovered signal is the faulty reading by design.
+        if (t >= f.start_s && t < f.end_s && std::isfinite(truth) && (stats[c].detection_delay_s || fault[c] != 0.0)) {
+          stats[c].fault_sum_sq_raw += (measured[c] - truth) * (measured[c] - truth);
+          stats[c].fault_sum_sq_recovered += (recovered[c] - truth) * (recovered[c] - truth);
+          ++stats[c].fault_samples;
+        }
+      }
       const bool raised = fault[c] != 0.0 && previous[c] == 0.0;
       previous[c] = fault[c];
       if (fault[c] == 0.0) continue;
@@ -354,7 +442,9 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
         const auto& f = kSchedule[*fault_of[c]];
         if (t >= f.start_s && t < f.end_s) {
           if (!stats[c].detection_delay_s) stats[c].detection_delay_s = t - f.start_s;
-          ++stats[c].shown[ftsense::fault_type_from_code(fault_type[c]).value_or(FaultType::unclassified)];
+          const FaultType shown = ftsense::fault_type_from_code(fault_type[c]).value_or(FaultType::unclassified);
+          if (!stats[c].typed_delay_s && shown == f.type) stats[c].typed_delay_s = t - f.start_s;
+          ++stats[c].shown[shown];
           continue;
         }
         if (t >= f.end_s && t < f.end_s + kClearGraceS) continue;  // clearing
@@ -381,6 +471,7 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
     if (f.type == FaultType::offset) std::printf(", %+.0f N", f.size);
     if (f.type == FaultType::drift) std::printf(", %+.1f N/s", f.size);
     if (f.type == FaultType::frozen) std::printf(", held at the value read at %.1f s", f.start_s);
+    if (f.type == FaultType::gain) std::printf(", x %.1f", f.size);
     std::printf("\n");
   }
   std::printf("\n%-9s | %9s %9s | %14s | %-6s %9s %-12s | %14s | %14s\n", "channel", "rms err", "stance", "alarms",
@@ -423,10 +514,41 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
                 type.c_str(), delay.c_str(), shown.c_str(), s.false_alarms, s.false_alarm_s, s.cross_alarms,
                 s.cross_alarm_s);
   }
-  std::printf("\nmissed faults %d, false alarms %d (recorded walk, and injected walk outside the faults "
-              "and %.0f s after each), cross alarms %d (healthy channels flagged while another is faulty)\n",
-              missed, false_alarms, kClearGraceS, cross_alarms);
-  if (missed > 0 || false_alarms > 0 || cross_alarms > 0) {
+  // The injected faults: when they were typed, and how far the recovered signal is from the truth.
+  std::printf("\n%-9s | %-6s | %9s %9s %-12s | %9s %9s\n", "channel", "fault", "detected", "typed", "type shown",
+              "raw rms", "recovered");
+  std::printf("%-9s | %-6s | %9s %9s %-12s | %19s\n", "", "", "after [s]", "after [s]", "(most ticks)",
+              "from detection [N]");
+  int mistyped = 0;
+  for (std::size_t c = 0; c < n; ++c) {
+    if (!fault_of[c]) continue;
+    const ChannelStats& s = stats[c];
+    const FaultType injected = kSchedule[*fault_of[c]].type;
+    FaultType shown = FaultType::none;
+    std::size_t most = 0;
+    for (const auto& [t, ticks] : s.shown) {
+      if (ticks > most) {
+        most = ticks;
+        shown = t;
+      }
+    }
+    mistyped += shown == injected ? 0 : 1;
+    const auto seconds = [](const std::optional<double>& d) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.2f", d.value_or(NAN));
+      return d ? std::string(text) : std::string("never");
+    };
+    const double samples = static_cast<double>(std::max<std::size_t>(1, s.fault_samples));
+    std::printf("%-9s | %-6s | %9s %9s %-12s | %9.1f %9.1f\n", monitor.channels[c].c_str(),
+                std::string(to_string(injected)).c_str(), seconds(s.detection_delay_s).c_str(),
+                seconds(s.typed_delay_s).c_str(), std::string(to_string(shown)).c_str(),
+                std::sqrt(s.fault_sum_sq_raw / samples), std::sqrt(s.fault_sum_sq_recovered / samples));
+  }
+  std::printf("\nmissed faults %d, mistyped faults %d (the type shown most is not the injected one), false alarms "
+              "%d (recorded walk, and injected walk outside the faults and %.0f s after each), cross alarms %d "
+              "(healthy channels flagged while another is faulty)\n",
+              missed, mistyped, false_alarms, kClearGraceS, cross_alarms);
+  if (missed > 0 || mistyped > 0 || false_alarms > 0 || cross_alarms > 0) {
     std::printf("FAIL\n");
     return 1;
   }
@@ -484,8 +606,9 @@ int main(int argc, char** argv) {
          return own_verb(context.command("fit"), args, kFitOptions,
                          "Fits each insole_virtual_sensor stage's coefficients on the healthy stretch [0, 40) s\n"
                          "of --input, prints the fit, measures each signature_isolator's fault-free\n"
-                         "residual noise there (through the pipeline with the fitted coefficients), and\n"
-                         "checks both against the config (exit 1 when they differ); --write stores them.",
+                         "residual noise and each fault_classifier's noise density there (through the\n"
+                         "pipeline with the fitted coefficients), and checks them against the config\n"
+                         "(exit 1 when they differ); --write stores them.",
                          [](const ftsense::app::Options& o) {
                            return fit_command(o.at("config"), o.at("input"), o.count("write") > 0);
                          });
@@ -495,7 +618,7 @@ int main(int argc, char** argv) {
          return own_verb(context.command("evaluate"), args, kEvaluateOptions,
                          "Runs the pipeline over the walk as recorded (virtual-sensor error on the held-out\n"
                          "part, false alarms) and with a fixed fault schedule injected (offset, drift,\n"
-                         "frozen: detection delay, type shown, false and cross alarms). Exit 1 when an\n"
+                         "frozen, gain: detection delay, type shown, false and cross alarms). Exit 1 when an\n"
                          "injected fault is missed, an alarm is raised outside the faults, or a healthy\n"
                          "sensor is flagged while another is faulty.",
                          [](const ftsense::app::Options& o) { return evaluate_command(o.at("config"), o.at("input")); });

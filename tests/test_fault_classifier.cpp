@@ -1,0 +1,235 @@
+// fault_classifier: on noiseless traces with one-tick blocks it names each synthetic fault shape
+// (offset, drift, gain, sign flip, frozen, dead output) with its exact size and onset, gives the
+// estimate that recovers the true signal, stays unclassified when the models cannot be told
+// apart, and judges each re-admitted episode afresh. A noisy trace (fixed seed) checks the
+// likelihood-ratio margin against the noise density.
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "ftsense/fault_type.hpp"
+#include "ftsense/generic/fault_classifier.hpp"
+#include "ftsense/testing/plugin_contract.hpp"
+
+namespace ftsense::testing {
+template <>
+struct ContractSetup<generic::FaultClassifier> {
+  static Json params() { return Json{{"residual_noise_density", {1.0}}, {"history_s", 1.0}}; }
+  static std::size_t input_dim(std::string_view) { return 3; }
+  static double sample_period_s() { return 0.01; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = port == "fault" ? 0.0 : 10.0 * static_cast<double>(i);
+  }
+};
+INSTANTIATE_TYPED_TEST_SUITE_P(FaultClassification, PluginContract, ::testing::Types<generic::FaultClassifier>);
+}  // namespace ftsense::testing
+
+namespace ftsense {
+namespace {
+
+using generic::FaultClassifier;
+
+constexpr double kPeriod = 0.01;
+
+// A reference that moves like a gait: v(t) = 100 + 50 sin(2 pi t) [N].
+double reference(double t) { return 100.0 + 50.0 * std::sin(2.0 * M_PI * t); }
+
+// One channel, one-tick blocks (block means are the samples: the fits are exact).
+struct Trace {
+  FaultClassifier classifier;
+  double x = 0.0, v = 0.0, flag = 0.0;
+  double type = 0.0, estimate = 0.0;
+  long tick = 0;
+
+  explicit Trace(double density = 1.0, double block_s = kPeriod)
+      : classifier(params(density, block_s), StageContext(kPeriod, "classify", {{"measured", 1}})) {
+    classifier.reset();
+  }
+  static FaultClassifier::Params params(double density, double block_s) {
+    FaultClassifier::Params p;
+    p.residual_noise_density = {density};
+    p.block_s = block_s;
+    p.history_s = 10.0;
+    return p;
+  }
+  [[nodiscard]] double time() const { return static_cast<double>(tick) * kPeriod; }
+  // Runs until `until_s`; `reading(t, v)` is the sensor's output, `flagged(t)` the isolator's flag.
+  void run(double until_s, const std::function<double(double, double)>& reading,
+           const std::function<bool(double)>& flagged) {
+    while (time() < until_s - 1e-9) {
+      const double t = time();
+      v = reference(t);
+      x = reading(t, v);
+      flag = flagged(t) ? 1.0 : 0.0;
+      const double f[] = {flag}, m[] = {x}, r[] = {v};
+      double out_type[1], out_estimate[1];
+      const std::span<const double> ins[] = {f, m, r};
+      const std::span<double> outs[] = {out_type, out_estimate};
+      classifier.step(StepIO{t, ins, outs});
+      type = out_type[0];
+      estimate = out_estimate[0];
+      ++tick;
+    }
+  }
+  [[nodiscard]] FaultType named() const { return fault_type_from_code(type).value_or(FaultType::invalid); }
+};
+
+// Fault from 5 s, flagged from 5.5 s (a detector's delay), judged at 7 s.
+constexpr double kOnset = 5.0, kFlag = 5.5, kEnd = 7.0;
+bool flagged_after_delay(double t) { return t >= kFlag - 1e-9; }
+bool after_onset(double t) { return t >= kOnset - 1e-9; }
+
+TEST(FaultClassifier, NamesAnOffsetWithItsSizeAndOnset) {
+  Trace trace;
+  trace.run(kEnd, [](double t, double v) { return v + (after_onset(t) ? 20.0 : 0.0); }, flagged_after_delay);
+  EXPECT_EQ(trace.named(), FaultType::offset);
+  EXPECT_NEAR(trace.classifier.fit(0).size, 20.0, 1e-9);
+  EXPECT_NEAR(trace.classifier.fit(0).onset_s, kOnset, 1e-9);
+  EXPECT_NEAR(trace.estimate, 20.0, 1e-9);
+}
+
+TEST(FaultClassifier, NamesADriftWithItsSlopeAndOnset) {
+  Trace trace;
+  trace.run(kEnd, [](double t, double v) { return v + (after_onset(t) ? 30.0 * (t - kOnset) : 0.0); },
+            flagged_after_delay);
+  EXPECT_EQ(trace.named(), FaultType::drift);
+  EXPECT_NEAR(trace.classifier.fit(0).size, 30.0, 1e-6);
+  EXPECT_NEAR(trace.classifier.fit(0).onset_s, kOnset, 1e-9);
+  // The estimate is the drift at the last tick: x - estimate recovers the reference.
+  EXPECT_NEAR(trace.x - trace.estimate, trace.v, 1e-6);
+}
+
+TEST(FaultClassifier, NamesAGainAndASignFlipAndRecoversTheTrueSignal) {
+  for (const double k : {2.0, 0.5, -1.0}) {
+    Trace trace;
+    trace.run(kEnd, [k](double t, double v) { return after_onset(t) ? k * v : v; }, flagged_after_delay);
+    EXPECT_EQ(trace.named(), FaultType::gain) << "k = " << k;
+    EXPECT_NEAR(trace.classifier.fit(0).size, k, 1e-9) << "k = " << k;
+    EXPECT_NEAR(trace.classifier.fit(0).onset_s, kOnset, 1e-9) << "k = " << k;
+    EXPECT_NEAR(trace.x - trace.estimate, trace.v, 1e-9) << "k = " << k;
+  }
+}
+
+TEST(FaultClassifier, NamesFrozenAtAPlausibleValueAndADeadOutput) {
+  for (const double held : {130.0, 0.0}) {
+    Trace trace;
+    trace.run(kEnd, [held](double t, double v) { return after_onset(t) ? held : v; }, flagged_after_delay);
+    EXPECT_EQ(trace.named(), FaultType::frozen) << "held at " << held;
+    EXPECT_NEAR(trace.classifier.fit(0).onset_s, kOnset, 1e-9) << "held at " << held;
+    // Frozen: the fault is everything the reading is not, so the recovered value is the reference.
+    EXPECT_NEAR(trace.x - trace.estimate, trace.v, 1e-9) << "held at " << held;
+  }
+}
+
+TEST(FaultClassifier, StaysUnclassifiedWhileTheModelsCannotBeToldApart) {
+  // A reference that does not move (a robot standing still): x = v + 20 is as well an offset of
+  // 20 as a gain of 1.2 or a reading frozen at 120, so nothing is named and the estimate hands
+  // the reference downstream.
+  Trace trace;
+  FaultClassifier& c = trace.classifier;
+  double x = 0.0, type = 0.0, estimate = 0.0;
+  for (long k = 0; k < 700; ++k) {
+    const double t = static_cast<double>(k) * kPeriod;
+    x = 100.0 + (t >= kOnset - 1e-9 ? 20.0 : 0.0);
+    const double f[] = {flagged_after_delay(t) ? 1.0 : 0.0}, m[] = {x}, r[] = {100.0};
+    double out_type[1], out_estimate[1];
+    const std::span<const double> ins[] = {f, m, r};
+    const std::span<double> outs[] = {out_type, out_estimate};
+    c.step(StepIO{t, ins, outs});
+    type = out_type[0];
+    estimate = out_estimate[0];
+  }
+  EXPECT_EQ(type, fault_code(FaultType::unclassified));
+  EXPECT_NEAR(x - estimate, 100.0, 1e-12);
+}
+
+TEST(FaultClassifier, IsQuietWhileNotFlaggedAndJudgesEachEpisodeAfresh) {
+  Trace trace;
+  // An offset, flagged from 5.5 s to 6 s, then healthy, then a gain x2 from 8 s flagged at 8.5 s.
+  const auto reading = [](double t, double v) {
+    if (t >= 5.0 - 1e-9 && t < 6.0 - 1e-9) return v + 20.0;
+    if (t >= 8.0 - 1e-9) return 2.0 * v;
+    return v;
+  };
+  const auto flagged = [](double t) {
+    return (t >= 5.5 - 1e-9 && t < 6.0 - 1e-9) || t >= 8.5 - 1e-9;
+  };
+  trace.run(5.0, reading, flagged);
+  EXPECT_EQ(trace.named(), FaultType::none);
+  EXPECT_EQ(trace.estimate, 0.0);
+  trace.run(6.0, reading, flagged);
+  EXPECT_EQ(trace.named(), FaultType::offset);
+  trace.run(8.0, reading, flagged);
+  EXPECT_EQ(trace.named(), FaultType::none);
+  EXPECT_EQ(trace.estimate, 0.0);
+  trace.run(9.5, reading, flagged);
+  EXPECT_EQ(trace.named(), FaultType::gain);
+  EXPECT_NEAR(trace.classifier.fit(0).size, 2.0, 1e-9);
+  // The second episode's onset is searched after the first one's re-admission only.
+  EXPECT_NEAR(trace.classifier.fit(0).onset_s, 8.0, 1e-9);
+}
+
+TEST(FaultClassifier, AFlagThatChattersContinuesTheEpisode) {
+  // A drift from 5 s, flagged from 5.5 s; the flag drops for 0.3 s (< same_episode_s = 1 s) at
+  // 6 s: the type is back at once when it returns, and the fit still sees the onset at 5 s.
+  Trace trace;
+  const auto reading = [](double t, double v) { return v + (after_onset(t) ? 30.0 * (t - kOnset) : 0.0); };
+  const auto flagged = [](double t) { return flagged_after_delay(t) && !(t >= 6.0 - 1e-9 && t < 6.3 - 1e-9); };
+  trace.run(6.0, reading, flagged);
+  ASSERT_EQ(trace.named(), FaultType::drift);
+  trace.run(6.3, reading, flagged);
+  EXPECT_EQ(trace.named(), FaultType::none);
+  trace.run(6.31, reading, flagged);
+  EXPECT_EQ(trace.named(), FaultType::drift);
+  trace.run(kEnd, reading, flagged);
+  EXPECT_EQ(trace.named(), FaultType::drift);
+  EXPECT_NEAR(trace.classifier.fit(0).size, 30.0, 1e-6);
+  EXPECT_NEAR(trace.classifier.fit(0).onset_s, kOnset, 1e-9);
+}
+
+TEST(FaultClassifier, ToleratesMissingSamples) {
+  Trace trace;
+  // Every 7th reading is NaN (a dropout pattern); the offset is still named with its exact size
+  // and the outputs stay finite.
+  trace.run(kEnd,
+            [&trace](double t, double v) {
+              return trace.tick % 7 == 3 ? NAN : v + (after_onset(t) ? 20.0 : 0.0);
+            },
+            flagged_after_delay);
+  EXPECT_EQ(trace.named(), FaultType::offset);
+  EXPECT_NEAR(trace.classifier.fit(0).size, 20.0, 1e-9);
+  EXPECT_TRUE(std::isfinite(trace.estimate));
+}
+
+TEST(FaultClassifier, NamesAtTheLikelihoodRatioMarginOnNoisyBlocks) {
+  // White noise of standard deviation sigma per tick has density q = sigma sqrt(T). With 0.1 s
+  // blocks, an offset of 3 sigma from 5 s is named offset within 1 s of its flag; the margin is
+  // chi^2_1(0.999) = z^2 with P(|Z| > z) = 0.001.
+  constexpr unsigned kSeed = 20261124;
+  std::printf("fault_classifier noisy offset: seed %u\n", kSeed);
+  std::mt19937 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  constexpr double sigma = 5.0;
+  Trace trace(sigma * std::sqrt(kPeriod), 0.1);
+  EXPECT_NEAR(std::erfc(std::sqrt(trace.classifier.margin() / 2.0)), 0.001, 1e-9);
+  trace.run(kEnd, [&](double t, double v) { return v + sigma * noise(rng) + (after_onset(t) ? 3.0 * sigma : 0.0); },
+            flagged_after_delay);
+  EXPECT_EQ(trace.named(), FaultType::offset);
+  EXPECT_NEAR(trace.classifier.fit(0).size, 3.0 * sigma, 0.2 * sigma);
+  EXPECT_NEAR(trace.classifier.fit(0).onset_s, kOnset, 0.2);
+}
+
+TEST(FaultClassifier, RejectsAHistoryShorterThanFourBlocks) {
+  FaultClassifier::Params p;
+  p.block_s = 0.1;
+  p.history_s = 0.3;
+  EXPECT_THROW(FaultClassifier(p, StageContext(kPeriod, "classify", {{"measured", 1}})), ConfigError);
+}
+
+}  // namespace
+}  // namespace ftsense
