@@ -38,7 +38,9 @@ def main():
     work = args.work or tempfile.mkdtemp(prefix="insole_sweep_")
     os.makedirs(work, exist_ok=True)
     print(f"one fault per run from {START_S:g} s to {END_S:g} s; work files in {work}")
-    print(f"{'sensor':9} {'fault':18} {'detected':>9} {'typed':>7}  {'type shown most':16} types shown        other sensors flagged")
+    print(f"{'sensor':9} {'fault':18} {'detected':>9} {'typed':>7} {'not judged':>10}  {'type shown most':16} "
+          f"{'types shown':18} other sensors flagged")
+    print(f"{'':9} {'':18} {'after [s]':>9} {'[s]':>7} {'[s]':>10}")
     detected = typed_right = wrong = cross = runs = 0
     for sensor in SENSORS:
         for kind, size in FAULTS:
@@ -57,12 +59,16 @@ def main():
                            stdout=subprocess.DEVNULL)
             with open(out) as f:
                 rows = list(csv.DictReader(f))
+            period = float(rows[1]["time_s"]) - float(rows[0]["time_s"])
             first = None
             first_typed = None
             shown = Counter()
             others = set()
+            not_judged = 0  # ticks the faulty sensor was `cannot_judge` during the fault
             for row in rows:
                 t = float(row["time_s"])
+                if START_S <= t < END_S and float(row[sensor + "/cannot_judge"]) != 0.0:
+                    not_judged += 1
                 for key, value in row.items():
                     if not key.endswith("/fault") or float(value) == 0.0:
                         continue
@@ -88,7 +94,9 @@ def main():
             det = f"{first - START_S:.2f}" if first is not None else "missed"
             typ = f"{first_typed - START_S:.2f}" if first_typed is not None else "-"
             types = ", ".join(c for c, _ in sorted(shown.items(), key=lambda kv: -kv[1]))
-            print(f"{sensor:9} {label:18} {det:>9} {typ:>7}  {most:16} {types:18} {', '.join(sorted(others)) or '-'}")
+            judged = f"{not_judged * period:.2f}"
+            print(f"{sensor:9} {label:18} {det:>9} {typ:>7} {judged:>10}  {most:16} {types:18} "
+                  f"{', '.join(sorted(others)) or '-'}")
     print(f"\n{runs} runs: {detected} detected, {typed_right} of them shown most as the injected type, "
           f"{wrong} as another; {cross} healthy sensors flagged")
     return 1 if wrong or cross else 0
