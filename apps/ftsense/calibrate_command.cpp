@@ -1,10 +1,14 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <iostream>
 #include <limits>
 
 #include "cli.hpp"
+#include "ftsense/calibration.hpp"
+#include "ftsense/generic/noise_density.hpp"
+#include "ftsense/generic/residual_statistics.hpp"
 #include "ftsense/io/output_file.hpp"
 #include "log_runner.hpp"
 
@@ -13,10 +17,11 @@ namespace ftsense::cli {
 int calibrate_command(const std::vector<std::string>& args, const Context& context) {
   const std::string command = context.command("calibrate");
   const std::vector<OptionSpec> specs{
-      {"config", true, true, "pipeline config (JSON) with threshold_detector stage(s)", 'c', {}, FileArg::input},
+      {"config", true, true, "pipeline config (JSON) with stages to calibrate (threshold_detector, or plugins "
+       "with calibrated parameters)", 'c', {}, FileArg::input},
       {"input", true, true, "a fault-free log (CSV); several, comma-separated, to cover several gaits", 'i', {},
        FileArg::input_list},
-      {"output", true, true, "where to write the thresholds (JSON), for '" + context.program + " run --thresholds'", 'o',
+      {"output", true, true, "where to write the calibration (JSON), for '" + context.program + " run --thresholds'", 'o',
        {"out"}, FileArg::output},
       {"margin", true, false, "threshold = margin x the largest |signal| seen (default 1.25; 1 to 1000)"},
       {"band", false, false,
@@ -30,7 +35,12 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                             "warm-up (the paper's section III: thresholds from a fault-free run). With\n"
                             "--band it also writes each channel's centre, the middle of the range the\n"
                             "signal covered, and sets the threshold to margin x half that range: a virtual\n"
-                            "sensor's systematic bias then no longer hides faults of the other sign.",
+                            "sensor's systematic bias then no longer hides faults of the other sign.\n"
+                            "It also measures every parameter that a stage's plugin declares a fault-free\n"
+                            "statistic of its inputs (cusum_detector: noise_std, centers,\n"
+                            "correlation_time_s; signature_isolator: residual_noise_std; fault_classifier:\n"
+                            "residual_noise_density; docs/architecture.md), after the pipeline's longest\n"
+                            "warm-up, and writes it for the same stage.",
                             specs);
     return kExitOk;
   }
@@ -69,8 +79,40 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     d.max_seen.assign(d.signal.dim, -std::numeric_limits<double>::infinity());
     detectors.push_back(std::move(d));
   }
-  if (detectors.empty()) {
-    throw ConfigError(config_path + ":/stages", "has no threshold_detector stage; nothing to calibrate");
+  // Parameters that are fault-free statistics of a stage's inputs (calibration.hpp), measured
+  // after the longest warm-up of any stage (the filters feeding them have settled by then).
+  struct Measured {
+    std::string stage;
+    CalibratedParam spec;
+    SignalRef input;
+    std::optional<SignalRef> minus;
+    std::vector<generic::ResidualStatistics> statistics;  // per channel
+    std::vector<generic::NoiseDensity> density;           // per channel (noise_density only)
+  };
+  std::vector<Measured> measured;
+  double settle_s = 0.0;
+  for (std::size_t i = 0; i < pipeline.stage_count(); ++i) {
+    settle_s = std::max(settle_s, pipeline.stage(i).params_json().value("warmup_s", 0.0));
+    const PluginInfo* info = context.registry.find(pipeline.stage(i).plugin_name());
+    if (info == nullptr) continue;
+    const Ports& ports = pipeline.stage(i).ports();
+    for (const CalibratedParam& spec : info->calibrated_params) {
+      const auto in = ports.find_input(spec.input);
+      const auto minus = spec.minus_input.empty() ? std::nullopt : ports.find_input(spec.minus_input);
+      if (!in || (!spec.minus_input.empty() && !minus)) continue;  // the contract test rules this out
+      Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}};
+      if (minus) m.minus = pipeline.stage_input(i, *minus);
+      m.statistics.assign(m.input.dim, generic::ResidualStatistics(pipeline.sample_period_s()));
+      if (spec.statistic == FaultFreeStatistic::noise_density) {
+        m.density.assign(m.input.dim, generic::NoiseDensity(pipeline.sample_period_s(), kNoiseDensityWindowS));
+      }
+      measured.push_back(std::move(m));
+    }
+  }
+  if (detectors.empty() && measured.empty()) {
+    throw ConfigError(config_path + ":/stages", "has no threshold_detector stage and no plugin with calibrated "
+                                                "parameters (cusum_detector, signature_isolator, fault_classifier); "
+                                                "nothing to calibrate");
   }
 
   // Every fault-free log in turn (the pipeline restarts for each, and so does the warm-up).
@@ -103,8 +145,24 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     try {
       summary = run_over_log(pipeline, *log, map, nullptr, [&](double t) {
         // The runner resets the pipeline after a long gap: the warm-up starts again there.
-        if (std::isnan(start) || t - last > clock.gap_reset_periods * pipeline.sample_period_s()) start = t;
+        if (std::isnan(start) || t - last > clock.gap_reset_periods * pipeline.sample_period_s()) {
+          start = t;
+          for (auto& m : measured) {
+            for (auto& s : m.statistics) s.break_sequence();
+            for (auto& d : m.density) d.break_sequence();
+          }
+        }
         last = t;
+        if (t - start >= settle_s) {
+          for (auto& m : measured) {
+            const auto a = pipeline.values(m.input);
+            for (std::size_t j = 0; j < a.size(); ++j) {
+              const double r = m.minus ? a[j] - pipeline.values(*m.minus)[j] : a[j];
+              m.statistics[j].add(r);
+              if (!m.density.empty()) m.density[j].add(r);
+            }
+          }
+        }
         for (auto& d : detectors) {
           if (t - start < d.warmup_s) continue;
           const auto s = pipeline.values(d.signal);
@@ -161,6 +219,50 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       }
     }
   }
+  // The measured statistics, per parameter: a list per channel (correlation_time: one number).
+  std::vector<Json> measured_values;
+  for (const auto& m : measured) {
+    std::vector<double> values;
+    for (std::size_t j = 0; j < m.statistics.size(); ++j) {
+      const generic::ResidualStatistics& st = m.statistics[j];
+      const std::string what = command + ": " + m.stage + " " + std::string(m.spec.param) + " channel " +
+                               std::to_string(j) + ": ";
+      if (st.count() < 2) {
+        refusals.push_back(what + "fewer than 2 finite samples after the " + format_number(settle_s) +
+                           " s warm-up (a log shorter than the warm-up, or an input never finite?); calibrate on a "
+                           "log where it is");
+        continue;
+      }
+      const double centre = st.centre(), sd = st.standard_deviation();
+      double value = 0.0;
+      switch (m.spec.statistic) {
+        case FaultFreeStatistic::centre: value = centre; break;
+        case FaultFreeStatistic::standard_deviation: value = sd; break;
+        case FaultFreeStatistic::rms: value = std::sqrt(centre * centre + sd * sd); break;
+        case FaultFreeStatistic::correlation_time: value = st.correlation_time_s(); break;
+        case FaultFreeStatistic::noise_density: value = m.density[j].density(); break;
+      }
+      const bool spread = m.spec.statistic == FaultFreeStatistic::standard_deviation ||
+                          m.spec.statistic == FaultFreeStatistic::rms ||
+                          m.spec.statistic == FaultFreeStatistic::noise_density;
+      if (m.spec.statistic == FaultFreeStatistic::noise_density && m.density[j].windows() == 0) {
+        refusals.push_back(what + "no whole " + format_number(kNoiseDensityWindowS) +
+                           " s window after the warm-up; calibrate on a longer log");
+      } else if (!std::isfinite(value)) {
+        refusals.push_back(what + "is not a finite number (" + format_number(value) +
+                           "): the log holds absurd values; calibrate on a fault-free log");
+      } else if (spread && !(value > 0.0)) {
+        refusals.push_back(what + "is 0: the signal did not vary, and a zero noise level would flag any change "
+                           "(an input held constant?); calibrate on a log where it varies");
+      }
+      values.push_back(value);
+    }
+    if (m.spec.statistic == FaultFreeStatistic::correlation_time) {
+      measured_values.push_back(values.empty() ? 0.0 : *std::max_element(values.begin(), values.end()));
+    } else {
+      measured_values.push_back(values);
+    }
+  }
   if (!refusals.empty()) {
     for (const auto& r : refusals) std::cerr << "error: " << r << '\n';
     std::cerr << command << ": nothing written\n";
@@ -168,9 +270,12 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
   }
 
   const bool band = options.count("band") > 0;
-  Json out = {{"description", band ? "centres = (min + max) / 2 and thresholds = margin x (max - min) / 2 of the "
-                                     "detector input over a fault-free run, after warm-up"
-                                   : "thresholds = margin x max |detector input| over a fault-free run, after warm-up"},
+  Json out = {{"description", std::string(band ? "centres = (min + max) / 2 and thresholds = margin x (max - min) / 2 of the "
+                                                 "detector input over a fault-free run, after warm-up"
+                                               : "thresholds = margin x max |detector input| over a fault-free run, after "
+                                                 "warm-up") +
+                                 "; params: fault-free statistics of the stages' inputs (calibration.hpp) after the "
+                                 "longest warm-up"},
               {"config", config_path},
               {"input", options.at("input")},
               {"margin", margin},
@@ -201,6 +306,18 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     if (band) {
       std::cout << "; centres";
       for (double c : centers) std::cout << ' ' << std::round(c * 10.0) / 10.0;
+    }
+    std::cout << '\n';
+  }
+  for (std::size_t i = 0; i < measured.size(); ++i) {
+    const Measured& m = measured[i];
+    out["stages"][m.stage]["params"][std::string(m.spec.param)] = measured_values[i];
+    std::cout << command << ": " << m.stage << ": " << m.spec.param;
+    const Json& v = measured_values[i];
+    for (const Json& x : v.is_array() ? v : Json::array({v})) {
+      char text[32];
+      std::snprintf(text, sizeof text, " %.4g", x.get<double>());  // the file has every digit
+      std::cout << text;
     }
     std::cout << '\n';
   }

@@ -296,27 +296,43 @@ void apply_thresholds(Json& config, const Json& thresholds, const std::string& t
                                                      "\"stages\": {\"<stage>\": {\"thresholds\": [...]}}");
   }
   for (const auto& [name, entry] : stages->items()) {
-    const std::string path = thresholds_path + ":" + json_pointer_append("/stages", name) + "/thresholds";
-    if (!entry.is_object() || !entry.contains("thresholds") || !entry["thresholds"].is_array()) {
-      diag.error(path, "missing or not an array of numbers");
+    const std::string stage_path = thresholds_path + ":" + json_pointer_append("/stages", name);
+    const bool has_thresholds = entry.is_object() && entry.contains("thresholds");
+    const bool has_params = entry.is_object() && entry.contains("params");
+    if (!has_thresholds && !has_params) {
+      diag.error(stage_path, "has neither \"thresholds\" nor \"params\"; calibrate with ftsense calibrate");
+      continue;
+    }
+    if (has_thresholds && !entry["thresholds"].is_array()) {
+      diag.error(stage_path + "/thresholds", "not an array of numbers");
+      continue;
+    }
+    if (has_params && !entry["params"].is_object()) {
+      diag.error(stage_path + "/params", "not an object of parameter values");
       continue;
     }
     bool found = false;
     if (config.contains("stages") && config["stages"].is_array()) {
       for (auto& stage : config["stages"]) {
         if (stage.is_object() && stage.value("name", "") == name) {
-          stage["params"]["thresholds"] = entry["thresholds"];
-          // A band calibration also sets each channel's centre; a plain one resets it to 0.
-          if (entry.contains("centers")) {
-            stage["params"]["centers"] = entry["centers"];
-          } else if (stage["params"].contains("centers")) {
-            stage["params"].erase("centers");
+          if (has_thresholds) {
+            stage["params"]["thresholds"] = entry["thresholds"];
+            // A band calibration also sets each channel's centre; a plain one resets it to 0.
+            if (entry.contains("centers")) {
+              stage["params"]["centers"] = entry["centers"];
+            } else if (stage["params"].contains("centers")) {
+              stage["params"].erase("centers");
+            }
+          }
+          // Measured statistics replace the config's values (the plugin checks them as any).
+          if (has_params) {
+            for (const auto& [key, value] : entry["params"].items()) stage["params"][key] = value;
           }
           found = true;
         }
       }
     }
-    if (!found) diag.error(path, "the config has no stage named '" + name + "'; calibrate with the same config");
+    if (!found) diag.error(stage_path, "the config has no stage named '" + name + "'; calibrate with the same config");
   }
   diag.throw_if_errors();
 }

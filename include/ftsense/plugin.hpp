@@ -22,6 +22,9 @@
 //                  // JSON overriding the defaults, one object or an array of them (the table
 //                  // lists the union of their ports: a port some parameters add); needed when the
 //                  // defaults do not construct (required parameters). Also the schema's examples.
+//     static constexpr auto calibrated_params = std::to_array<ftsense::CalibratedParam>({...});
+//                  // parameters that are statistics of fault-free inputs, which `ftsense
+//                  // calibrate` measures (calibration.hpp)
 //     static ftsense::Ports declare_ports(const Params&);
 //                  // the ports, when constructing needs more than parameters (a file); the
 //                  // constructor then takes its ports from it too.
@@ -36,6 +39,7 @@
 #include <memory>
 #include <string_view>
 
+#include "ftsense/calibration.hpp"
 #include "ftsense/params.hpp"
 #include "ftsense/ports.hpp"
 
@@ -74,6 +78,11 @@ concept PluginSteps = requires(P& p, const StepIO& io) {
 template <class P>
 concept PluginHasExampleParams = requires {
   { P::example_params } -> std::convertible_to<std::string_view>;
+};
+template <class P>
+concept PluginHasCalibratedParams = requires {
+  { P::calibrated_params.size() } -> std::convertible_to<std::size_t>;
+  { P::calibrated_params[0] } -> std::convertible_to<CalibratedParam>;
 };
 template <class P>
 concept PluginDeclaresPortsFromParams = requires(const typename P::Params& params) {

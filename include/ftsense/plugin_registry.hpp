@@ -25,6 +25,9 @@ struct PluginInfo {
   // example and says how in its dim_rule. Null, with the problems in `diag`, when an example
   // does not construct.
   std::function<std::optional<Ports>(double sample_period_s, Diagnostics& diag)> example_ports;
+  // The parameters `ftsense calibrate` measures on fault-free logs (calibration.hpp); empty for
+  // most plugins.
+  std::vector<CalibratedParam> calibrated_params;
   // Checks parameters only (used when a stage cannot be constructed, to still report them).
   std::function<void(const Json& raw, std::string_view params_path, Diagnostics& diag)> check_params;
   // Loads parameters and constructs the stage. Returns null when anything is wrong; problems go
@@ -59,6 +62,9 @@ PluginInfo make_plugin_info() {
     }
   };
   if constexpr (PluginHasExampleParams<P>) info.example_params = std::string(P::example_params);
+  if constexpr (PluginHasCalibratedParams<P>) {
+    info.calibrated_params.assign(P::calibrated_params.begin(), P::calibrated_params.end());
+  }
   info.example_ports = [example = info.example_params](double sample_period_s,
                                                        Diagnostics& diag) -> std::optional<Ports> {
     const Json parsed = example.empty() ? Json::object() : Json::parse(example);

@@ -157,7 +157,7 @@ check gap_reset_too_small 2 $? "--gap-reset 1: give a number of sample periods >
 # A thresholds file that does not fit the config names the file and the stage.
 printf '{"stages": {"detekt": {"thresholds": [1.0]}}}\n' > "$work/thresholds.json"
 "$ftsense" run --config "$good" --thresholds "$work/thresholds.json" --input "$work/log.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
-check thresholds_do_not_fit 2 $? "thresholds.json:/stages/detekt/thresholds: the config has no stage named 'detekt'" "$work/err"
+check thresholds_do_not_fit 2 $? "thresholds.json:/stages/detekt: the config has no stage named 'detekt'" "$work/err"
 
 # Calibration. A virtual sensor biased by +30 N on c1 (fault-free residual in [25, 35]): the
 # paper's |s| <= 1.25 max |s| (43.75) hides a -20 N fault; a centred band (calibrate --band, over
@@ -181,6 +181,121 @@ check plain_threshold_hides_the_negative_fault 0 $status "3000 ticks, 3 channels
 check band_shows_the_negative_fault 0 $? "c1: fault first flagged at t = 1\.[0-9]* s" "$work/out"
 "$ftsense" calibrate --config "$good" --input "$work/clean_a.csv," --output "$work/x.json" > "$work/out" 2> "$work/err"
 check calibrate_empty_log_path 2 $? "has an empty log path" "$work/err"
+
+# Calibrated parameters: fault-free statistics of a stage's inputs (calibration.hpp). The model
+# l = 100 + 50 sin(2 pi t) N moves like a gait; c1 = l + 0.5 + 4 n, c2 = l + n, c3 = l - n, with
+# n_k = frac(0.618... k) - 0.5 (uniform, lag-one correlation < 0: white). Over the 3 s: c1's
+# residual has centre 0.4999, standard deviation 4 / sqrt(12) = 1.155 and, its mean over the one
+# whole 2 s window being 0.49986, noise density sqrt(2) x 0.49986 = 0.7069 N sqrt(s); no memory,
+# so correlation time 0. Calibrated, the CUSUM stays quiet on the clean log and flags a -20 N
+# offset on c1 from 1 s, which the classifier names.
+stat_log() {  # stat_log FAULT_N FILE
+  awk -v fault="$1" 'BEGIN { print "time_s,cell/c1/force_N,cell/c2/force_N,cell/c3/force_N,model/c1/force_N,model/c2/force_N,model/c3/force_N";
+    for (k = 0; k < 3000; k++) { t = k / 1000; l = 100 + 50 * sin(6.28318531 * t); u = 0.6180339887 * k; n = u - int(u) - 0.5;
+      printf "%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", t, l + 0.5 + 4 * n + (t >= 1 ? fault : 0), l + n, l - n, l, l, l } }' > "$2"
+}
+stat_log 0 "$work/stat_clean.csv"; stat_log -20 "$work/stat_faulty.csv"
+cat > "$work/statistics.json" <<'JSON'
+{
+ "sample_period_s": 0.001,
+ "inputs": {
+  "cell": {
+   "columns": [
+    "cell/c1/force_N",
+    "cell/c2/force_N",
+    "cell/c3/force_N"
+   ],
+   "unit": "N"
+  },
+  "model": {
+   "columns": [
+    "model/c1/force_N",
+    "model/c2/force_N",
+    "model/c3/force_N"
+   ],
+   "unit": "N"
+  }
+ },
+ "stages": [
+  {
+   "name": "residual",
+   "plugin": "difference_residual",
+   "inputs": {
+    "measured": "input.cell",
+    "virtual": "input.model"
+   }
+  },
+  {
+   "name": "cusum",
+   "plugin": "cusum_detector",
+   "params": {
+    "min_change": [
+     10.0,
+     1.0,
+     1.0
+    ]
+   },
+   "inputs": {
+    "residual": "residual.residual"
+   }
+  },
+  {
+   "name": "classify",
+   "plugin": "fault_classifier",
+   "inputs": {
+    "fault": "cusum.fault",
+    "measured": "input.cell",
+    "virtual": "input.model"
+   }
+  },
+  {
+   "name": "recover",
+   "plugin": "fault_recovery",
+   "params": {
+    "correction": "when_flagged"
+   },
+   "inputs": {
+    "measured": "input.cell",
+    "fault_estimate": "classify.fault_estimate",
+    "virtual": "input.model",
+    "fault": "cusum.fault",
+    "fault_type": "classify.fault_type"
+   }
+  }
+ ],
+ "monitor": {
+  "channels": [
+   "c1",
+   "c2",
+   "c3"
+  ],
+  "measured": "input.cell",
+  "virtual": "input.model",
+  "fault": "cusum.fault",
+  "fault_type": "classify.fault_type",
+  "fault_estimate": "classify.fault_estimate",
+  "recovered": "recover.recovered"
+ }
+}
+JSON
+"$ftsense" calibrate --config "$work/statistics.json" --input "$work/stat_clean.csv" --output "$work/statistics_cal.json" > "$work/out" 2> "$work/err"
+check calibrate_statistics 0 $? "^ftsense calibrate: cusum: noise_std 1\.155 0\.2887 0\.2887$" "$work/out" \
+  "^ftsense calibrate: cusum: centers 0\.4999 " "$work/out" "^ftsense calibrate: cusum: correlation_time_s 0$" "$work/out" \
+  "^ftsense calibrate: classify: residual_noise_density 0\.7069 " "$work/out" '"residual_noise_density"' "$work/statistics_cal.json"
+"$ftsense" run --config "$work/statistics.json" --thresholds "$work/statistics_cal.json" --input "$work/stat_clean.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check run_with_calibrated_statistics 0 $? "^  no channel flagged$" "$work/out"
+"$ftsense" run --config "$work/statistics.json" --thresholds "$work/statistics_cal.json" --input "$work/stat_faulty.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check calibrated_cusum_flags_and_the_classifier_types 0 $? "c1: fault first flagged at t = 1 s; fault types unclassified, offset$" "$work/out"
+printf '{"stages": {"cusum": {"centres": [1.0]}}}\n' > "$work/bad_cal.json"
+"$ftsense" run --config "$work/statistics.json" --thresholds "$work/bad_cal.json" --input "$work/stat_clean.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check calibration_entry_without_values 2 $? 'bad_cal.json:/stages/cusum: has neither "thresholds" nor "params"' "$work/err"
+# c2 read exactly as its model: a zero noise level would flag any change, so nothing is written.
+awk -F, 'BEGIN { OFS = "," } NR > 1 { $3 = $6 } { print }' "$work/stat_clean.csv" > "$work/stat_exact.csv"
+"$ftsense" calibrate --config "$work/statistics.json" --input "$work/stat_exact.csv" --output "$work/x.json" > "$work/out" 2> "$work/err"
+check calibrate_refuses_a_constant_residual 1 $? "cusum noise_std channel 1: is 0: the signal did not vary" "$work/err" \
+  "classify residual_noise_density channel 1: is 0" "$work/err" "nothing written" "$work/err"
+[ ! -e "$work/x.json" ] && { passes=$((passes + 1)); echo "ok   calibrate_refusal_writes_nothing"; } \
+  || { failures=$((failures + 1)); echo "FAIL calibrate_refusal_writes_nothing"; }
 
 # Determinism: the same log and config give byte-identical output.
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/d1.csv" > /dev/null 2>&1

@@ -32,7 +32,9 @@
 
 #include "ftsense/app/app.hpp"
 #include "ftsense/fault_type.hpp"
+#include "ftsense/calibration.hpp"
 #include "ftsense/generic/fault_classifier.hpp"
+#include "ftsense/generic/noise_density.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/pipeline.hpp"
 #include "insole/insole_fit.hpp"
@@ -205,12 +207,10 @@ bool isolator_noise(ftsense::Json& config, const std::string& config_path, const
 }
 
 // Every fault_classifier's residual_noise_density: the noise density of e = measured - virtual
-// at the time scale the classifier fits (seconds): the RMS of e's means over consecutive
-// kDensityWindowS windows times sqrt(kDensityWindowS), over the healthy stretch from the first
-// window (the filters' start-up left out). Rounded to 3 significant digits and stored in
-// `config`; returns whether the config held those values.
-constexpr double kDensityWindowS = 2.0;
-
+// at the time scale the classifier fits (ftsense::generic::NoiseDensity, means over
+// ftsense::kNoiseDensityWindowS windows, as `ftsense calibrate` measures it), over the healthy
+// stretch after the first window (the filters' start-up). Rounded to 3 significant digits and
+// stored in `config`; returns whether the config held those values.
 bool classifier_noise_density(ftsense::Json& config, const Log& log, const std::string& data_path) {
   bool all_match = true;
   for (auto& stage : config.at("stages")) {
@@ -223,44 +223,29 @@ bool classifier_noise_density(ftsense::Json& config, const Log& log, const std::
         pipeline.stage_input(run_index, ftsense::generic::FaultClassifier::kMeasured);
     const ftsense::SignalRef reference =
         pipeline.stage_input(run_index, ftsense::generic::FaultClassifier::kVirtual);
-    std::vector<double> window_sum(measured.dim, 0.0), sum_sq_means(measured.dim, 0.0);
-    std::vector<std::size_t> window_count(measured.dim, 0);
-    std::size_t windows = 0;
-    double window_start = log.time_s.front() + kDensityWindowS;  // the first window is start-up
+    std::vector<ftsense::generic::NoiseDensity> noise(
+        measured.dim, ftsense::generic::NoiseDensity(pipeline.sample_period_s(), ftsense::kNoiseDensityWindowS));
+    const double start_s = log.time_s.front() + ftsense::kNoiseDensityWindowS;
     run_pipeline(pipeline, log, {}, input_columns_of(pipeline, log, data_path),
                  [&](std::size_t k, const ftsense::Pipeline& p) {
                    const double t = log.time_s[k];
-                   if (t < window_start || t >= kFitEndS) return;
-                   if (t >= window_start + kDensityWindowS) {  // a window is complete
-                     for (std::size_t i = 0; i < measured.dim; ++i) {
-                       const double mean = window_count[i] > 0 ? window_sum[i] / window_count[i] : 0.0;
-                       sum_sq_means[i] += mean * mean;
-                       window_sum[i] = 0.0;
-                       window_count[i] = 0;
-                     }
-                     ++windows;
-                     window_start += kDensityWindowS;
-                   }
+                   if (t < start_s || t >= kFitEndS) return;
                    const auto x = p.values(measured);
                    const auto v = p.values(reference);
-                   for (std::size_t i = 0; i < measured.dim; ++i) {
-                     if (!std::isfinite(x[i] - v[i])) continue;
-                     window_sum[i] += x[i] - v[i];
-                     ++window_count[i];
-                   }
+                   for (std::size_t i = 0; i < measured.dim; ++i) noise[i].add(x[i] - v[i]);
                  });
-    if (windows == 0) throw UsageError(data_path + ": the healthy stretch holds no whole window of " +
-                                       ftsense::format_number(kDensityWindowS) + " s");
-    std::vector<double> density;
-    for (double s : sum_sq_means) {
-      density.push_back(round_significant(std::sqrt(s / static_cast<double>(windows) * kDensityWindowS), 3));
+    if (noise.empty() || noise.front().windows() == 0) {
+      throw UsageError(data_path + ": the healthy stretch holds no whole window of " +
+                       ftsense::format_number(ftsense::kNoiseDensityWindowS) + " s");
     }
+    std::vector<double> density;
+    for (const auto& q : noise) density.push_back(round_significant(q.density(), 3));
     auto& params = stage["params"];
     const auto it = params.find("residual_noise_density");
     bool match = it != params.end() && it->is_array() && it->size() == density.size();
     for (std::size_t i = 0; match && i < density.size(); ++i) match = (*it)[i].get<double>() == density[i];
-    std::cout << "stage " << stage_name << ": noise density of measured - virtual (means over " << windows << " windows of "
-              << kDensityWindowS << " s):";
+    std::cout << "stage " << stage_name << ": noise density of measured - virtual (means over "
+              << noise.front().windows() << " windows of " << ftsense::kNoiseDensityWindowS << " s):";
     for (double v : density) std::cout << ' ' << v;
     std::cout << " N sqrt(s)\n  residual_noise_density in the config: " << (match ? "matches" : "DIFFERS") << '\n';
     params["residual_noise_density"] = density;

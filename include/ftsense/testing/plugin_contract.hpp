@@ -34,6 +34,7 @@
 // of NaN or Inf on any input; reset then replay gives
 // bit-identical outputs; step allocates nothing.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -223,6 +224,24 @@ TYPED_TEST_P(PluginContract, PortsAreWellFormed) {
   }
 }
 
+TYPED_TEST_P(PluginContract, CalibratedParamsNameItsParametersAndInputs) {
+  if constexpr (PluginHasCalibratedParams<TypeParam>) {
+    PluginHarness<TypeParam> h;
+    const Ports& ports = h.plugin().ports();
+    const auto params = param_infos<typename TypeParam::Params>();
+    for (const CalibratedParam& c : TypeParam::calibrated_params) {
+      const bool known = std::any_of(params.begin(), params.end(), [&](const auto& i) { return i.key == c.param; });
+      EXPECT_TRUE(known) << "calibrated parameter " << c.param << " is no parameter";
+      EXPECT_TRUE(ports.find_input(c.input).has_value()) << "calibrated from " << c.input << ", no input";
+      if (!c.minus_input.empty()) {
+        EXPECT_TRUE(ports.find_input(c.minus_input).has_value()) << "calibrated from - " << c.minus_input;
+      }
+    }
+  } else {
+    SUCCEED() << "no calibrated parameters";
+  }
+}
+
 TYPED_TEST_P(PluginContract, NominalInputsGiveFiniteOutputs) {
   PluginHarness<TypeParam> h;
   h.plugin().reset();
@@ -324,7 +343,8 @@ TYPED_TEST_P(PluginContract, StepDoesNotAllocate) {
 
 REGISTER_TYPED_TEST_SUITE_P(PluginContract, ParametersLoadAndConstruct,
                             ParametersRoundTripThroughJson, EveryParameterIsDocumented,
-                            PortsAreWellFormed, NominalInputsGiveFiniteOutputs,
+                            PortsAreWellFormed, CalibratedParamsNameItsParametersAndInputs,
+                            NominalInputsGiveFiniteOutputs,
                             TinyInputsGiveFiniteOutputs, RandomInputsAreFiniteAndResetReplaysExactly,
                             RecoversFromNonFiniteInputs, StepDoesNotAllocate);
 

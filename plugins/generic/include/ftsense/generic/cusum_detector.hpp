@@ -32,6 +32,7 @@
 // `warmup_s` after reset (S is held at 0). Types: a raised flag is unclassified (classification
 // is another stage's work).
 
+#include <array>
 #include <string_view>
 #include <vector>
 
@@ -44,6 +45,13 @@ class CusumDetector {
   static constexpr std::string_view name = "cusum_detector";
   static constexpr std::string_view summary =
       "two-sided CUSUM per channel with its threshold from a mean time between false alarms";
+
+  // `ftsense calibrate` measures the fault-free residual's level, spread and memory.
+  static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
+      {"noise_std", "residual", FaultFreeStatistic::standard_deviation},
+      {"centers", "residual", FaultFreeStatistic::centre},
+      {"correlation_time_s", "residual", FaultFreeStatistic::correlation_time},
+  });
 
   struct Params {
     std::vector<double> noise_std{1.0};

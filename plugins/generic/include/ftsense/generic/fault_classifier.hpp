@@ -43,6 +43,7 @@
 // onset search runs over suffix sums). Allocation-free: the block history is sized at
 // construction.
 
+#include <array>
 #include <string_view>
 #include <vector>
 
@@ -57,6 +58,11 @@ class FaultClassifier {
   static constexpr std::string_view summary =
       "names a flagged channel's fault (offset, drift, gain, frozen) by fitting each model and its onset";
   static constexpr std::string_view example_params = R"({"residual_noise_density": [1.0]})";
+
+  // `ftsense calibrate` measures the noise density of the fault-free measured - virtual.
+  static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
+      {"residual_noise_density", "measured", FaultFreeStatistic::noise_density, "virtual"},
+  });
 
   struct Params {
     std::vector<double> residual_noise_density{1.0};

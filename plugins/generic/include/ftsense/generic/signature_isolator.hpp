@@ -28,6 +28,7 @@
 // otherwise), cannot_judge (1 while its group is raised and no channel is singled out).
 // Allocation-free: the work vectors are sized at construction.
 
+#include <array>
 #include <string_view>
 #include <vector>
 
@@ -41,6 +42,11 @@ class SignatureIsolator {
   static constexpr std::string_view summary =
       "blames the one channel whose fault signature explains the raised residuals (GLR), else cannot judge";
   static constexpr std::string_view example_params = R"({"group_size": 1})";
+
+  // `ftsense calibrate` measures each fault-free residual's RMS.
+  static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
+      {"residual_noise_std", "residual", FaultFreeStatistic::rms},
+  });
 
   struct Params {
     int group_size = 1;

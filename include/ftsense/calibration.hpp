@@ -1,0 +1,38 @@
+#pragma once
+// What `ftsense calibrate` measures on fault-free logs for a plugin: the plugin lists the
+// parameters that are statistics of its inputs (a detector's noise level and centre, a
+// classifier's noise density), and calibrate runs the pipeline over the logs, measures them per
+// channel after the pipeline's warm-up and writes them to the calibration file that
+// `ftsense run --thresholds` applies. A plugin opts in with
+//
+//   static constexpr auto calibrated_params = std::to_array<ftsense::CalibratedParam>({
+//       {"noise_std", "residual", ftsense::FaultFreeStatistic::standard_deviation}});
+//
+// Statistics of the fault-free samples r_k of an input (or of input - minus_input), per channel:
+//   centre              mean(r)
+//   standard_deviation  sqrt(mean((r - centre)^2))
+//   rms                 sqrt(mean(r^2))
+//   correlation_time    -T / ln(rho1), rho1 the lag-one autocorrelation (0 when rho1 <= 0): one
+//                       number, the largest over the channels (a first-order process each)
+//   noise_density       q = sqrt(w mean(m_i^2)), m_i the means of r over consecutive windows of
+//                       w = kNoiseDensityWindowS seconds: the mean of r over w seconds has standard
+//                       deviation q / sqrt(w) [unit sqrt(s)]
+
+#include <string_view>
+
+namespace ftsense {
+
+enum class FaultFreeStatistic { centre, standard_deviation, rms, correlation_time, noise_density };
+
+// The window of the noise-density statistic: long against a stride or a gait cycle (whose
+// periodic error averages out over it), short against the minutes of a calibration log.
+inline constexpr double kNoiseDensityWindowS = 2.0;
+
+struct CalibratedParam {
+  std::string_view param;               // the parameter written (a list per channel; correlation_time: a number)
+  std::string_view input;               // the input port whose fault-free samples are measured
+  FaultFreeStatistic statistic;
+  std::string_view minus_input = {};    // when set, the samples are input - minus_input
+};
+
+}  // namespace ftsense
