@@ -274,8 +274,8 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                                                  "detector input over a fault-free run, after warm-up"
                                                : "thresholds = margin x max |detector input| over a fault-free run, after "
                                                  "warm-up") +
-                                 "; params: fault-free statistics of the stages' inputs (calibration.hpp) after the "
-                                 "longest warm-up"},
+                                 (measured.empty() ? "" : "; params: fault-free statistics of the stages' inputs "
+                                                          "(calibration.hpp) after the longest warm-up")},
               {"config", config_path},
               {"input", options.at("input")},
               {"margin", margin},
