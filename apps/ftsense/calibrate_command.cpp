@@ -9,6 +9,7 @@
 #include "ftsense/calibration.hpp"
 #include "ftsense/generic/noise_density.hpp"
 #include "ftsense/generic/residual_statistics.hpp"
+#include "ftsense/generic/tick_noise.hpp"
 #include "ftsense/io/output_file.hpp"
 #include "log_runner.hpp"
 
@@ -37,7 +38,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                             "signal covered, and sets the threshold to margin x half that range: a virtual\n"
                             "sensor's systematic bias then no longer hides faults of the other sign.\n"
                             "It also measures every parameter that a stage's plugin declares a fault-free\n"
-                            "statistic of its inputs (cusum_detector: noise_std, centers,\n"
+                            "statistic of its inputs (signal_validator: noise_std; cusum_detector: noise_std, centers,\n"
                             "correlation_time_s; signature_isolator: residual_noise_std; fault_classifier:\n"
                             "residual_noise_density; docs/architecture.md), after the pipeline's longest\n"
                             "warm-up, and writes it for the same stage.",
@@ -88,6 +89,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     std::optional<SignalRef> minus;
     std::vector<generic::ResidualStatistics> statistics;  // per channel
     std::vector<generic::NoiseDensity> density;           // per channel (noise_density only)
+    std::vector<generic::TickNoise> tick_noise;           // per channel (tick_noise only)
   };
   std::vector<Measured> measured;
   double settle_s = 0.0;
@@ -100,12 +102,13 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       const auto in = ports.find_input(spec.input);
       const auto minus = spec.minus_input.empty() ? std::nullopt : ports.find_input(spec.minus_input);
       if (!in || (!spec.minus_input.empty() && !minus)) continue;  // the contract test rules this out
-      Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}};
+      Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}, {}};
       if (minus) m.minus = pipeline.stage_input(i, *minus);
       m.statistics.assign(m.input.dim, generic::ResidualStatistics(pipeline.sample_period_s()));
       if (spec.statistic == FaultFreeStatistic::noise_density) {
         m.density.assign(m.input.dim, generic::NoiseDensity(pipeline.sample_period_s(), kNoiseDensityWindowS));
       }
+      if (spec.statistic == FaultFreeStatistic::tick_noise) m.tick_noise.resize(m.input.dim);
       measured.push_back(std::move(m));
     }
   }
@@ -150,6 +153,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
           for (auto& m : measured) {
             for (auto& s : m.statistics) s.break_sequence();
             for (auto& d : m.density) d.break_sequence();
+            for (auto& q : m.tick_noise) q.break_sequence();
           }
         }
         last = t;
@@ -160,6 +164,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
               const double r = m.minus ? a[j] - pipeline.values(*m.minus)[j] : a[j];
               m.statistics[j].add(r);
               if (!m.density.empty()) m.density[j].add(r);
+              if (!m.tick_noise.empty()) m.tick_noise[j].add(r);
             }
           }
         }
@@ -241,10 +246,12 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
         case FaultFreeStatistic::rms: value = std::sqrt(centre * centre + sd * sd); break;
         case FaultFreeStatistic::correlation_time: value = st.correlation_time_s(); break;
         case FaultFreeStatistic::noise_density: value = m.density[j].density(); break;
+        case FaultFreeStatistic::tick_noise: value = m.tick_noise[j].standard_deviation(); break;
       }
       const bool spread = m.spec.statistic == FaultFreeStatistic::standard_deviation ||
                           m.spec.statistic == FaultFreeStatistic::rms ||
-                          m.spec.statistic == FaultFreeStatistic::noise_density;
+                          m.spec.statistic == FaultFreeStatistic::noise_density ||
+                          m.spec.statistic == FaultFreeStatistic::tick_noise;
       if (m.spec.statistic == FaultFreeStatistic::noise_density && m.density[j].windows() == 0) {
         refusals.push_back(what + "no whole " + format_number(kNoiseDensityWindowS) +
                            " s window after the warm-up; calibrate on a longer log");
@@ -252,8 +259,11 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
         refusals.push_back(what + "is not a finite number (" + format_number(value) +
                            "): the log holds absurd values; calibrate on a fault-free log");
       } else if (spread && !(value > 0.0)) {
-        refusals.push_back(what + "is 0: the signal did not vary, and a zero noise level would flag any change "
-                           "(an input held constant?); calibrate on a log where it varies");
+        refusals.push_back(what + (m.spec.statistic == FaultFreeStatistic::tick_noise
+                                       ? "is 0: the reading repeats itself from tick to tick (a sensor quantised "
+                                         "coarser than its noise, or held constant?); give its noise in the config"
+                                       : "is 0: the signal did not vary, and a zero noise level would flag any change "
+                                         "(an input held constant?); calibrate on a log where it varies"));
       }
       values.push_back(value);
     }

@@ -17,12 +17,14 @@
 //   noise_density       q = sqrt(w mean(m_i^2)), m_i the means of r over consecutive windows of
 //                       w = kNoiseDensityWindowS seconds: the mean of r over w seconds has standard
 //                       deviation q / sqrt(w) [unit sqrt(s)]
+//   tick_noise          the white noise of a reading that moves: median(|d2|) / (0.67449 sqrt(6)),
+//                       d2 the second difference (generic/tick_noise.hpp)
 
 #include <string_view>
 
 namespace ftsense {
 
-enum class FaultFreeStatistic { centre, standard_deviation, rms, correlation_time, noise_density };
+enum class FaultFreeStatistic { centre, standard_deviation, rms, correlation_time, noise_density, tick_noise };
 
 // The window of the noise-density statistic: long against a stride or a gait cycle (whose
 // periodic error averages out over it), short against the minutes of a calibration log.

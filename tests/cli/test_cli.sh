@@ -187,8 +187,11 @@ check calibrate_empty_log_path 2 $? "has an empty log path" "$work/err"
 # n_k = frac(0.618... k) - 0.5 (uniform, lag-one correlation < 0: white). Over the 3 s: c1's
 # residual has centre 0.4999, standard deviation 4 / sqrt(12) = 1.155 and, its mean over the one
 # whole 2 s window being 0.49986, noise density sqrt(2) x 0.49986 = 0.7069 N sqrt(s); no memory,
-# so correlation time 0. Calibrated, the CUSUM stays quiet on the clean log and flags a -20 N
-# offset on c1 from 1 s, which the classifier names.
+# so correlation time 0. The validator's noise from second differences, median(|d2|) /
+# (0.67449 sqrt 6), is 2.421 (c1) and 0.6047 (c2, c3) on these readings (n is anticorrelated, not
+# Gaussian: the values are that formula over the CSV, computed apart with Python's statistics
+# module). Calibrated, the CUSUM stays quiet on the clean log and flags a -20 N offset on c1 from
+# 1 s, which the classifier names.
 stat_log() {  # stat_log FAULT_N FILE
   awk -v fault="$1" 'BEGIN { print "time_s,cell/c1/force_N,cell/c2/force_N,cell/c3/force_N,model/c1/force_N,model/c2/force_N,model/c3/force_N";
     for (k = 0; k < 3000; k++) { t = k / 1000; l = 100 + 50 * sin(6.28318531 * t); u = 0.6180339887 * k; n = u - int(u) - 0.5;
@@ -223,6 +226,13 @@ cat > "$work/statistics.json" <<'JSON'
    "inputs": {
     "measured": "input.cell",
     "virtual": "input.model"
+   }
+  },
+  {
+   "name": "validate",
+   "plugin": "signal_validator",
+   "inputs": {
+    "signal": "input.cell"
    }
   },
   {
@@ -280,6 +290,7 @@ cat > "$work/statistics.json" <<'JSON'
 JSON
 "$ftsense" calibrate --config "$work/statistics.json" --input "$work/stat_clean.csv" --output "$work/statistics_cal.json" > "$work/out" 2> "$work/err"
 check calibrate_statistics 0 $? "^ftsense calibrate: cusum: noise_std 1\.155 0\.2887 0\.2887$" "$work/out" \
+  "^ftsense calibrate: validate: noise_std 2\.421 0\.6047 0\.6047$" "$work/out" \
   "^ftsense calibrate: cusum: centers 0\.4999 " "$work/out" "^ftsense calibrate: cusum: correlation_time_s 0$" "$work/out" \
   "^ftsense calibrate: classify: residual_noise_density 0\.7069 " "$work/out" '"residual_noise_density"' "$work/statistics_cal.json"
 "$ftsense" run --config "$work/statistics.json" --thresholds "$work/statistics_cal.json" --input "$work/stat_clean.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"

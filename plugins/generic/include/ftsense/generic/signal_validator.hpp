@@ -36,6 +36,7 @@
 // test passes again (frozen and noise: the window no longer shows it; spikes: window_s after the
 // last spike). Non-finite readings are left out of the windows.
 
+#include <array>
 #include <string_view>
 #include <vector>
 
@@ -50,6 +51,11 @@ class SignalValidator {
       "invalid, saturated, frozen, spiky or noisy readings per channel, against the sensor's noise and resolution";
   // For the config reference's port table and the schema (plugin.hpp): input reference is optional.
   static constexpr std::string_view example_params = R"([{}, {"reference": true}])";
+
+  // `ftsense calibrate` measures each reading's white noise from its second differences.
+  static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
+      {"noise_std", "signal", FaultFreeStatistic::tick_noise},
+  });
 
   struct Params {
     std::vector<double> noise_std{1.0};
