@@ -60,9 +60,11 @@ class FaultClassifier {
   static constexpr std::string_view example_params = R"({"residual_noise_density": [1.0]})";
 
   // `ftsense calibrate` measures the noise density of the fault-free measured - virtual.
+  // [snippet:calibrated_params]
   static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
       {"residual_noise_density", "measured", FaultFreeStatistic::noise_density, "virtual"},
   });
+  // [end-snippet]
 
   struct Params {
     std::vector<double> residual_noise_density{1.0};
