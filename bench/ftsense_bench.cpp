@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <random>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -26,6 +28,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/pipeline.hpp"
 #include "ftsense/reference_plugins.hpp"
@@ -171,6 +174,41 @@ void bench_tick_config(benchmark::State& state, const Json& config) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// fault_classifier at its worst: 16 channels at 1 kHz, every one flagged from the first tick, so
+// each 0.1 s block ends with 16 fits over the 300-block (30 s) history. Inputs: a gait-like
+// reference v = 300 + 250 sin(2 pi t) N and x = v + 20 N + white noise (seed 1), precomputed.
+void bench_classifier_all_flagged(benchmark::State& state) {
+  constexpr std::size_t kChannels = 16;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 60000;  // 60 s: the history fills, then rolls
+  ftsense::generic::FaultClassifier::Params params;
+  params.residual_noise_density = {1.0};
+  ftsense::generic::FaultClassifier classifier(
+      params, ftsense::StageContext(kPeriod, "classify", {{"measured", kChannels}}));
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0.0, 5.0);
+  std::vector<double> x(kTicks * kChannels), v(kTicks * kChannels);
+  for (std::size_t k = 0; k < kTicks; ++k) {
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      v[k * kChannels + c] = 300.0 + 250.0 * std::sin(2.0 * M_PI * (static_cast<double>(k) * kPeriod + 0.05 * c));
+      x[k * kChannels + c] = v[k * kChannels + c] + 20.0 + noise(rng);
+    }
+  }
+  const std::vector<double> flag(kChannels, 1.0);
+  std::vector<double> type(kChannels), estimate(kChannels);
+  classifier.reset();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {flag, std::span<const double>(x).subspan(k * kChannels, kChannels),
+                                           std::span<const double>(v).subspan(k * kChannels, kChannels)};
+    const std::span<double> outs[] = {type, estimate};
+    classifier.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    if (++k == kTicks) k = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void register_benchmarks() {
   const std::pair<const char*, const char*> stages[] = {
       {"com", "lipm_com_estimator"},        {"split", "leg_force_split"},
@@ -191,6 +229,8 @@ void register_benchmarks() {
   benchmark::RegisterBenchmark("stage/fdi [contact_force_fdi, robust config]", [](benchmark::State& s) {
     bench_stage(s, read_json(std::string(FTSENSE_SOURCE_DIR) + "/configs/suralp_robust.json"), "fdi");
   });
+  benchmark::RegisterBenchmark("stage/classify [fault_classifier, 16 channels all flagged, 1 kHz, synthetic]",
+                               bench_classifier_all_flagged);
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",
                                [](benchmark::State& s) { bench_tick_config(s, suralp_config("active_set")); });
   benchmark::RegisterBenchmark("tick/suralp.json [ceres solver]",

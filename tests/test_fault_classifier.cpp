@@ -224,6 +224,34 @@ TEST(FaultClassifier, NamesAtTheLikelihoodRatioMarginOnNoisyBlocks) {
   EXPECT_NEAR(trace.classifier.fit(0).onset_s, kOnset, 0.2);
 }
 
+TEST(FaultClassifier, SpreadsTheFitsOverTheBlocksTicks) {
+  // Three channels with the same offset, blocks of 3 ticks: one fit a tick, so the three are
+  // named on three consecutive ticks, channel 0 first.
+  FaultClassifier::Params p;
+  p.residual_noise_density = {1.0};
+  p.block_s = 3 * kPeriod;
+  p.history_s = 10.0;
+  FaultClassifier c(p, StageContext(kPeriod, "classify", {{"measured", 3}}));
+  c.reset();
+  std::vector<long> named_at(3, -1);
+  for (long k = 0; k < 700; ++k) {
+    const double t = static_cast<double>(k) * kPeriod;
+    const double v = reference(t), x = v + (after_onset(t) ? 20.0 : 0.0);
+    const double f = flagged_after_delay(t) ? 1.0 : 0.0;
+    const double flags[] = {f, f, f}, xs[] = {x, x, x}, vs[] = {v, v, v};
+    double types[3], estimates[3];
+    const std::span<const double> ins[] = {flags, xs, vs};
+    const std::span<double> outs[] = {types, estimates};
+    c.step(StepIO{t, ins, outs});
+    for (std::size_t j = 0; j < 3; ++j) {
+      if (named_at[j] < 0 && types[j] == fault_code(FaultType::offset)) named_at[j] = k;
+    }
+  }
+  ASSERT_GE(named_at[0], 0);
+  EXPECT_EQ(named_at[1], named_at[0] + 1);
+  EXPECT_EQ(named_at[2], named_at[0] + 2);
+}
+
 TEST(FaultClassifier, RejectsAHistoryShorterThanFourBlocks) {
   FaultClassifier::Params p;
   p.block_s = 0.1;

@@ -84,6 +84,8 @@ FaultClassifier::FaultClassifier(const Params& params, const StageContext& conte
   }
   capacity_ = static_cast<std::size_t>(blocks_in_history);
   same_episode_blocks_ = static_cast<long>(std::ceil(params.same_episode_s / block_s_));
+  fits_per_tick_ = (channels_count_ + static_cast<std::size_t>(ticks_per_block_) - 1) /
+                   static_cast<std::size_t>(ticks_per_block_);
   const double z = normal_quantile(0.5 + 0.5 * params.confidence);
   margin_ = z * z;
   weight_.resize(channels_count_);
@@ -119,6 +121,7 @@ void FaultClassifier::reset() noexcept {
   std::fill(channels_.begin(), channels_.end(), Channel{});
   blocks_ = 0;
   tick_in_block_ = 0;
+  next_due_ = 0;
   block_time_sum_ = 0.0;
 }
 
@@ -164,9 +167,17 @@ void FaultClassifier::step(const StepIO& io) noexcept {
     ++blocks_;
     tick_in_block_ = 0;
     block_time_sum_ = 0.0;
-    for (std::size_t c = 0; c < channels_count_; ++c) {
-      if (channels_[c].flagged) classify(c);
-    }
+    for (Channel& ch : channels_) ch.due = ch.flagged;
+  }
+  // The fits of a block's flagged channels are spread over the block's ticks, at most
+  // ceil(channels / ticks per block) a tick, so no tick carries them all.
+  for (std::size_t fits = 0, looked = 0; fits < fits_per_tick_ && looked < channels_count_; ++looked) {
+    const std::size_t c = next_due_;
+    next_due_ = (next_due_ + 1) % channels_count_;
+    if (!channels_[c].due) continue;
+    channels_[c].due = false;
+    if (channels_[c].flagged) classify(c);
+    ++fits;
   }
   for (std::size_t c = 0; c < channels_count_; ++c) {
     const Channel& ch = channels_[c];

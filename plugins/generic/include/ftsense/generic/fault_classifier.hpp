@@ -39,9 +39,10 @@
 // x - estimate = x / k), x - v (frozen and unclassified: the recovered value is the reference).
 // Both are none / 0 while the channel is not flagged.
 //
-// Cost: O(1) per tick; at the end of a block, O(history_s / block_s) per flagged channel (the
-// onset search runs over suffix sums). Allocation-free: the block history is sized at
-// construction.
+// Cost: O(1) per tick, plus the fits: O(history_s / block_s) per flagged channel and block (the
+// onset search runs over suffix sums), spread over the block's ticks, at most ceil(channels /
+// ticks per block) on one tick, so a fit lands within a block of the data it uses.
+// Allocation-free: the block history is sized at construction.
 
 #include <array>
 #include <string_view>
@@ -105,6 +106,7 @@ class FaultClassifier {
     long first_flagged = -1;  // block index of the episode's first flagged block, -1: none yet
     long cleared_at = -1;     // block in which the flag last dropped
     bool flagged = false;
+    bool due = false;  // a block ended while flagged: its fit is waiting for its tick
     Fit fit;
   };
   void classify(std::size_t channel) noexcept;
@@ -115,6 +117,8 @@ class FaultClassifier {
   double block_s_;
   std::size_t capacity_;  // blocks kept
   long same_episode_blocks_;
+  std::size_t fits_per_tick_;  // ceil(channels / ticks per block)
+  std::size_t next_due_ = 0;   // where the round over the due channels goes on
   double margin_;
   std::vector<double> weight_;  // 1 / q^2 per channel, times block_s
   // Block history, channel-major rings: [channel * capacity + (block % capacity)].
