@@ -1,5 +1,6 @@
-// NoiseDensity: q = sqrt(w mean(m_i^2)) over consecutive windows of w seconds, exact on small
-// sequences; non-finite samples are left out of their window, a partial window is dropped.
+// NoiseDensity: q = sqrt(mean(n_i T m_i^2)) over consecutive windows of w seconds, exact on small
+// sequences; non-finite samples are left out of their window (which weighs by the time its
+// samples cover), a partial window is dropped.
 
 #include <cmath>
 
@@ -36,12 +37,12 @@ TEST(NoiseDensity, AlternatingSamplesAverageOutInEvenWindows) {
 TEST(NoiseDensity, LeavesNonFiniteSamplesOutAndDropsPartialWindows) {
   NoiseDensity q(0.01, 0.04);
   const double nan = std::nan("");
-  for (double r : {nan, 2.0, 2.0, 2.0}) q.add(r);  // mean 2 over the 3 finite samples
+  for (double r : {nan, 2.0, 2.0, 2.0}) q.add(r);  // mean 2 over 3 finite samples: weight 3 T
   for (double r : {5.0, 5.0}) q.add(r);            // half a window ...
   q.break_sequence();                              // ... dropped at a reset
   for (double r : {nan, nan, nan, nan}) q.add(r);  // no finite sample: no window
   EXPECT_EQ(q.windows(), 1u);
-  EXPECT_NEAR(q.density(), std::sqrt(0.04 * 4.0), 1e-15);
+  EXPECT_NEAR(q.density(), std::sqrt(0.03 * 4.0), 1e-15);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // TickNoise: sigma = median(|d2|) / (0.67449 sqrt(6)) from the second differences of a reading,
-// exact on small sequences; a step in the load barely moves it; NaN breaks the sequence.
+// exact on small sequences; a step in the load barely moves it; exact repeats are left out; NaN
+// breaks the sequence.
 
 #include <cmath>
 
@@ -29,6 +30,17 @@ TEST(TickNoise, SlowMotionIsRemovedAndAStepBarelyCounts) {
   TickNoise q;
   for (int k = 0; k < 30; ++k) q.add(3.0 * k + (k >= 10 ? 100.0 : 0.0) + (k % 2 == 0 ? 2.0 : -2.0));
   EXPECT_NEAR(q.standard_deviation(), 8.0 / kScale, 1e-12);
+}
+
+TEST(TickNoise, ExactRepeatsAreLeftOut) {
+  // Half the log reads exactly 0 (a foot in the air), half 5 + 2 (-1)^k: only the d2 of the noisy
+  // half (and the two at the change) count, so sigma is still 8 / (0.67449 sqrt 6); a reading
+  // that only repeats has no noise to see.
+  TickNoise q, flat;
+  for (int k = 0; k < 40; ++k) q.add(k < 20 ? 0.0 : 5.0 + (k % 2 == 0 ? 2.0 : -2.0));
+  for (int k = 0; k < 40; ++k) flat.add(3.0);
+  EXPECT_NEAR(q.standard_deviation(), 8.0 / kScale, 1e-12);
+  EXPECT_TRUE(std::isnan(flat.standard_deviation()));
 }
 
 TEST(TickNoise, EvenCountsTakeTheMiddlePairAndNaNBreaksTheSequence) {

@@ -15,6 +15,27 @@
 
 namespace ftsense::cli {
 
+namespace {
+
+// A noise density from fewer windows than this is too uncertain to set a detector by (its square
+// is a chi-square of that many degrees of freedom).
+constexpr std::size_t kMinNoiseDensityWindows = 10;
+
+// "plugin: param, param; plugin: param", from the registry (the plugins' own declarations).
+std::string calibrated_params_list(const PluginRegistry& registry, std::string_view separator = "; ") {
+  std::string text;
+  for (const PluginInfo& info : registry.plugins()) {
+    if (info.calibrated_params.empty()) continue;
+    text += (text.empty() ? std::string() : std::string(separator)) + info.name + ":";
+    for (std::size_t i = 0; i < info.calibrated_params.size(); ++i) {
+      text += (i == 0 ? " " : ", ") + std::string(info.calibrated_params[i].param);
+    }
+  }
+  return text.empty() ? "none" : text;
+}
+
+}  // namespace
+
 int calibrate_command(const std::vector<std::string>& args, const Context& context) {
   const std::string command = context.command("calibrate");
   const std::vector<OptionSpec> specs{
@@ -38,10 +59,11 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                             "signal covered, and sets the threshold to margin x half that range: a virtual\n"
                             "sensor's systematic bias then no longer hides faults of the other sign.\n"
                             "It also measures every parameter that a stage's plugin declares a fault-free\n"
-                            "statistic of its inputs (signal_validator: noise_std; cusum_detector: noise_std, centers,\n"
-                            "correlation_time_s; signature_isolator: residual_noise_std; fault_classifier:\n"
-                            "residual_noise_density; docs/architecture.md), after the pipeline's longest\n"
-                            "warm-up, and writes it for the same stage.",
+                            "statistic of its inputs and the config does not give, after the pipeline's\n"
+                            "longest warm-up, and writes it for the same stage (a noise density needs " +
+                                std::to_string(kMinNoiseDensityWindows) + " windows\nof " +
+                                format_number(kNoiseDensityWindowS) + " s). Such parameters here:\n  " +
+                                calibrated_params_list(context.registry, ";\n  ") + ".",
                             specs);
     return kExitOk;
   }
@@ -93,12 +115,28 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
   };
   std::vector<Measured> measured;
   double settle_s = 0.0;
+  // The parameters the config gives are the user's: kept, not measured.
+  const Json raw_config = parse_json_text(read_text_file(config_path, "config file"), config_path);
+  const auto given = [&](std::string_view stage, std::string_view param) {
+    for (const Json& s : raw_config.value("stages", Json::array())) {
+      if (s.is_object() && s.value("name", "") == stage && s.contains("params") && s["params"].is_object() &&
+          s["params"].contains(std::string(param))) {
+        return true;
+      }
+    }
+    return false;
+  };
   for (std::size_t i = 0; i < pipeline.stage_count(); ++i) {
     settle_s = std::max(settle_s, pipeline.stage(i).params_json().value("warmup_s", 0.0));
     const PluginInfo* info = context.registry.find(pipeline.stage(i).plugin_name());
     if (info == nullptr) continue;
     const Ports& ports = pipeline.stage(i).ports();
     for (const CalibratedParam& spec : info->calibrated_params) {
+      if (given(pipeline.stage_name(i), spec.param)) {
+        std::cout << command << ": " << pipeline.stage_name(i) << ": " << spec.param
+                  << " given in the config, kept\n";
+        continue;
+      }
       const auto in = ports.find_input(spec.input);
       const auto minus = spec.minus_input.empty() ? std::nullopt : ports.find_input(spec.minus_input);
       if (!in || (!spec.minus_input.empty() && !minus)) continue;  // the contract test rules this out
@@ -113,9 +151,9 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     }
   }
   if (detectors.empty() && measured.empty()) {
-    throw ConfigError(config_path + ":/stages", "has no threshold_detector stage and no plugin with calibrated "
-                                                "parameters (cusum_detector, signature_isolator, fault_classifier); "
-                                                "nothing to calibrate");
+    throw ConfigError(config_path + ":/stages", "has no threshold_detector stage and no calibrated parameter the "
+                                                "config leaves open (" + calibrated_params_list(context.registry) +
+                                                "); nothing to calibrate");
   }
 
   // Every fault-free log in turn (the pipeline restarts for each, and so does the warm-up).
@@ -252,18 +290,23 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                           m.spec.statistic == FaultFreeStatistic::rms ||
                           m.spec.statistic == FaultFreeStatistic::noise_density ||
                           m.spec.statistic == FaultFreeStatistic::tick_noise;
-      if (m.spec.statistic == FaultFreeStatistic::noise_density && m.density[j].windows() == 0) {
-        refusals.push_back(what + "no whole " + format_number(kNoiseDensityWindowS) +
-                           " s window after the warm-up; calibrate on a longer log");
+      if (m.spec.statistic == FaultFreeStatistic::noise_density && m.density[j].windows() < kMinNoiseDensityWindows) {
+        refusals.push_back(what + std::to_string(m.density[j].windows()) + " whole windows of " +
+                           format_number(kNoiseDensityWindowS) + " s after the warm-up, fewer than " +
+                           std::to_string(kMinNoiseDensityWindows) + "; calibrate on at least " +
+                           format_number(kMinNoiseDensityWindows * kNoiseDensityWindowS) +
+                           " s of fault-free log after the warm-up (several logs add up), or give it in the config");
+      } else if (m.spec.statistic == FaultFreeStatistic::tick_noise && m.tick_noise[j].count() == 0) {
+        refusals.push_back(what + "no three consecutive finite readings that are not all equal: the reading "
+                           "repeats itself (a sensor quantised coarser than its noise, or held?) or is never "
+                           "finite; give its noise in the config");
       } else if (!std::isfinite(value)) {
         refusals.push_back(what + "is not a finite number (" + format_number(value) +
                            "): the log holds absurd values; calibrate on a fault-free log");
       } else if (spread && !(value > 0.0)) {
-        refusals.push_back(what + (m.spec.statistic == FaultFreeStatistic::tick_noise
-                                       ? "is 0: the reading repeats itself from tick to tick (a sensor quantised "
-                                         "coarser than its noise, or held constant?); give its noise in the config"
-                                       : "is 0: the signal did not vary, and a zero noise level would flag any change "
-                                         "(an input held constant?); calibrate on a log where it varies"));
+        refusals.push_back(what + "is 0: the signal did not vary, and a zero noise level would flag any change "
+                                  "(an input held constant?); calibrate on a log where it varies, or give it in the "
+                                  "config");
       }
       values.push_back(value);
     }

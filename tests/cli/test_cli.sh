@@ -184,17 +184,17 @@ check calibrate_empty_log_path 2 $? "has an empty log path" "$work/err"
 
 # Calibrated parameters: fault-free statistics of a stage's inputs (calibration.hpp). The model
 # l = 100 + 50 sin(2 pi t) N moves like a gait; c1 = l + 0.5 + 4 n, c2 = l + n, c3 = l - n, with
-# n_k = frac(0.618... k) - 0.5 (uniform, lag-one correlation < 0: white). Over the 3 s: c1's
-# residual has centre 0.4999, standard deviation 4 / sqrt(12) = 1.155 and, its mean over the one
-# whole 2 s window being 0.49986, noise density sqrt(2) x 0.49986 = 0.7069 N sqrt(s); no memory,
-# so correlation time 0. The validator's noise from second differences, median(|d2|) /
-# (0.67449 sqrt 6), is 2.421 (c1) and 0.6047 (c2, c3) on these readings (n is anticorrelated, not
-# Gaussian: the values are that formula over the CSV, computed apart with Python's statistics
-# module). Calibrated, the CUSUM stays quiet on the clean log and flags a -20 N offset on c1 from
-# 1 s, which the classifier names.
+# n_k = frac(0.618... k) - 0.5 (uniform, lag-one correlation < 0: white). Over the 22 s: c1's
+# residual has centre 0.4998, standard deviation 4 / sqrt(12) = 1.155 and, its means over the 11
+# whole 2 s windows being about 0.5, noise density sqrt(2 mean(m_i^2)) = 0.7068 N sqrt(s) (a
+# density needs 10 windows); no memory, so correlation time 0. The validator's noise from second
+# differences, median(|d2|) / (0.67449 sqrt 6), is 2.421 (c1) and 0.6047 (c2, c3) on these
+# readings (n is anticorrelated, not Gaussian: the values are these formulas over the CSV,
+# computed apart with Python's statistics module). Calibrated, the CUSUM stays quiet on the clean
+# log and flags a -20 N offset on c1 from 1 s, which the classifier names.
 stat_log() {  # stat_log FAULT_N FILE
   awk -v fault="$1" 'BEGIN { print "time_s,cell/c1/force_N,cell/c2/force_N,cell/c3/force_N,model/c1/force_N,model/c2/force_N,model/c3/force_N";
-    for (k = 0; k < 3000; k++) { t = k / 1000; l = 100 + 50 * sin(6.28318531 * t); u = 0.6180339887 * k; n = u - int(u) - 0.5;
+    for (k = 0; k < 22000; k++) { t = k / 1000; l = 100 + 50 * sin(6.28318531 * t); u = 0.6180339887 * k; n = u - int(u) - 0.5;
       printf "%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", t, l + 0.5 + 4 * n + (t >= 1 ? fault : 0), l + n, l - n, l, l, l } }' > "$2"
 }
 stat_log 0 "$work/stat_clean.csv"; stat_log -20 "$work/stat_faulty.csv"
@@ -291,8 +291,8 @@ JSON
 "$ftsense" calibrate --config "$work/statistics.json" --input "$work/stat_clean.csv" --output "$work/statistics_cal.json" > "$work/out" 2> "$work/err"
 check calibrate_statistics 0 $? "^ftsense calibrate: cusum: noise_std 1\.155 0\.2887 0\.2887$" "$work/out" \
   "^ftsense calibrate: validate: noise_std 2\.421 0\.6047 0\.6047$" "$work/out" \
-  "^ftsense calibrate: cusum: centers 0\.4999 " "$work/out" "^ftsense calibrate: cusum: correlation_time_s 0$" "$work/out" \
-  "^ftsense calibrate: classify: residual_noise_density 0\.7069 " "$work/out" '"residual_noise_density"' "$work/statistics_cal.json"
+  "^ftsense calibrate: cusum: centers 0\.4998 " "$work/out" "^ftsense calibrate: cusum: correlation_time_s 0$" "$work/out" \
+  "^ftsense calibrate: classify: residual_noise_density 0\.7068 " "$work/out" '"residual_noise_density"' "$work/statistics_cal.json"
 "$ftsense" run --config "$work/statistics.json" --thresholds "$work/statistics_cal.json" --input "$work/stat_clean.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
 check run_with_calibrated_statistics 0 $? "^  no channel flagged$" "$work/out"
 "$ftsense" run --config "$work/statistics.json" --thresholds "$work/statistics_cal.json" --input "$work/stat_faulty.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
@@ -307,6 +307,16 @@ check calibrate_refuses_a_constant_residual 1 $? "cusum noise_std channel 1: is 
   "classify residual_noise_density channel 1: is 0" "$work/err" "nothing written" "$work/err"
 [ ! -e "$work/x.json" ] && { passes=$((passes + 1)); echo "ok   calibrate_refusal_writes_nothing"; } \
   || { failures=$((failures + 1)); echo "FAIL calibrate_refusal_writes_nothing"; }
+# What the config gives is the user's: kept, not measured (the way out of a refusal).
+sed 's/"plugin": "signal_validator",/"plugin": "signal_validator", "params": {"noise_std": [2.0]},/' "$work/statistics.json" > "$work/given.json"
+"$ftsense" calibrate --config "$work/given.json" --input "$work/stat_clean.csv" --output "$work/given_cal.json" > "$work/out" 2> "$work/err"
+check calibrate_keeps_what_the_config_gives 0 $? "^ftsense calibrate: validate: noise_std given in the config, kept$" "$work/out"
+grep -q '"validate"' "$work/given_cal.json" && { failures=$((failures + 1)); echo "FAIL calibrate_keeps_writes_no_entry"; } \
+  || { passes=$((passes + 1)); echo "ok   calibrate_keeps_writes_no_entry"; }
+# A density needs 10 whole windows of 2 s: a 3 s log is refused, saying how long a log it takes.
+head -3001 "$work/stat_clean.csv" > "$work/stat_short.csv"
+"$ftsense" calibrate --config "$work/statistics.json" --input "$work/stat_short.csv" --output "$work/x.json" > "$work/out" 2> "$work/err"
+check calibrate_refuses_a_short_density 1 $? "classify residual_noise_density channel 0: 1 whole windows of 2 s after the warm-up, fewer than 10; calibrate on at least 20 s" "$work/err"
 
 # Determinism: the same log and config give byte-identical output.
 "$ftsense" run --config "$good" --input "$work/log.csv" --output "$work/d1.csv" > /dev/null 2>&1

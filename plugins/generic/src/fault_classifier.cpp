@@ -18,9 +18,6 @@ namespace {
 constexpr std::array<FaultType, 4> kModels{FaultType::offset, FaultType::drift, FaultType::gain, FaultType::frozen};
 enum Model : std::size_t { kOffset, kDrift, kGain, kFrozen };
 
-// Sums of squares below this (in the squared unit, or s^2 for times) carry no information: a
-// block window that never moves the reference cannot fit a gain, one block cannot fit a slope.
-constexpr double kMinSumOfSquares = 1e-12;
 // |k| below this is no gain to divide by (the recovered value falls back to the reference).
 constexpr double kMinGain = 1e-9;
 
@@ -145,7 +142,7 @@ void FaultClassifier::step(const StepIO& io) noexcept {
       if (!same_episode) {
         // A new episode: its fit starts after the block in which the last one was re-admitted
         // (that block still held faulty samples).
-        if (ch.first_flagged >= 0) ch.window_start = ch.cleared_at + 1;
+        if (ch.first_flagged >= 0) ch.window_start = std::min(ch.cleared_at + 1, blocks_);
         ch.first_flagged = blocks_;  // the block being filled
         ch.fit = Fit{};
       }
@@ -204,8 +201,8 @@ void FaultClassifier::classify(std::size_t c) noexcept {
   Channel& ch = channels_[c];
   const long end = blocks_;
   const long start = std::max(ch.window_start, end - static_cast<long>(capacity_));
-  const long last_onset = std::clamp(ch.first_flagged, start, end - 1);
   if (end - start < 2) return;
+  const long last_onset = std::clamp(ch.first_flagged, start, end - 1);
   const double* bx = block_x_.data() + c * capacity_;
   const double* bv = block_v_.data() + c * capacity_;
   const auto slot = [&](long i) { return static_cast<std::size_t>(i % static_cast<long>(capacity_)); };
@@ -244,8 +241,9 @@ void FaultClassifier::classify(std::size_t c) noexcept {
     keep(kOffset, s.ee - s.e * s.e / s.n, s.e / s.n);
     const double dd = s.tt - 2.0 * ti * s.t + s.n * ti * ti;  // sum (t - t_i0)^2
     const double ed = s.et - ti * s.e;                         // sum e (t - t_i0)
-    if (dd > kMinSumOfSquares) keep(kDrift, s.ee - ed * ed / dd, ed / dd);
-    if (s.vv > kMinSumOfSquares) keep(kGain, s.ee - s.ev * s.ev / s.vv, 1.0 + s.ev / s.vv, s.vv);
+    // One block after the onset fits no slope (dd = 0); a reference at 0 throughout, no gain.
+    if (dd > 0.0) keep(kDrift, s.ee - ed * ed / dd, ed / dd);
+    if (s.vv > 0.0) keep(kGain, s.ee - s.ev * s.ev / s.vv, 1.0 + s.ev / s.vv, s.vv);
     keep(kFrozen, s.xx - s.x * s.x / s.n, s.x / s.n);
   }
 

@@ -8,7 +8,7 @@ namespace ftsense::generic {
 
 NoiseDensity::NoiseDensity(double sample_period_s, double window_s) noexcept
     : samples_per_window_(static_cast<std::size_t>(std::max(1.0, std::round(window_s / sample_period_s)))),
-      window_s_(static_cast<double>(samples_per_window_) * sample_period_s) {}
+      period_s_(sample_period_s) {}
 
 void NoiseDensity::add(double r) noexcept {
   if (std::isfinite(r)) {
@@ -18,7 +18,7 @@ void NoiseDensity::add(double r) noexcept {
   if (++in_window_ < samples_per_window_) return;
   if (finite_ > 0) {
     const double mean = sum_ / static_cast<double>(finite_);
-    sum_sq_means_ += mean * mean;
+    sum_weighted_sq_means_ += static_cast<double>(finite_) * period_s_ * mean * mean;
     ++windows_;
   }
   break_sequence();
@@ -32,7 +32,7 @@ void NoiseDensity::break_sequence() noexcept {
 
 double NoiseDensity::density() const noexcept {
   if (windows_ == 0) return std::numeric_limits<double>::quiet_NaN();
-  return std::sqrt(window_s_ * sum_sq_means_ / static_cast<double>(windows_));
+  return std::sqrt(sum_weighted_sq_means_ / static_cast<double>(windows_));
 }
 
 }  // namespace ftsense::generic

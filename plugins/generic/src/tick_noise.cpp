@@ -16,7 +16,7 @@ void TickNoise::add(double x) {
     break_sequence();
     return;
   }
-  if (held_ == 2) abs_d2_.push_back(std::abs(x - 2.0 * previous_ + before_));
+  if (held_ == 2 && !(x == previous_ && previous_ == before_)) abs_d2_.push_back(std::abs(x - 2.0 * previous_ + before_));
   before_ = previous_;
   previous_ = x;
   held_ = std::min(held_ + 1, 2);

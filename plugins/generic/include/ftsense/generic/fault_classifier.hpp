@@ -7,8 +7,8 @@
 // low-frequency noise density q_j (`residual_noise_density`, unit sqrt(s): the mean of e over a
 // window of w seconds has standard deviation q / sqrt(w); for white noise of standard deviation
 // sigma sampled every T seconds, q = sigma sqrt(T)). Samples are averaged into blocks of
-// `block_s` seconds (x_i, v_i, e_i at block start times t_i) and the last `history_s` seconds of
-// blocks are kept. A fault that starts at block i0 makes the blocks i >= i0 follow one of
+// `block_s` seconds (x_i, v_i, e_i at t_i, the mean tick time of the block) and the last
+// `history_s` seconds of blocks are kept. A fault that starts at block i0 makes the blocks i >= i0 follow one of
 //
 //   offset   e_i = b                      (y = x + b)
 //   drift    e_i = s (t_i - t_i0)         (y = x + s (t - t0))
@@ -25,6 +25,9 @@
 //
 //   LR_m = (RSS_m - RSS_best) block_s / q^2 >= chi^2_1(confidence)     for every m != best.
 //
+// The margin is a heuristic, not a calibrated confidence: the models are not nested, each onset
+// is the best of many, and a reference error that repeats with the gait (measured out of q,
+// whose windows average it away) stays in the block means, where a model may fit part of it.
 // Until then the type is unclassified. A named type stays while the channel is flagged unless
 // another model overtakes it by the same margin. An episode ends when the flag drops (the channel
 // is re-admitted) and stays down `same_episode_s`; a flag back sooner continues it (a detector's
@@ -83,7 +86,7 @@ class FaultClassifier {
   struct Fit {
     FaultType type = FaultType::unclassified;  // the named model, unclassified while undecided
     double size = 0.0;      // b [unit], s [unit/s], k [1] or c [unit] of the named model
-    double onset_s = 0.0;   // t0: the start time of the onset block
+    double onset_s = 0.0;   // t0: the onset block's time (its mean tick time)
   };
 
   FaultClassifier(const Params& params, const StageContext& context);
