@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -28,11 +29,12 @@ int check_command(const std::vector<std::string>& args, const Context& context) 
 }
 
 Pipeline load_pipeline(const Context& context, const std::string& config_path, const std::string& thresholds_path) {
+  std::vector<std::string> from_thresholds;  // config pointers whose values the thresholds file set
   try {
     Json config = parse_json_text(read_text_file(config_path, "config file"), config_path);
     if (!thresholds_path.empty()) {
-      apply_thresholds(config, parse_json_text(read_text_file(thresholds_path, "thresholds file"), thresholds_path),
-                       thresholds_path);
+      from_thresholds = apply_thresholds(
+          config, parse_json_text(read_text_file(thresholds_path, "thresholds file"), thresholds_path), thresholds_path);
     }
     Pipeline pipeline = Pipeline::build(config, context.registry,
                                         std::filesystem::path(config_path).parent_path());
@@ -41,7 +43,13 @@ Pipeline load_pipeline(const Context& context, const std::string& config_path, c
   } catch (const ConfigError& e) {
     std::vector<Diagnostic> problems = e.problems();
     for (auto& p : problems) {
-      if (p.path.find(':') == std::string::npos) p.path = config_path + ":" + p.path;
+      if (p.path.find(':') != std::string::npos) continue;
+      const bool calibrated = std::any_of(from_thresholds.begin(), from_thresholds.end(), [&](const std::string& f) {
+        return p.path == f || p.path.rfind(f + "/", 0) == 0;
+      });
+      // A value from the thresholds file is reported there: the config does not hold it.
+      if (calibrated) p.message += " (the value comes from " + thresholds_path + "; calibrate again or fix it there)";
+      p.path = config_path + ":" + p.path;
     }
     throw ConfigError(std::move(problems));
   }

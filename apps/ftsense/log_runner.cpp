@@ -288,8 +288,9 @@ std::string clock_warnings(const std::string& input_path, const RunSummary& summ
   return text.str();
 }
 
-void apply_thresholds(Json& config, const Json& thresholds, const std::string& thresholds_path) {
+std::vector<std::string> apply_thresholds(Json& config, const Json& thresholds, const std::string& thresholds_path) {
   Diagnostics diag;
+  std::vector<std::string> set;
   const auto stages = thresholds.find("stages");
   if (!thresholds.is_object() || stages == thresholds.end() || !stages->is_object()) {
     throw ConfigError(thresholds_path + ":/stages", "missing; a thresholds file (from ftsense calibrate) has "
@@ -313,20 +314,27 @@ void apply_thresholds(Json& config, const Json& thresholds, const std::string& t
     }
     bool found = false;
     if (config.contains("stages") && config["stages"].is_array()) {
-      for (auto& stage : config["stages"]) {
+      for (std::size_t i = 0; i < config["stages"].size(); ++i) {
+        Json& stage = config["stages"][i];
         if (stage.is_object() && stage.value("name", "") == name) {
+          const std::string params_pointer = "/stages/" + std::to_string(i) + "/params/";
           if (has_thresholds) {
             stage["params"]["thresholds"] = entry["thresholds"];
+            set.push_back(params_pointer + "thresholds");
             // A band calibration also sets each channel's centre; a plain one resets it to 0.
             if (entry.contains("centers")) {
               stage["params"]["centers"] = entry["centers"];
+              set.push_back(params_pointer + "centers");
             } else if (stage["params"].contains("centers")) {
               stage["params"].erase("centers");
             }
           }
           // Measured statistics replace the config's values (the plugin checks them as any).
           if (has_params) {
-            for (const auto& [key, value] : entry["params"].items()) stage["params"][key] = value;
+            for (const auto& [key, value] : entry["params"].items()) {
+              stage["params"][key] = value;
+              set.push_back(params_pointer + json_pointer_append("", key).substr(1));
+            }
           }
           found = true;
         }
@@ -335,6 +343,7 @@ void apply_thresholds(Json& config, const Json& thresholds, const std::string& t
     if (!found) diag.error(stage_path, "the config has no stage named '" + name + "'; calibrate with the same config");
   }
   diag.throw_if_errors();
+  return set;
 }
 
 }  // namespace ftsense::cli

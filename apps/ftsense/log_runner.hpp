@@ -83,8 +83,11 @@ RunSummary run_over_log(Pipeline& pipeline, io::CsvLogReader& log, const ColumnM
 std::string clock_warnings(const std::string& input_path, const RunSummary& summary, double period_s,
                            const ClockPolicy& clock);
 
-// Thresholds written by `ftsense calibrate`: sets params.thresholds of each named stage in
-// `config`. Throws ConfigError naming the file and the stage when one does not fit.
-void apply_thresholds(Json& config, const Json& thresholds, const std::string& thresholds_path);
+// A calibration written by `ftsense calibrate`: sets params.thresholds (and centers) and the
+// measured params of each named stage in `config`. Throws ConfigError naming the file and the
+// stage when one does not fit.
+// Returns the JSON pointers into `config` of the values it set ("/stages/<i>/params/<key>"), so
+// that a problem with one of them can be reported where the value came from.
+std::vector<std::string> apply_thresholds(Json& config, const Json& thresholds, const std::string& thresholds_path);
 
 }  // namespace ftsense::cli

@@ -307,6 +307,10 @@ check calibrate_refuses_a_constant_residual 1 $? "cusum noise_std channel 1: is 
   "classify residual_noise_density channel 1: is 0" "$work/err" "nothing written" "$work/err"
 [ ! -e "$work/x.json" ] && { passes=$((passes + 1)); echo "ok   calibrate_refusal_writes_nothing"; } \
   || { failures=$((failures + 1)); echo "FAIL calibrate_refusal_writes_nothing"; }
+# A bad value in a calibration file is reported as coming from it.
+printf '{"stages": {"cusum": {"params": {"noise_std": [-1.0]}}}}\n' > "$work/negative_cal.json"
+"$ftsense" run --config "$work/statistics.json" --thresholds "$work/negative_cal.json" --input "$work/stat_clean.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
+check calibration_value_blamed_on_its_file 2 $? "statistics.json:/stages/2/params/noise_std/0 = -1\.0 violates > 0 .*\(the value comes from .*negative_cal.json; calibrate again or fix it there\)" "$work/err"
 # What the config gives is the user's: kept, not measured (the way out of a refusal).
 sed 's/"plugin": "signal_validator",/"plugin": "signal_validator", "params": {"noise_std": [2.0]},/' "$work/statistics.json" > "$work/given.json"
 "$ftsense" calibrate --config "$work/given.json" --input "$work/stat_clean.csv" --output "$work/given_cal.json" > "$work/out" 2> "$work/err"
