@@ -12,7 +12,9 @@ Exit 1 if a detected fault is shown most as a wrong type or a healthy sensor is 
 """
 import argparse
 import csv
+import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -20,12 +22,19 @@ from collections import Counter
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-CODES = {0: "none", 1: "unclassified", 2: "offset", 3: "drift", 4: "frozen", 5: "gain", 6: "noise", 7: "spikes",
-         8: "invalid", 9: "saturation"}
 SENSORS = ["left/L1", "left/L2", "left/L4", "left/L6", "right/R1", "right/R3", "right/R4", "right/R7"]
 FAULTS = [("offset", {"offset_N": 60}), ("offset", {"offset_N": -60}), ("drift", {"slope_N_s": 5}),
           ("gain", {"gain": 1.6}), ("gain", {"gain": 0.5}), ("frozen", {})]
 START_S, END_S, GRACE_S = 55.0, 75.0, 5.0
+
+
+def fault_type_names(program):
+    """code -> name, from the program's own table (`plugins --fault-types`, fault_type.hpp)."""
+    table = subprocess.run([program, "plugins", "--fault-types"], check=True, capture_output=True, text=True).stdout
+    rows = re.findall(r"^\| (\d+) \| `([a-z_]+)` \|", table, re.M)
+    if not rows:
+        sys.exit(f"{program} plugins --fault-types printed no fault type table")
+    return {int(code): name for code, name in rows}
 
 
 def main():
@@ -35,6 +44,7 @@ def main():
     parser.add_argument("--walk", default=os.path.join(ROOT, "examples/insole_fdi/data/GaCo01_01.csv"))
     parser.add_argument("--work", default=None)
     args = parser.parse_args()
+    codes = fault_type_names(args.insole_fdi)
     work = args.work or tempfile.mkdtemp(prefix="insole_sweep_")
     os.makedirs(work, exist_ok=True)
     print(f"one fault per run from {START_S:g} s to {END_S:g} s; work files in {work}")
@@ -49,7 +59,6 @@ def main():
             spec = {"seed": 1, "channels": {sensor: sensor + "/force_N"}, "faults": [fault]}
             faults_path = os.path.join(work, f"faults{runs}.json")
             with open(faults_path, "w") as f:
-                import json
                 json.dump(spec, f)
             injected = os.path.join(work, f"injected{runs}.csv")
             out = os.path.join(work, f"run{runs}.csv")
@@ -79,7 +88,7 @@ def main():
                         continue
                     if not START_S <= t < END_S:
                         continue
-                    code = CODES.get(int(float(row[sensor + "/fault_type"])), "?")
+                    code = codes.get(int(float(row[sensor + "/fault_type"])), "?")
                     first = t if first is None else first
                     if code == kind and first_typed is None:
                         first_typed = t

@@ -14,9 +14,10 @@
 //   rms                 sqrt(mean(r^2))
 //   correlation_time    -T / ln(rho1), rho1 the lag-one autocorrelation (0 when rho1 <= 0): one
 //                       number, the largest over the channels (a first-order process each)
-//   noise_density       q = sqrt(w mean(m_i^2)), m_i the means of r over consecutive windows of
-//                       w = kNoiseDensityWindowS seconds: the mean of r over w seconds has standard
-//                       deviation q / sqrt(w) [unit sqrt(s)]
+//   noise_density       q = sqrt(mean(n_i T m_i^2)), m_i the mean of the n_i finite samples of r
+//                       in consecutive windows of w = kNoiseDensityWindowS seconds (n_i T = w when
+//                       whole): the mean of r over w seconds has standard deviation q / sqrt(w)
+//                       [unit sqrt(s)] (generic/noise_density.hpp)
 //   tick_noise          the white noise of a reading that moves: median(|d2|) / (0.67449 sqrt(6)),
 //                       d2 the second difference (generic/tick_noise.hpp)
 

@@ -155,6 +155,19 @@ double round_significant(double value, int digits) {
   return std::stod(text);
 }
 
+// Prints `values` (ending the line begun by the caller) and whether params[key] holds exactly
+// them, then stores them there; returns whether it held them.
+bool store_measured(ftsense::Json& params, const std::string& key, const std::vector<double>& values,
+                    const std::string& unit) {
+  const auto it = params.find(key);
+  bool match = it != params.end() && it->is_array() && it->size() == values.size();
+  for (std::size_t i = 0; match && i < values.size(); ++i) match = (*it)[i].get<double>() == values[i];
+  for (double v : values) std::cout << ' ' << v;
+  std::cout << ' ' << unit << "\n  " << key << " in the config: " << (match ? "matches" : "DIFFERS") << '\n';
+  params[key] = values;
+  return match;
+}
+
 // Every signature_isolator's residual_noise_std: the RMS of the fault-free residual it judges,
 // through the pipeline with the fitted coefficients over the healthy stretch, from the end of the
 // warm-up of the detector that raises its alarms (whose filters start there). Rounded to 3
@@ -192,16 +205,9 @@ bool isolator_noise(ftsense::Json& config, const std::string& config_path, const
     if (samples == 0) throw UsageError(data_path + ": no sample after the warm-up in the healthy stretch");
     std::vector<double> noise;
     for (double s : sum_sq) noise.push_back(round_significant(std::sqrt(s / static_cast<double>(samples)), 3));
-    auto& params = stage["params"];
-    const auto it = params.find("residual_noise_std");
-    bool match = it != params.end() && it->is_array() && it->size() == noise.size();
-    for (std::size_t i = 0; match && i < noise.size(); ++i) match = (*it)[i].get<double>() == noise[i];
     std::cout << "stage " << stage_name << ": residual noise (RMS over " << samples << " fault-free samples from "
               << warmup_s << " s):";
-    for (double v : noise) std::cout << ' ' << v;
-    std::cout << " N\n  residual_noise_std in the config: " << (match ? "matches" : "DIFFERS") << '\n';
-    params["residual_noise_std"] = noise;
-    all_match = all_match && match;
+    all_match = store_measured(stage["params"], "residual_noise_std", noise, "N") && all_match;
   }
   return all_match;
 }
@@ -240,16 +246,9 @@ bool classifier_noise_density(ftsense::Json& config, const Log& log, const std::
     }
     std::vector<double> density;
     for (const auto& q : noise) density.push_back(round_significant(q.density(), 3));
-    auto& params = stage["params"];
-    const auto it = params.find("residual_noise_density");
-    bool match = it != params.end() && it->is_array() && it->size() == density.size();
-    for (std::size_t i = 0; match && i < density.size(); ++i) match = (*it)[i].get<double>() == density[i];
     std::cout << "stage " << stage_name << ": noise density of measured - virtual (means over "
               << noise.front().windows() << " windows of " << ftsense::kNoiseDensityWindowS << " s):";
-    for (double v : density) std::cout << ' ' << v;
-    std::cout << " N sqrt(s)\n  residual_noise_density in the config: " << (match ? "matches" : "DIFFERS") << '\n';
-    params["residual_noise_density"] = density;
-    all_match = all_match && match;
+    all_match = store_measured(stage["params"], "residual_noise_density", density, "N sqrt(s)") && all_match;
   }
   return all_match;
 }
@@ -350,6 +349,19 @@ struct ChannelStats {
   int cross_alarms = 0;  // raised on this healthy channel while another channel is faulty
   double cross_alarm_s = 0.0;
 };
+
+// The type the pipeline showed most while the channel's fault was active; none if never flagged.
+std::optional<FaultType> most_shown(const ChannelStats& s) {
+  std::optional<FaultType> type;
+  std::size_t most = 0;
+  for (const auto& [t, ticks] : s.shown) {
+    if (ticks > most) {
+      most = ticks;
+      type = t;
+    }
+  }
+  return type;
+}
 
 int evaluate_command(const std::string& config_path, const std::string& data_path) {
   const auto registry = insole::plugins::registry();
@@ -473,14 +485,8 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
         s.stance_samples > 0 ? std::sqrt(s.stance_sum_sq_error / static_cast<double>(s.stance_samples)) : NAN;
     std::string type = "-";
     std::string delay = "-";
-    std::string shown = "-";  // the type the pipeline showed most while the fault was active
-    std::size_t most = 0;
-    for (const auto& [t, ticks] : s.shown) {
-      if (ticks > most) {
-        most = ticks;
-        shown = std::string(to_string(t));
-      }
-    }
+    const std::optional<FaultType> most = most_shown(s);
+    const std::string shown = most ? std::string(to_string(*most)) : "-";
     if (fault_of[c]) {
       type = to_string(kSchedule[*fault_of[c]].type);
       if (s.detection_delay_s) {
@@ -509,14 +515,7 @@ int evaluate_command(const std::string& config_path, const std::string& data_pat
     if (!fault_of[c]) continue;
     const ChannelStats& s = stats[c];
     const FaultType injected = kSchedule[*fault_of[c]].type;
-    FaultType shown = FaultType::none;
-    std::size_t most = 0;
-    for (const auto& [t, ticks] : s.shown) {
-      if (ticks > most) {
-        most = ticks;
-        shown = t;
-      }
-    }
+    const FaultType shown = most_shown(s).value_or(FaultType::none);
     mistyped += shown == injected ? 0 : 1;
     const auto seconds = [](const std::optional<double>& d) {
       char text[32];
