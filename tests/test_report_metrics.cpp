@@ -100,6 +100,10 @@ TEST(ReportMetrics, ChannelMetricsOfAnOffsetFault) {
   EXPECT_EQ(m.shown_type, FaultType::offset);
   EXPECT_TRUE(m.type_correct());
   EXPECT_EQ(m.readmission_s, 1.0);
+  EXPECT_TRUE(m.fault_ended);
+  EXPECT_EQ(m.loaded_delay_s, 1.0);
+  EXPECT_EQ(m.fault_size, 10.0);
+  EXPECT_DOUBLE_EQ(m.fault_slope, 0.0);
   EXPECT_EQ(m.fault_estimate_rmse, 0.0);  // scored at t = 5, 6 only
   EXPECT_EQ(m.recovered_rmse, 1.0);
   EXPECT_EQ(m.measured_rmse, 10.0);
@@ -113,6 +117,43 @@ TEST(ReportMetrics, ChannelMetricsOfAnOffsetFault) {
   EXPECT_EQ(t.detected, 1);
   EXPECT_EQ(t.types_correct, 1);
   EXPECT_EQ(t.false_alarms, 0);
+}
+
+TEST(ReportMetrics, LoadedDelayCountsOnlyTheTimeInContact) {
+  const FaultWindow w{2, 8, FaultType::offset};
+  const std::vector<double> flag{0, 0, 0, 0, 0, 0, 1, 1, 1, 0};
+  // Onset t = 2, first flag t = 6: 4 s in all, of which t = 3..4 and 5..6 in contact (2 s).
+  const std::vector<double> contact{1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+  EXPECT_EQ(loaded_delay_s(kTime, flag, contact, w), 2.0);
+  EXPECT_EQ(loaded_delay_s(kTime, flag, {}, w), 4.0);  // no contact column: the whole delay
+  EXPECT_TRUE(std::isnan(loaded_delay_s(kTime, std::vector<double>(10, 0.0), contact, w)));
+  const std::vector<double> at_onset{0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
+  EXPECT_EQ(loaded_delay_s(kTime, at_onset, contact, w), 0.0);
+}
+
+TEST(ReportMetrics, FaultShapeOfADriftAndOfIntermittentOffsets) {
+  // A drift of 3 per s from t = 4 on a truth of 100; a NaN reading is left out.
+  std::vector<double> truth(10, 100.0), measured(10, 100.0), code(10, 0.0);
+  for (std::size_t k = 4; k < 10; ++k) {
+    measured[k] = 100.0 + 3.0 * (kTime[k] - 4.0);
+    code[k] = 3.0;
+  }
+  measured[6] = std::nan("");
+  const FaultShape drift = fault_shape(kTime, measured, truth, code);
+  EXPECT_DOUBLE_EQ(drift.slope, 3.0);
+  EXPECT_EQ(drift.size, 9.0);  // |f| = 0, 3, 9, 12, 15: the median
+  // Two bursts of -40 with healthy samples between them: the size is the bursts', not diluted.
+  std::vector<double> bursts(10, 100.0), burst_code(10, 0.0);
+  for (std::size_t k : {2u, 3u, 7u, 8u}) {
+    bursts[k] = 60.0;
+    burst_code[k] = 2.0;
+  }
+  const FaultShape offset = fault_shape(kTime, bursts, truth, burst_code);
+  EXPECT_EQ(offset.size, 40.0);
+  EXPECT_DOUBLE_EQ(offset.slope, 0.0);
+  const FaultShape none = fault_shape(kTime, truth, truth, std::vector<double>(10, 0.0));
+  EXPECT_TRUE(std::isnan(none.size));
+  EXPECT_TRUE(std::isnan(none.slope));
 }
 
 TEST(ReportMetrics, ContactColumnIsFoundByTheChannelsPath) {

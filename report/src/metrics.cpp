@@ -70,6 +70,41 @@ double readmission_s(std::span<const double> time, std::span<const double> flag,
   return kNaN;
 }
 
+double loaded_delay_s(std::span<const double> time, std::span<const double> flag, std::span<const double> contact,
+                      const FaultWindow& window) {
+  double loaded = 0.0;
+  for (std::size_t k = window.onset; k < time.size() && k < flag.size(); ++k) {
+    if (flag[k] != 0.0) return loaded;
+    const bool in_contact = contact.empty() || (k < contact.size() && contact[k] > 0.5);
+    if (in_contact && k + 1 < time.size()) loaded += time[k + 1] - time[k];
+  }
+  return kNaN;
+}
+
+FaultShape fault_shape(std::span<const double> time, std::span<const double> measured, std::span<const double> true_force,
+                       std::span<const double> true_fault) {
+  std::vector<double> size;
+  double n = 0.0, st = 0.0, sf = 0.0, stt = 0.0, stf = 0.0;
+  const std::size_t count = std::min({time.size(), measured.size(), true_force.size(), true_fault.size()});
+  const double t0 = count > 0 ? time.front() : 0.0;  // centred sums: no cancellation at large t
+  for (std::size_t k = 0; k < count; ++k) {
+    if (true_fault[k] == 0.0) continue;
+    const double f = measured[k] - true_force[k];
+    if (!std::isfinite(f)) continue;
+    const double t = time[k] - t0;
+    size.push_back(std::abs(f));
+    n += 1.0;
+    st += t;
+    sf += f;
+    stt += t * t;
+    stf += t * f;
+  }
+  FaultShape shape{percentile(size, 0.5), kNaN};
+  const double spread = n * stt - st * st;  // n^2 var(t): 0 for fewer than two distinct times
+  if (n >= 2.0 && spread > 0.0) shape.slope = (n * stf - st * sf) / spread;
+  return shape;
+}
+
 FalseAlarms false_alarms(std::span<const double> time, std::span<const double> flag,
                          const std::optional<FaultWindow>& window, const MetricOptions& options) {
   FalseAlarms out;
@@ -99,7 +134,7 @@ ChannelMetrics channel_metrics(std::string channel, std::span<const double> time
   ChannelMetrics m;
   m.channel = std::move(channel);
   const std::optional<FaultWindow> window = s.true_fault.empty() ? std::nullopt : fault_window(s.true_fault);
-  m.onset_s = m.end_s = m.detection_delay_s = m.readmission_s = kNaN;
+  m.onset_s = m.end_s = m.detection_delay_s = m.readmission_s = m.loaded_delay_s = m.fault_size = m.fault_slope = kNaN;
   if (window) {
     m.injected_type = window->injected;
     m.onset_s = time[window->onset];
@@ -110,6 +145,13 @@ ChannelMetrics channel_metrics(std::string channel, std::span<const double> time
     }
     m.shown_type = shown_type(s.fault, s.fault_type, *window);
     m.readmission_s = readmission_s(time, s.fault, *window);
+    m.fault_ended = window->end + 1 < time.size();
+    m.loaded_delay_s = loaded_delay_s(time, s.fault, s.contact, *window);
+    if (!s.true_force.empty()) {
+      const FaultShape shape = fault_shape(time, s.measured, s.true_force, s.true_fault);
+      m.fault_size = shape.size;
+      m.fault_slope = shape.slope;
+    }
   }
   const FalseAlarms alarms = false_alarms(time, s.fault, window, options);
   m.false_alarms = alarms.count;

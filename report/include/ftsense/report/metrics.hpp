@@ -14,6 +14,12 @@
 //     whole run after warm-up for a healthy channel; measured RMSE the same for the reading;
 //   - re-admission: seconds from the end of a fault that ends before the log does until the flag
 //     clears (the goal is under 1 s);
+//   - loaded delay: the part of the detection delay during which the channel was in contact (the
+//     truth's contact column; the whole delay when there is none): a fault that begins in the air
+//     has until the landing plus the delay to be seen;
+//   - fault size: median of |injected fault| over the faulty samples (those with a truth fault
+//     code); fault slope: least-squares slope of the injected fault on time over them (a drift's
+//     rate, in the run's unit per second);
 //   - false alarms: rising edges of the flag after warm-up outside [onset, end + readmit_s];
 //     false-alarm time: samples flagged there times the mean sample period;
 //   - VFS error: RMS and 95th percentile of |virtual - truth| after warm-up while the channel is
@@ -61,6 +67,20 @@ struct Detection {
 [[nodiscard]] FaultType shown_type(std::span<const double> flag, std::span<const double> flag_type,
                                    const FaultWindow& window);
 
+// Seconds in contact (contact > 0.5; every sample when `contact` is empty) from the onset until
+// the flag is first raised; NaN when it never is.
+[[nodiscard]] double loaded_delay_s(std::span<const double> time, std::span<const double> flag,
+                                    std::span<const double> contact, const FaultWindow& window);
+
+struct FaultShape {
+  double size = 0.0;   // median |measured - truth| over the faulty samples
+  double slope = 0.0;  // least-squares slope of (measured - truth) on time over them, per s
+};
+// The injected fault's size and slope over the samples with a nonzero truth fault code and a
+// finite reading (NaN where there are too few: none for the size, under two for the slope).
+[[nodiscard]] FaultShape fault_shape(std::span<const double> time, std::span<const double> measured,
+                                     std::span<const double> true_force, std::span<const double> true_fault);
+
 // Seconds from the end of the fault until the flag clears; NaN when the fault lasts to the end
 // of the log or the flag never clears.
 [[nodiscard]] double readmission_s(std::span<const double> time, std::span<const double> flag,
@@ -91,6 +111,10 @@ struct ChannelMetrics {
   double fault_estimate_rmse = 0.0;
   double recovered_rmse = 0.0;
   double readmission_s = 0.0;
+  bool fault_ended = false;      // the fault's last sample is before the log's last sample
+  double loaded_delay_s = 0.0;   // NaN: missed or healthy
+  double fault_size = 0.0;       // NaN: healthy, or no finite reading while faulty
+  double fault_slope = 0.0;      // per s; NaN: fewer than two faulty samples with a reading
   int false_alarms = 0;
   double false_alarm_time_s = 0.0;
   double vfs_rmse = 0.0, vfs_p95 = 0.0;
