@@ -96,8 +96,13 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
       .unit("s").greater_than(0.0).plausible(1.0, 1e9, "from a second (tests) to decades");
   schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike; 0: 30 noise_std_N")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
-  schema.add("spike_hold_s", &Params::spike_hold_s, "the spikes flag stays this long after the last spike")
+  schema.add("spike_hold_s", &Params::spike_hold_s,
+             "the spikes flag stays at most this long after the last spike (this long after an episode's first)")
       .unit("s").at_least(0.0).plausible(plausible::flag_delay_s());
+  schema.add("spike_gap_probability", &Params::spike_gap_probability,
+             "chance that a spiking sensor still spiking leaves a gap as long as the hold (sets the hold from the "
+             "episode's spike rate)")
+      .greater_than(0.0).less_than(1.0).plausible(1e-6, 0.2, "a hold of 1.6 to 14 mean gaps");
   schema.add("noise_window_s", &Params::noise_window_s, "window of the noise-burst test")
       .unit("s").greater_than(0.0).at_most(1.0).plausible(1e-3, 1.0, "ten ticks at 10 kHz to a second");
   schema.add("noise_factor", &Params::noise_factor,
@@ -457,9 +462,26 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       const bool pad_landing = t - c.last_pad_landing_s < params_.touchdown_guard_s;
       const double spike = c.previous - 0.5 * (x + c.previous2);
-      if (!touching_down && !pad_landing && std::abs(spike) > params_.spike_threshold_N &&
+      const bool spikes_seen = !touching_down && !pad_landing;
+      if (spikes_seen) {
+        c.spike_seen_s += period_s_;
+        c.spike_quiet_s += period_s_;
+      }
+      if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
           std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N) {
-        c.last_spike_s = t - period_s_;
+        if (c.spike_count == 0 || c.spike_quiet_s >= c.spike_hold) {  // the previous episode had ended
+          c.spike_count = 1;
+          c.spike_seen_s = 0.0;
+        } else {
+          c.spike_count = std::min(c.spike_count + 1, kCountCap);
+        }
+        c.spike_quiet_s = 0.0;
+        c.spike_hold = params_.spike_hold_s;
+        if (c.spike_count >= 2 && c.spike_seen_s > 0.0) {
+          const double rate_hz = (c.spike_count - 1) / c.spike_seen_s;
+          c.spike_hold = std::clamp(std::log(1.0 / params_.spike_gap_probability) / rate_hz,
+                                    std::min(params_.clear_s, params_.spike_hold_s), params_.spike_hold_s);
+        }
       }
       const double innovation = x - 2.0 * c.previous + c.previous2;
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
@@ -612,9 +634,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (c.clear_since < 0) c.clear_since = t;
       if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
     }
-    // Spikes.
-    if (t - c.last_spike_s < params_.spike_hold_s) {
-      raise(c, FaultType::spikes, t);
+    // Spikes. While the channel is flagged as a noise burst, the spikes seen are that noise's own
+    // tails: the noise test alone judges when it ends, and the spike episode ends with it.
+    if (c.spike_count > 0 && c.spike_quiet_s < c.spike_hold) {
+      if (c.type != FaultType::noise) raise(c, FaultType::spikes, t);
     } else if (c.type == FaultType::spikes) {
       clear(c);
     }
@@ -637,7 +660,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       raise(c, FaultType::noise, t);
     } else if (c.type == FaultType::noise && noisy * 4 < noise_window_ticks_) {
       if (c.clear_since < 0) c.clear_since = t;
-      if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) clear(c);
+      if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) {
+        clear(c);
+        c.spike_count = 0;
+      }
     }
     // Negative reading under load (see the evidence loop).
     if (c.sign_fault && c.type == FaultType::gain) {

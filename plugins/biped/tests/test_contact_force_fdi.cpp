@@ -429,6 +429,41 @@ TEST(ContactForceFdi, ALoadedPadReadingMinusItsLoadIsASignFlipNotANegativeOffset
 // by as much: the jump is confirmed once jump_window_s (10 ticks) has seen it, on tick lift + 9.
 // The airborne mean then measures the offset; once down, the foot is recovered by subtracting it.
 // No other foot is blamed.
+// Spikes every `gap` ticks on a loaded pad from tick 300, `count` of them; returns the ticks after
+// the last spike's detection at which the flag is first down (-1: never within 2000 ticks), and
+// checks it was spikes until then.
+int spike_flag_clears_after(int gap, int count, const ContactForceFdi::Params& p) {
+  Feet feet(p, 1e-3);
+  const int first = 300, last = first + gap * (count - 1);
+  for (int k = 0; k < last + 2000; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = moving(j, k, 0.0);
+    if (k >= first && k <= last && (k - first) % gap == 0) feet.measured[2] += 150.0;
+    feet.step();
+    if (k > last + 1) {  // the last spike is seen on the tick after it
+      if (feet.type(2) == FaultType::none) return k - (last + 1);
+      EXPECT_EQ(feet.type(2), FaultType::spikes) << "tick " << k;
+    }
+  }
+  return -1;
+}
+
+TEST(ContactForceFdi, TheSpikeFlagIsHeldForTheGapARunningSpikeProcessRarelyLeaves) {
+  // Every 20 ticks at 1 kHz: lambda^ = (n - 1) / D = 50 Hz over the seen time, so the hold is
+  // h = ln(1 / 0.01) / 50 = 92.1 ms: the flag is down on the 93rd tick after the last spike.
+  const auto p = suralp();
+  EXPECT_EQ(spike_flag_clears_after(20, 10, p), 93);
+  // Every 100 ticks (10 Hz): h = 460.5 ms.
+  EXPECT_EQ(spike_flag_clears_after(100, 5, p), 461);
+  // Slower than ln(100) / spike_hold_s = 5.76 Hz (every 200 ticks): spike_hold_s (0.8 s) caps it.
+  EXPECT_EQ(spike_flag_clears_after(200, 4, p), 800);
+  // A single spike: no rate, spike_hold_s.
+  EXPECT_EQ(spike_flag_clears_after(20, 1, p), 800);
+  // A rarer gap asked for holds longer: p_gap = 1e-4 doubles ln(1 / p_gap).
+  auto strict = p;
+  strict.spike_gap_probability = 1e-4;
+  EXPECT_EQ(spike_flag_clears_after(20, 10, strict), 185);
+}
+
 TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsMeasuredCarries) {
   ContactForceFdi::Params p;
   p.points_per_foot = 1;

@@ -35,8 +35,15 @@
 //             (a clipped load returns to the same ceiling).
 //   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree (not
 //             within touchdown_guard_s of a touchdown or of the pad's own landing: a landing heel
-//             rings like a spike); the flag
-//             stays spike_hold_s after the last spike.
+//             rings like a spike); the flag stays h after the last spike. Spikes of a faulty
+//             sensor come at random (rate lambda, exponential gaps), so once an episode has n >= 2
+//             spikes over D seconds (lambda^ = (n - 1) / D), a gap of h = ln(1 / p_gap) / lambda^
+//             says the process has stopped: a running one leaves so long a gap with probability
+//             p_gap (spike_gap_probability). h stays within [clear_s, spike_hold_s]; the first
+//             spike of an episode (rate unknown) holds spike_hold_s. D and the gap count only the
+//             time the test could see (outside the guards), so blind stretches bias neither.
+//             While the channel is flagged as a noise burst, its spikes are that noise's tails:
+//             the noise test alone clears it, and the spike episode ends with it.
 //   noise     over noise_window_s, more than half of the second differences d2 exceed
 //             noise_factor * sqrt(6 (sigma^2 + q^2 / 4)) (their healthy standard deviation, q / 2
 //             the worst quantisation error) while the foot's summed reading is as rough (its d2
@@ -169,6 +176,7 @@ class ContactForceFdi {
     double false_alarm_interval_s = 86400.0;
     double spike_threshold_N = 0.0;
     double spike_hold_s = 0.8;
+    double spike_gap_probability = 0.01;
     double noise_window_s = 0.05;
     double noise_factor = 4.0;
     double sum_cutoff_hz = 1.0;
@@ -224,7 +232,12 @@ class ContactForceFdi {
     double last_stale_value = -1e300;  // the value of the last stuck episode
     int stale_episodes = 0;            // consecutive stuck episodes at that same value
     double max_seen = 0.0;
-    double last_spike_s = -1e9;
+    // The current spike episode, timed in seconds the spike test could see (not within a
+    // touchdown's or the pad's landing guard, where spikes are not looked for).
+    int spike_count = 0;            // spikes in it
+    double spike_seen_s = 0.0;      // seen time since its first spike
+    double spike_quiet_s = 0.0;     // seen time since its last spike
+    double spike_hold = 0.0;        // h: the flag stays until spike_quiet_s reaches it
     double last_pad_landing_s = -1e9;  // the pad last took load back from its zero level
     std::vector<double> second_diff;  // ring of |d2|, noise test
     std::vector<double> first_diff;   // ring of |d1| at the same ticks (whiteness)
