@@ -854,8 +854,14 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
     c.type = FaultType::frozen;
     c.frozen_by_follow = true;
     c.following = false;  // judge re-admission on a fresh span
-  } else if (c.frozen_by_follow && reading_span >= 0.5 * load_span) {
-    clear(c);  // the reading follows the load again
+  } else if (c.frozen_by_follow) {
+    // Judged on each load move of its own, not on the span since the flag: a reading that has
+    // followed again since the fault ended must not have to match every move it missed.
+    if (reading_span >= 0.5 * load_span) {
+      clear(c);  // the reading follows the load again
+    } else {
+      c.following = false;  // a fresh span from the next tick
+    }
   }
 }
 

@@ -295,6 +295,41 @@ TEST(ContactForceFdi, AFrozenOutputsSpanStartsAfterTheStepThatRaisedIt) {
   EXPECT_EQ(raised_at, 109) << "a jump confirmed at the end of its 10-tick window";
 }
 
+// A frozen output re-typed by the follow test (pad 0 reads 150 N from the swing on) while its load
+// swings up to 1000 N and back to 200 N; from tick 1100 its reading follows the load again, which
+// rises 2 N per tick to 500 N. Re-admission judges each load move of 2 sum_threshold_N (160 N) on
+// its own: the first one after the fault ends re-admits it, although the reading never matches
+// the 800 N span the load covered while it was frozen.
+TEST(ContactForceFdi, AFrozenOutputIsReadmittedOnTheFirstLoadMoveItFollowsAgain) {
+  Feet feet(suralp(), 1e-3);
+  int readmitted_at = -1;
+  FaultType at_1099 = FaultType::none;
+  for (int k = 0; k < 1400; ++k) {
+    const bool landed = k >= 200;
+    feet.left_foot_at(landed ? 0.0 : 0.1);
+    const double load = !landed  ? 0.0
+                        : k < 600  ? 200.0 + 2.0 * (k - 200)
+                        : k < 1000 ? 1000.0 - 2.0 * (k - 600)
+                        : k < 1100 ? 200.0
+                                   : std::min(500.0, 200.0 + 2.0 * (k - 1100));
+    for (std::size_t j = 1; j < kChannels; ++j) feet.measured[j] = j < 4 ? (landed ? 100.0 + (k % 2) : k % 2) : moving(j, k, 0.0);
+    double others = 0.0;
+    for (std::size_t j = 1; j < kChannels; ++j) others += feet.measured[j];
+    const double noise = k % 2 == 0 ? 1.0 : -1.0;
+    feet.measured[0] = (k < 1100 ? 150.0 : load) + noise;
+    feet.step(others + load);
+    if (k == 1099) at_1099 = feet.type(0);
+    if (k >= 1100 && readmitted_at < 0 && feet.type(0) == FaultType::none) readmitted_at = k;
+    if (readmitted_at >= 0) {
+      ASSERT_EQ(feet.type(0), FaultType::none) << "tick " << k;
+    }
+  }
+  EXPECT_EQ(at_1099, FaultType::frozen);
+  ASSERT_GE(readmitted_at, 1100);
+  // The load moves 160 N in 80 ticks; the 10 Hz smoothing of both lags alike.
+  EXPECT_LE(readmitted_at, 1100 + 80 + 30);
+}
+
 // Both feet flat, F_z exact. Pad 2 carries 200 N (+ its 1 N alternation) when, at tick 50, its
 // reading doubles (gain x2) or gains 200 N (offset): the same jump, raised as an offset 10 ticks
 // later. Then its load rises by 1 N per tick to 500 N. Taken as x - b, a gain leaves a sum
