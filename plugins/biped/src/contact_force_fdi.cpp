@@ -46,6 +46,12 @@ bool corrects(FaultType type) {
   return type == FaultType::offset || type == FaultType::drift || type == FaultType::gain;
 }
 
+// Recovered from its own reading (corrected, low-passed or median-filtered) rather than
+// substituted from the total force.
+bool own_estimate(FaultType type) {
+  return corrects(type) || type == FaultType::noise || type == FaultType::spikes;
+}
+
 }  // namespace
 
 void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
@@ -558,9 +564,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // unmeasured, and no jump is confirmed at all.
   bool substituting_loaded = false;
   bool substituting_rolling = false;
+  bool uncorrected_loaded = false;  // a loaded channel flagged as anything but a corrected fault
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     const bool airborne = height[j] > params_.airborne_height_m;
-    const bool substituted = channels_[j].type != FaultType::none && !corrects(channels_[j].type) && !airborne;
+    const bool substituted = channels_[j].type != FaultType::none && !own_estimate(channels_[j].type) && !airborne;
+    uncorrected_loaded = uncorrected_loaded || (channels_[j].type != FaultType::none && !corrects(channels_[j].type) && !airborne);
     substituting_loaded = substituting_loaded || substituted;
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
   }
@@ -767,8 +775,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const bool airborne = height[j] > params_.airborne_height_m;
-    const bool own_estimate = corrects(c.type) || c.type == FaultType::noise || c.type == FaultType::spikes;
-    if (c.type != FaultType::none && !own_estimate && !airborne) {
+    if (c.type != FaultType::none && !own_estimate(c.type) && !airborne) {
       recovered[j] = fz_ok ? share : c.recovered;
       total += recovered[j];
     }
@@ -802,7 +809,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       offset_or_gain_test(channels_[j], measured[j], height[j] > params_.airborne_height_m, residual);
     }
   }
-  gain_regression(measured, recovered, residual, fz_ok && all_finite_readings && !touching_down && !substituting_loaded,
+  gain_regression(measured, recovered, residual, fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded,
                   t);
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
   // Without F_z the residual is unknown, not zero: hold the filter rather than pull it to zero.

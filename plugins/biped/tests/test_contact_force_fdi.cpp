@@ -330,6 +330,35 @@ TEST(ContactForceFdi, AFrozenOutputIsReadmittedOnTheFirstLoadMoveItFollowsAgain)
   EXPECT_LE(readmitted_at, 1100 + 80 + 30);
 }
 
+// Both feet flat, F_z exact. Pad 0 steps by +60 N at tick 100 (a confirmed jump: an offset) and
+// back at tick 400, while pad 5 of the other foot spikes every 20 ticks from tick 205 (flagged
+// spikes, recovered by its own median, not substituted from the total force). The jump back is
+// confirmed in its 10-tick window as the end of the offset: a spiking neighbour does not raise
+// the confirmation to the 3 jump_confirm_N (75 N) that a substituted one needs.
+TEST(ContactForceFdi, AnOffsetEndsWithItsJumpBackWhileANeighbourSpikes) {
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 500; ++k) {
+    double truth = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = moving(j, k, 0.0);
+      truth += feet.measured[j];
+    }
+    if (k >= 100 && k < 400) feet.measured[0] += 60.0;
+    if (k >= 200 && k % 20 == 5) feet.measured[5] += 150.0;
+    feet.step(truth);
+    if (k == 150) {
+      EXPECT_EQ(feet.type(0), FaultType::offset);
+    }
+    if (k == 399) {
+      EXPECT_EQ(feet.type(0), FaultType::offset);
+      EXPECT_EQ(feet.type(5), FaultType::spikes);
+    }
+    if (k >= 410) {
+      ASSERT_EQ(feet.type(0), FaultType::none) << "tick " << k;
+    }
+  }
+}
+
 // Both feet flat, F_z exact. Pad 2 carries 200 N (+ its 1 N alternation) when, at tick 50, its
 // reading doubles (gain x2) or gains 200 N (offset): the same jump, raised as an offset 10 ticks
 // later. Then its load rises by 1 N per tick to 500 N. Taken as x - b, a gain leaves a sum

@@ -66,7 +66,8 @@
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
 //             each other): an abrupt fault, isolated at once. While a loaded channel is
-//             substituted from the total force (frozen, noise, ...), the sum carries its
+//             substituted from the total force (frozen, saturated, invalid; not a noise burst or spikes,
+//             which are recovered from their own readings), the sum carries its
 //             unmeasured changes, so confirmation then takes 3 x jump_confirm_N, and none is
 //             confirmed while that channel's foot rolls on or off.
 //   gain      (stance regression) the corrected sum residual r = sum_i N^_i - F_z fitted, channel
