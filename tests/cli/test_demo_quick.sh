@@ -90,6 +90,17 @@ for walk in ("quadruped_clean", "quadruped_faults", "quadruped_faults_200hz"):
     assert q[walk]["summary"]["false_alarms_after_warmup"] == 0, (walk, q[walk]["summary"])
 PY
 grep -q '^| walk | foot | stance ticks | virtual force RMS error \[N\] |' "$out/report.md" && ok "report.md quadruped table" || bad "report.md quadruped table"
+# Issue 13's targets: seven, each over the runs it applies to, in the report, the metrics and stdout.
+grep -q '^| offsets of 40 N or more and frozen channels detected within 0.25 s of loaded time |' "$out/report.md" \
+  && ok "report.md targets table" || bad "report.md targets table"
+/usr/bin/python3 - "$out" <<'PY' && ok "metrics.json targets" || bad "metrics.json targets"
+import json, sys
+t = json.load(open(f"{sys.argv[1]}/metrics.json"))["targets"]
+assert len(t) == 7, len(t)
+assert all(0 <= r["met"] <= r["applies_to"] for r in t), t
+assert t[5]["target"] == "no false alarm on fault-free runs" and t[5]["applies_to"] >= 6, t[5]
+PY
+grep -q "^The generic layer's targets (issue 13)" "$out/stdout" && ok "targets in stdout" || bad "targets in stdout"
 # The centred-band calibration wrote a centre per channel, and the demo printed that pipeline's rows.
 grep -q '"centers"' "$out/thresholds_reference_band.json" && ok "band thresholds have centres" || bad "band thresholds have no centres"
 grep -q "paper pipeline with centred bands" "$out/stdout" && ok "band pipeline summary" || bad "band pipeline summary"
