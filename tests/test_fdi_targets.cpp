@@ -47,7 +47,8 @@ std::vector<ScoredRunMetrics> runs() {
   ch.push_back(channel("g", "-", {{"false_alarms", 1}}));
   Json quiet = {{"summary", {{"false_alarms_after_warmup", 0}}}};
   Json noisy = {{"summary", {{"false_alarms_after_warmup", 2}}}, {"channels", Json::array()}};
-  return {{"faults", faults}, {"clean", quiet}, {"clean_200hz", noisy}};
+  Json unscored = {{"summary", {{"scored", false}}}};  // no truth: neither met nor missed
+  return {{"faults", faults}, {"clean", quiet}, {"clean_200hz", noisy}, {"real_log", unscored}};
 }
 
 TEST(FdiTargets, EachTargetCountsTheFaultsItAppliesToAndListsTheMisses) {

@@ -79,8 +79,7 @@ std::vector<TargetCheck> check_targets(const std::vector<ScoredRunMetrics>& runs
 
   for (const ScoredRunMetrics& run : runs) {
     const Json summary = run.metrics.value("summary", Json::object());
-    const auto alarms_field = field(summary, "false_alarms_after_warmup");
-    const int alarms = alarms_field ? static_cast<int>(*alarms_field) : 0;
+    const auto alarms = field(summary, "false_alarms_after_warmup");  // absent: not scored
     const Json channels = run.metrics.value("channels", Json::array());
     int faulty = 0;
     for (const Json& c : channels) {
@@ -115,7 +114,10 @@ std::vector<TargetCheck> check_targets(const std::vector<ScoredRunMetrics>& runs
               fault_name(run.name, c, false) + ": " + (readmission ? fixed(*readmission, 3) + " s" : "never"));
       }
     }
-    count(faulty == 0 ? quiet : quiet_faulty, alarms == 0, run.name + ": " + std::to_string(alarms));
+    if (alarms) {
+      count(faulty == 0 ? quiet : quiet_faulty, *alarms == 0.0,
+            run.name + ": " + std::to_string(static_cast<long long>(*alarms)));
+    }
   }
   for (TargetCheck* c : {&detect, &drift, &recovered, &readmitted, &quiet, &quiet_faulty}) c->passed = c->met == c->checked;
   type.passed = type.checked == 0 || type.met >= targets.type_right_share * type.checked;

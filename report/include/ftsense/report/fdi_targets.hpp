@@ -13,7 +13,8 @@
 //   - re-admitted within readmission_s (0.5 s) after every detected fault that ends before the
 //     log does;
 //   - no false alarm on any fault-free run (and, listed apart, none on the faulty runs).
-// A run is {name, its metrics.json}; a fault-free run may carry its summary alone.
+// A run is {name, its metrics.json}; a fault-free run may carry its summary alone, and a run
+// whose summary has no false-alarm count (not scored: no truth) counts for no target.
 
 #include <string>
 #include <vector>
