@@ -178,6 +178,32 @@ TEST(ContactForceFdi, NoiseTestTellsWhiteJitterFromAFastSmoothLoadAndFromAChatte
   }
 }
 
+// A noise burst (+-12 N alternating: every second difference 48 N, above 4 sqrt(6) 2 N) on a
+// loaded pad from tick 200 to 499, with a spike of 150 N every 100 ticks in it (tick 250, 350,
+// 450: 10 Hz, so the spike hold would be ln(100) / 10 Hz = 0.46 s). The spikes are the noise's:
+// the noise test alone clears the flag, once its window is quiet (38 ticks) and clear_s (50 ticks)
+// has passed, not 0.46 s after the last spike.
+TEST(ContactForceFdi, ANoiseBurstIsClearedByTheNoiseTestNotHeldByItsSpikes) {
+  Feet feet(suralp(), 1e-3);
+  int cleared_at = -1;
+  for (int k = 0; k < 1200; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = moving(j, k, 0.0);
+    if (k >= 200 && k < 500) {
+      feet.measured[2] = 300.0 + (k % 2 == 0 ? 12.0 : -12.0) + (k % 100 == 50 ? 150.0 : 0.0);
+    }
+    feet.step();
+    if (k == 400) {
+      EXPECT_EQ(feet.type(2), FaultType::noise);
+    }
+    if (k >= 500 && cleared_at < 0 && feet.type(2) == FaultType::none) cleared_at = k;
+    if (cleared_at >= 0) {
+      ASSERT_EQ(feet.type(2), FaultType::none) << "tick " << k;
+    }
+  }
+  ASSERT_GE(cleared_at, 500);
+  EXPECT_LE(cleared_at, 500 + 38 + 50 + 10);
+}
+
 TEST(ContactForceFdi, AJumpMustBeASurpriseNotAFastRamp) {
   // 200 Hz, F_z steady: a pad whose load speeds up smoothly (10 N per tick per tick) to 30 N per
   // tick moves the sum residual as much as a step would, but its linear prediction foresees each
