@@ -454,18 +454,18 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   for (const auto& [s, run] : metrics["conditions"].items()) target_runs.push_back({s, run});
   for (const auto& [s, run] : metrics["quadruped"].items()) target_runs.push_back({s, run});
   for (const auto& [s, run] : metrics["endurance"].items()) target_runs.push_back({s, {{"summary", run["robust"]}}});
-  report::Table targets_table = report::targets_table(report::check_targets(target_runs));
+  const std::vector<report::TargetCheck> checks = report::check_targets(target_runs);
+  report::Table targets_table = report::targets_table(checks);
   std::ostringstream targets;
   targets << "\nThe generic layer's targets (issue 13), on every robust and quadruped run; each miss with its measured\n"
              "value:\n";
-  for (const auto& row : targets_table.rows) {
-    targets << "  " << (row[3] == "yes" ? "held   " : "MISSED ") << row[2] << "/" << row[1] << "  " << row[0] << '\n';
-    if (row[4] != "-") targets << "         shortfall: " << row[4] << '\n';
-  }
   metrics["targets"] = Json::array();
-  for (const auto& row : targets_table.rows) {
-    metrics["targets"].push_back({{"target", row[0]}, {"applies_to", std::stoi(row[1])}, {"met", std::stoi(row[2])},
-                                  {"holds", row[3] == "yes"}, {"shortfall", row[4]}});
+  for (const auto& c : checks) {
+    const std::string shortfall = report::shortfall_text(c);
+    targets << "  " << (c.passed ? "held   " : "MISSED ") << c.met << "/" << c.checked << "  " << c.target << '\n';
+    if (!c.shortfalls.empty()) targets << "         shortfall: " << shortfall << '\n';
+    metrics["targets"].push_back({{"target", c.target}, {"applies_to", c.checked}, {"met", c.met},
+                                  {"holds", c.passed}, {"shortfall", shortfall}});
   }
   std::ostringstream summary;
   summary << paper_tables << endurance.str() << conditions.str() << quadruped.str() << targets.str() << "\nSide by side (det: faulty channels detected; type: type shown most while faulty is the\n"

@@ -1,19 +1,14 @@
 #include "ftsense/report/fdi_targets.hpp"
 
 #include <cmath>
-#include <iomanip>
 #include <optional>
 #include <sstream>
+
+#include "ftsense/report/writers.hpp"  // fixed()
 
 namespace ftsense::report {
 
 namespace {
-
-std::string fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
-}
 
 // A number field of a channel's metrics; nullopt when absent or null (not measured).
 std::optional<double> field(const Json& channel, const char* key) {
@@ -60,22 +55,26 @@ void count(TargetCheck& check, bool met, const std::string& shortfall) {
 }  // namespace
 
 std::vector<TargetCheck> check_targets(const std::vector<ScoredRunMetrics>& runs, const FdiTargets& targets) {
-  TargetCheck detect = named("offsets of " + fixed(targets.offset_min, 0) + " " + targets.unit + " or more and frozen channels detected within " +
-                     fixed(targets.detect_loaded_s, 2) + " s of loaded time");
+  const std::string& unit = targets.unit;
+  TargetCheck detect = named("offsets of " + fixed(targets.offset_min, 0) + " " + unit +
+                             " or more and frozen channels detected within " + fixed(targets.detect_loaded_s, 2) +
+                             " s of loaded time");
   std::ostringstream drift_text;
   drift_text << "drifts detected within the earlier limits (";
   for (std::size_t i = 0; i < targets.drift_limits.size(); ++i) {
     const DriftLimit& l = targets.drift_limits[i];
-    drift_text << (i ? ", " : "") << fixed(l.min_slope_per_s, 0) << " " << targets.unit << "/s within " << fixed(l.delay_s, 0) << " s";
+    drift_text << (i ? ", " : "") << fixed(l.min_slope_per_s, 0) << " " << unit << "/s within " << fixed(l.delay_s, 0)
+               << " s";
   }
   TargetCheck drift = named(drift_text.str() + ")");
   TargetCheck type = named("fault type shown right for at least " + fixed(100.0 * targets.type_right_share, 0) +
-                   " % of faulty channels");
-  TargetCheck recovered = named("recovered RMSE at most " + fixed(targets.recovered_rmse, 0) + " " + targets.unit +
-                                  " on faulty channels");
+                           " % of faulty channels");
+  TargetCheck recovered = named("recovered RMSE at most " + fixed(targets.recovered_rmse, 0) + " " + unit +
+                                " on faulty channels");
   TargetCheck readmitted = named("re-admitted within " + fixed(targets.readmission_s, 2) + " s after a fault ends");
   TargetCheck quiet = named("no false alarm on fault-free runs");
-  TargetCheck quiet_faulty = named("no false alarm on runs with faults (outside each fault and its re-admission grace)");
+  TargetCheck quiet_faulty =
+      named("no false alarm on runs with faults (outside each fault and its re-admission grace)");
 
   for (const ScoredRunMetrics& run : runs) {
     const Json summary = run.metrics.value("summary", Json::object());
@@ -98,7 +97,7 @@ std::vector<TargetCheck> check_targets(const std::vector<ScoredRunMetrics>& runs
         for (const DriftLimit& l : targets.drift_limits) {
           if (rate < l.min_slope_per_s) continue;
           count(drift, delay && *delay <= l.delay_s,
-                fault_name(run.name, c, false) + " " + fixed(rate, 1) + " " + targets.unit + "/s: " +
+                fault_name(run.name, c, false) + " " + fixed(rate, 1) + " " + unit + "/s: " +
                     (delay ? fixed(*delay, 3) + " s" : "missed") + " (limit " + fixed(l.delay_s, 0) + " s)");
           break;
         }
@@ -106,7 +105,8 @@ std::vector<TargetCheck> check_targets(const std::vector<ScoredRunMetrics>& runs
       count(type, flag(c, "type_correct"),
             fault_name(run.name, c, false) + ": shown " + text(c, "shown_type"));
       if (const auto rmse = field(c, "recovered_rmse")) {
-        count(recovered, *rmse <= targets.recovered_rmse, fault_name(run.name, c, false) + ": " + fixed(*rmse, 1) + " " + targets.unit);
+        count(recovered, *rmse <= targets.recovered_rmse,
+              fault_name(run.name, c, false) + ": " + fixed(*rmse, 1) + " " + unit);
       }
       if (delay && flag(c, "fault_ended")) {
         const auto readmission = field(c, "readmission_s");
@@ -124,16 +124,20 @@ std::vector<TargetCheck> check_targets(const std::vector<ScoredRunMetrics>& runs
   return {detect, drift, type, recovered, readmitted, quiet, quiet_faulty};
 }
 
+std::string shortfall_text(const TargetCheck& check) {
+  std::string misses;
+  for (const std::string& s : check.shortfalls) {
+    if (!misses.empty()) misses += "; ";
+    misses += s;
+  }
+  return misses.empty() ? "-" : misses;
+}
+
 Table targets_table(const std::vector<TargetCheck>& checks) {
   Table t{{"target", "applies to", "met", "holds", "shortfall (measured)"}, {}};
   for (const TargetCheck& c : checks) {
-    std::string misses;
-    for (const std::string& s : c.shortfalls) {
-      if (!misses.empty()) misses += "; ";
-      misses += s;
-    }
-    t.rows.push_back({c.target, std::to_string(c.checked), std::to_string(c.met), c.passed ? "yes" : "no",
-                      misses.empty() ? "-" : misses});
+    t.rows.push_back(
+        {c.target, std::to_string(c.checked), std::to_string(c.met), c.passed ? "yes" : "no", shortfall_text(c)});
   }
   return t;
 }

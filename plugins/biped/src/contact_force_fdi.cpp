@@ -235,6 +235,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * kSmoothingHz * period_s_);
   // Five time constants of that low-pass: a step has settled to within e^-5 (under 1 %).
   smoother_settle_s_ = 5.0 / (2.0 * 3.141592653589793 * kSmoothingHz);
+  spike_gap_log_ = std::log(1.0 / params_.spike_gap_probability);
   min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
   // Thresholds left at 0 follow from the sensors' noise sigma and the robot's weight W (header).
   const double sigma = params.noise_std_N;
@@ -485,7 +486,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.spike_hold = params_.spike_hold_s;
         if (c.spike_count >= 2 && c.spike_seen_s > 0.0) {
           const double rate_hz = (c.spike_count - 1) / c.spike_seen_s;
-          c.spike_hold = std::clamp(std::log(1.0 / params_.spike_gap_probability) / rate_hz,
+          c.spike_hold = std::clamp(spike_gap_log_ / rate_hz,
                                     std::min(params_.clear_s, params_.spike_hold_s), params_.spike_hold_s);
         }
       }
@@ -568,7 +569,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     const bool airborne = height[j] > params_.airborne_height_m;
     const bool substituted = channels_[j].type != FaultType::none && !own_estimate(channels_[j].type) && !airborne;
-    uncorrected_loaded = uncorrected_loaded || (channels_[j].type != FaultType::none && !corrects(channels_[j].type) && !airborne);
+    const FaultType type = channels_[j].type;
+    uncorrected_loaded = uncorrected_loaded || (type != FaultType::none && !corrects(type) && !airborne);
     substituting_loaded = substituting_loaded || substituted;
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
   }

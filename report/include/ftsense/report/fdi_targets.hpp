@@ -55,7 +55,10 @@ struct TargetCheck {
 [[nodiscard]] std::vector<TargetCheck> check_targets(const std::vector<ScoredRunMetrics>& runs,
                                                      const FdiTargets& targets = {});
 
-// One row per target: target, checked, met, held, shortfall (the misses, "; "-separated).
+// The misses, "; "-separated; "-" for none.
+[[nodiscard]] std::string shortfall_text(const TargetCheck& check);
+
+// One row per target: target, checked, met, held, shortfall (shortfall_text).
 [[nodiscard]] Table targets_table(const std::vector<TargetCheck>& checks);
 
 }  // namespace ftsense::report

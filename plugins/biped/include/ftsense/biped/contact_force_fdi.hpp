@@ -326,6 +326,7 @@ class ContactForceFdi {
   static constexpr double kSmoothingHz = 10.0;  // cutoff of `smoothed` and `virtual_smoothed`
   double smoothing_ = 1.0;  // gain of that low-pass per tick
   double smoother_settle_s_ = 0.0;  // its settling time (five time constants)
+  double spike_gap_log_ = 0.0;      // ln(1 / spike_gap_probability): the spike hold times the rate
   // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.
   std::vector<double> gain_xx_;
   std::vector<double> gain_xr_;
