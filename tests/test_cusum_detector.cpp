@@ -246,6 +246,83 @@ TEST(ResidualStatistics, ExactValuesOnAShortSequence) {
   EXPECT_EQ(alternating.correlation_time_s(), 0.0);
 }
 
+TEST(ResidualStatistics, DyadicLagsOnAShortRamp) {
+  // r = 1..8 about c = 4.5 (deviations -3.5 .. 3.5, sum of squares 42). Lag 1: 7 pairs,
+  // covariance 26.25, variance (29.75 + 29.75) / 2; lag 2: 6 pairs, covariance 11.5, variance
+  // (23.5 + 23.5) / 2; lag 4 has 4 pairs, under 2 L = 8: not usable. Neither usable lag falls to
+  // 1/e, so tau_c is the first-order time at lag 2: -2 T / ln(rho_2).
+  generic::ResidualStatistics stats(0.01);
+  for (int k = 1; k <= 8; ++k) stats.add(k);
+  EXPECT_DOUBLE_EQ(stats.lag_correlation(0), 26.25 / 29.75);
+  EXPECT_DOUBLE_EQ(stats.lag_correlation(1), 11.5 / 23.5);
+  EXPECT_DOUBLE_EQ(stats.correlation_time_s(), -0.02 / std::log(11.5 / 23.5));
+  // A ring sized for lag one only (max_lag_s = 0) has no lag 2.
+  generic::ResidualStatistics lag_one_only(0.01, 0.0);
+  for (int k = 1; k <= 8; ++k) lag_one_only.add(k);
+  EXPECT_TRUE(std::isnan(lag_one_only.lag_correlation(1)));
+  EXPECT_DOUBLE_EQ(lag_one_only.correlation_time_s(), -0.01 / std::log(26.25 / 29.75));
+}
+
+TEST(ResidualStatistics, InterpolatesTheEFoldingLag) {
+  // A random sequence whose lag-1 correlation is above 1/e and lag-2 below: tau_c / T is the lag
+  // where ln rho, linear between lags 1 and 2, reaches -1. The correlations are computed here
+  // directly from their definition (two passes) as the oracle.
+  constexpr unsigned kSeed = 7;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<double> r;
+  // A moving sum of 3 white samples: rho_1 = 2/3, rho_2 = 1/3 (in expectation), rho_4 = 0.
+  std::vector<double> w(203);
+  for (double& v : w) v = normal(rng);
+  for (std::size_t k = 2; k < w.size(); ++k) r.push_back(w[k] + w[k - 1] + w[k - 2]);
+  generic::ResidualStatistics stats(0.001);
+  for (const double x : r) stats.add(x);
+  double mean = 0.0;
+  for (const double x : r) mean += x;
+  mean /= static_cast<double>(r.size());
+  const auto rho = [&](std::size_t lag) {
+    double covariance = 0.0, variance = 0.0;
+    for (std::size_t k = lag; k < r.size(); ++k) {
+      covariance += (r[k] - mean) * (r[k - lag] - mean);
+      variance += 0.5 * ((r[k] - mean) * (r[k] - mean) + (r[k - lag] - mean) * (r[k - lag] - mean));
+    }
+    return covariance / variance;
+  };
+  std::printf("rho_1 %.4f, rho_2 %.4f\n", rho(1), rho(2));
+  ASSERT_GT(rho(1), std::exp(-1.0));
+  ASSERT_LT(rho(2), std::exp(-1.0));
+  ASSERT_GT(rho(2), 0.0);
+  EXPECT_NEAR(stats.lag_correlation(0), rho(1), 1e-12);
+  EXPECT_NEAR(stats.lag_correlation(1), rho(2), 1e-12);
+  const double lag = 1.0 + (std::log(rho(1)) + 1.0) / (std::log(rho(1)) - std::log(rho(2)));
+  EXPECT_NEAR(stats.correlation_time_s(), 0.001 * lag, 1e-15);
+}
+
+TEST(ResidualStatistics, MemoryNotSmoothnessOfALowPassedResidual) {
+  // White noise through two first-order lags of tau = 0.1 s at 1 kHz, 1000 s: a smooth residual
+  // (rho_1 = 1 - (T / tau)^2 / 2 nearly) whose autocorrelation (1 + t / tau) exp(-t / tau) falls
+  // to 1/e at t = 2.146 tau. The e-folding time finds that within 10 %; the lag-one formula
+  // -T / ln(rho_1) gives about 2 tau^2 / T = 20 s, a hundred times the memory.
+  constexpr unsigned kSeed = 2024;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double tau = 0.1, period = 1e-3, a = -std::expm1(-period / tau);
+  generic::ResidualStatistics stats(period);
+  double first = 0.0, second = 0.0;
+  for (int k = 0; k < 1000000; ++k) {
+    first += a * (normal(rng) - first);
+    second += a * (first - second);
+    if (k >= 2000) stats.add(5.0 + second);  // after the start-up transient
+  }
+  const double lag_one_time = -period / std::log(stats.lag_correlation(0));
+  std::printf("e-folding time %.4f s (expected %.4f s), lag-one formula %.2f s\n", stats.correlation_time_s(),
+              2.146 * tau, lag_one_time);
+  EXPECT_NEAR(stats.correlation_time_s() / (2.146 * tau), 1.0, 0.1);
+  EXPECT_GT(lag_one_time, 50.0 * stats.correlation_time_s());
+}
+
 TEST(ResidualStatistics, GapsBreakThePairs) {
   generic::ResidualStatistics stats(0.001);
   stats.add(1.0);

@@ -142,7 +142,10 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       if (!in || (!spec.minus_input.empty() && !minus)) continue;  // the contract test rules this out
       Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}, {}};
       if (minus) m.minus = pipeline.stage_input(i, *minus);
-      m.statistics.assign(m.input.dim, generic::ResidualStatistics(pipeline.sample_period_s()));
+      // Only a correlation time needs the lags beyond one (and their ring of past samples).
+      const double max_lag_s = spec.statistic == FaultFreeStatistic::correlation_time
+                                   ? generic::ResidualStatistics::kDefaultMaxLagS : 0.0;
+      m.statistics.assign(m.input.dim, generic::ResidualStatistics(pipeline.sample_period_s(), max_lag_s));
       if (spec.statistic == FaultFreeStatistic::noise_density) {
         m.density.assign(m.input.dim, generic::NoiseDensity(pipeline.sample_period_s(), kNoiseDensityWindowS));
       }

@@ -12,8 +12,10 @@
 //   centre              mean(r)
 //   standard_deviation  sqrt(mean((r - centre)^2))
 //   rms                 sqrt(mean(r^2))
-//   correlation_time    -T / ln(rho1), rho1 the lag-one autocorrelation (0 when rho1 <= 0): one
-//                       number, the largest over the channels (a first-order process each)
+//   correlation_time    the e-folding time of the autocorrelation (generic/residual_statistics.hpp:
+//                       -T / ln(rho1) for a first-order process, the lag where rho falls to 1/e
+//                       for a smooth one; 0 when rho1 <= 0): one number, the largest over the
+//                       channels
 //   noise_density       q = sqrt(mean(n_i T m_i^2)), m_i the mean of the n_i finite samples of r
 //                       in consecutive windows of w = kNoiseDensityWindowS seconds (n_i T = w when
 //                       whole): the mean of r over w seconds has standard deviation q / sqrt(w)
