@@ -19,7 +19,9 @@
 // low-passed: its samples change little from one tick to the next) has rho_1 near 1 however
 // short its memory, and -T / ln(rho_1) then measures its smoothness, not its memory: a 0.1 Hz
 // low-pass of a 100 Hz insole residual gave 17-160 s from lag one. A CUSUM whitened with that
-// tau_c is blind for minutes. The e-folding time is the time the residual's memory lasts (for two
+// tau_c divides the residual's tick-to-tick changes by the sqrt(1 - rho^2) of a far smoother
+// process and alarms many times as often as its target (CusumDetector.SmoothResidual... in
+// tests/test_cusum_detector.cpp: 18 times). The e-folding time is the time the residual's memory lasts (for two
 // cascaded first-order lags of tau it is 2.15 tau, against the 2 tau of the integral time scale
 // that sets the false-alarm rate), and equals tau_c exactly for a first-order process.
 //
