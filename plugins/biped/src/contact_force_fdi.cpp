@@ -287,7 +287,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                              PortRole::signal, /*leave_one_out=*/true}
                         .sized_by(per_point));
   ports_.add_output({"sum_residual", 1, "N", "low-passed sum of recovered forces - F_z"});
-  ports_.add_output({"unisolated", 1, "1", "1 while the sum residual is off with no channel to blame (virtual sensor fault)"});
+  ports_.add_output({"unisolated", 1, "1", "1 while the corrected sum residual is off with no channel to blame (a fault not isolated, or of the virtual sensor)"});
   ports_.add_output({"virtual_ready", 1, "1", "1 while the total force F_z is finite (0: virtual sensor not ready)"});
   ports_.add_output(PortSpec{"cannot_judge", n, "1",
                              "1 for a channel not flagged while unisolated is 1: the virtual sensor is not ready, or "
@@ -817,10 +817,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // Without F_z the residual is unknown, not zero: hold the filter rather than pull it to zero.
   if (fz_ok || !started_) sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
   io.out(kSumResidual)[0] = sum_filtered_;
-  bool any = false;
-  for (const auto& c : channels_) any = any || c.type != FaultType::none;
   io.out(kUnisolated)[0] =
-      (!fz_ok || (std::abs(sum_filtered_) > params_.sum_threshold_N && !any) || gain_unisolated_) ? 1.0 : 0.0;
+      (!fz_ok || std::abs(sum_filtered_) > params_.sum_threshold_N || gain_unisolated_) ? 1.0 : 0.0;
   io.out(kVirtualReady)[0] = fz_ok ? 1.0 : 0.0;
   // A channel not flagged is judged only while the sum residual can speak for it: not while the
   // total force is unknown, nor while its residual is off with no channel to blame.

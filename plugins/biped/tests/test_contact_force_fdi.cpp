@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <span>
 #include <string>
 #include <vector>
@@ -137,6 +138,42 @@ TEST(ContactForceFdi, ChannelsSayTheyCannotBeJudgedWhileTheTotalForceIsUnknown) 
       ASSERT_EQ(feet.outs[ContactForceFdi::kCannotJudge][j], expected) << "channel " << j << ", tick " << k;
     }
   }
+}
+
+// The corrected sum residual is what no flagged channel's correction explains: when it leaves
+// its bound, the channels not flagged cannot be judged, even while another channel is flagged
+// (here an airborne pad that reads NaN, flagged invalid, and a total force 150 N off: a fault of
+// the reference no pad can be blamed for). Raised on the exact tick the 1 Hz low-passed residual
+// crosses sum_threshold_N (80 N).
+TEST(ContactForceFdi, AnUnexplainedSumResidualIsUnjudgedEvenWhileAnotherChannelIsFlagged) {
+  const auto p = suralp();
+  Feet feet(p, 1e-3);
+  feet.left_foot_at(0.1);
+  const int step_at = 100;
+  const double a = -std::expm1(-2.0 * std::numbers::pi * p.sum_cutoff_hz * 1e-3);
+  double filtered = 0.0;
+  int crossed = -1;
+  for (int k = 0; k < 400; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = j < 4 ? 0.0 : moving(j, k, 0.0);
+    feet.measured[0] = std::nan("");  // the airborne left pad 1: invalid from the first tick
+    double sum = 0.0;
+    for (std::size_t j = 4; j < kChannels; ++j) sum += feet.measured[j];
+    const double error = k >= step_at ? 150.0 : 0.0;
+    feet.step(sum + error);
+    // The detector's residual is sum - F_z (its first tick starts the filter).
+    filtered = k == 0 ? -error : filtered + a * (-error - filtered);
+    if (crossed < 0 && std::abs(filtered) > p.sum_threshold_N) crossed = k;
+    const double expected = crossed >= 0 ? 1.0 : 0.0;
+    ASSERT_EQ(feet.type(0), FaultType::invalid) << "tick " << k;
+    ASSERT_EQ(feet.outs[ContactForceFdi::kUnisolated][0], expected) << "tick " << k;
+    for (std::size_t j = 1; j < kChannels; ++j) {
+      ASSERT_EQ(feet.outs[ContactForceFdi::kFault][j], 0.0) << "channel " << j << ", tick " << k;
+      ASSERT_EQ(feet.outs[ContactForceFdi::kCannotJudge][j], expected) << "channel " << j << ", tick " << k;
+    }
+    ASSERT_EQ(feet.outs[ContactForceFdi::kCannotJudge][0], 0.0) << "tick " << k;
+  }
+  // 1 - exp(-2 pi f_c T m) > 80 / 150 from the m = 122nd tick of the step on (m > 121.3).
+  EXPECT_EQ(crossed, step_at + 121);
 }
 
 TEST(ContactForceFdi, UnloadedPadOnItsZeroLevelIsNoEvidenceOfAFrozenSensor) {

@@ -127,10 +127,12 @@
 // virtual (leave-one-out: 0 when airborne, else F_z - sum of the other channels' recovered
 // values; NaN while F_z is not finite, the virtual sensor not ready), virtual_ready (1 while F_z
 // is finite; while it is not, the sum residual holds and no channel is judged on it).
-// `unisolated` is 1 while the low-passed sum residual exceeds sum_threshold_N with no
-// channel flagged, or while the gain test's fit is strong but no channel stands out in it: a
-// fault of the virtual sensor's own inputs (IMU) or one that cannot be isolated, reported as such
-// rather than blamed on a force sensor. `cannot_judge` (per channel) is 1 for every channel not
+// `unisolated` is 1 while the low-passed corrected sum residual (the flagged channels taken as
+// recovered: what their corrections do not explain) exceeds sum_threshold_N, whether or not some
+// channel is flagged, or while the gain test's fit is strong but no channel stands out in it: a
+// fault of the virtual sensor's own inputs (IMU), one that cannot be isolated (an offset that
+// began inside a touchdown guard), or a correction that no longer fits, reported as such rather
+// than blamed on a force sensor. `cannot_judge` (per channel) is 1 for every channel not
 // flagged while `unisolated` is: silence there is no verdict of health (the monitor's
 // cannot_judge column).
 // Feet: as many as `measured` carries channels, `points_per_foot` each (4 pads of a sole, 1 for a
