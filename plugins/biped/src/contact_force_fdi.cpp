@@ -297,6 +297,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_forgetting_ = std::exp(-1.0 / gain_window_ticks_);
   gain_xx_.assign(n, 0.0);
   gain_xr_.assign(n, 0.0);
+  gain_x_.assign(n, 0.0);
+  gain_slope_.assign(n, 0.0);
   gain_raw_rr_.assign(n, 0.0);
   gain_held_ticks_.assign(n, 0);
   gain_held_rr_.assign(n, 0.0);
@@ -908,7 +910,9 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
     gain_xx_[j] = f * gain_xx_[j] + recovered[j] * recovered[j];
     gain_xr_[j] = f * gain_xr_[j] + recovered[j] * residual;
+    gain_x_[j] = f * gain_x_[j] + recovered[j];
   }
+  gain_r_ = f * gain_r_ + residual;
   gain_rr_ = f * gain_rr_ + residual * residual;
   if (!std::isfinite(gain_rr_)) {  // readings too large to square: start again rather than stay blind
     restart_gain_window();
@@ -950,14 +954,25 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     restart_gain_window();
     return;
   }
-  // The channel whose one-regressor fit r ~ beta_j N^_j explains the most of the residual.
+  // The channel whose fit r ~ b + beta_j N^_j explains the most of the residual's variation.
+  // With the intercept b, an offset anywhere (a constant r) is b, not a gain: through the origin
+  // it would be fitted by beta_j N^_j of any pad that is loaded most of the time.
+  const double r_mean = gain_r_ / gain_weight_;
+  const double r_variation = gain_rr_ - gain_r_ * r_mean;
+  if (!(r_variation > 0.0)) return;
   std::size_t best = gain_xx_.size();
   double best_explained = 0.0;
   double second_explained = 0.0;  // of any other channel, flagged or not: isolation needs a clear winner
+  std::vector<double>& slope = gain_slope_;
   for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
     const Channel& c = channels_[j];
+    slope[j] = 0.0;
     if (!(gain_xx_[j] >= min_power)) continue;  // hardly loaded: nothing to see
-    const double explained = gain_xr_[j] * gain_xr_[j] / (gain_xx_[j] * gain_rr_);
+    const double x_variation = gain_xx_[j] - gain_x_[j] * gain_x_[j] / gain_weight_;
+    const double covariation = gain_xr_[j] - gain_x_[j] * r_mean;
+    if (!(x_variation > 0.0)) continue;
+    slope[j] = covariation / x_variation;
+    const double explained = covariation * covariation / (x_variation * r_variation);
     const bool judged = c.type == FaultType::none || c.type == FaultType::gain;  // others: by their own evidence
     if (judged && explained > best_explained) {
       second_explained = std::max(second_explained, best_explained);
@@ -976,7 +991,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     return;
   }
   Channel& c = channels_[best];
-  const double beta = gain_xr_[best] / gain_xx_[best];
+  const double beta = slope[best];
   const double threshold = c.type == FaultType::none ? params_.gain_threshold : 0.5 * params_.gain_threshold;
   if (std::abs(beta) <= threshold) {
     gain_unisolated_ = false;
@@ -1000,6 +1015,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
 void ContactForceFdi::restart_gain_window() noexcept {
   std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
   std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
+  std::fill(gain_x_.begin(), gain_x_.end(), 0.0);
+  gain_r_ = 0.0;
   std::fill(gain_raw_rr_.begin(), gain_raw_rr_.end(), 0.0);
   std::fill(gain_held_rr_.begin(), gain_held_rr_.end(), 0.0);
   std::fill(gain_held_ticks_.begin(), gain_held_ticks_.end(), 0);

@@ -176,6 +176,30 @@ TEST(ContactForceFdi, AnUnexplainedSumResidualIsUnjudgedEvenWhileAnotherChannelI
   EXPECT_EQ(crossed, step_at + 121);
 }
 
+// A residual that does not vary with any reading is no gain fault: here the total force is
+// 100 N above the pads' sum for 3 s (a reference off by a constant, or an offset the other tests
+// have not seen) while pad 2 carries a steady 300 N and the others swing by 100 N. Fitted
+// through the origin, r = beta N_2 would explain the constant r exactly and blame pad 2 as a
+// gain of k = 1.5 after the 2 s window; with the intercept the constant is b and no pad's reading
+// explains any of what varies.
+TEST(ContactForceFdi, AConstantResidualIsNoGainOfASteadilyLoadedPad) {
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 3000; ++k) {
+    const double t = k * 1e-3;
+    double sum = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = j == 2 ? 300.0 + (k % 2 == 0 ? 0.0 : 1.0)  // steady (not frozen: it varies)
+                                : 200.0 + 100.0 * std::sin(2.0 * std::numbers::pi * (0.7 * t + 0.125 * j));
+      sum += feet.measured[j];
+    }
+    feet.step(sum + 100.0);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      ASSERT_EQ(feet.outs[ContactForceFdi::kFault][j], 0.0) << "channel " << j << ", tick " << k;
+    }
+  }
+  EXPECT_EQ(feet.outs[ContactForceFdi::kUnisolated][0], 1.0);  // off by 100 N with no one to blame
+}
+
 TEST(ContactForceFdi, UnloadedPadOnItsZeroLevelIsNoEvidenceOfAFrozenSensor) {
   Feet feet(suralp(), 1e-3);
   feet.left_foot_at(0.1);  // the left foot in the air: its pads carry nothing

@@ -71,11 +71,13 @@
 //             unmeasured changes, so confirmation then takes 3 x jump_confirm_N, and none is
 //             confirmed while that channel's foot rolls on or off.
 //   gain      (stance regression) the corrected sum residual r = sum_i N^_i - F_z fitted, channel
-//             by channel, by r ~ beta_j N^_j over an exponential window of gain_window_s
-//             (beta_j = <r, N^_j> / <N^_j, N^_j>). A channel reading k times its force makes
-//             r = (1 - 1/k) N^_j, an exact fit; a healthy walk leaves |beta_j| < 0.05 with under 15 %
+//             by channel, by r ~ b_j + beta_j N^_j over an exponential window of gain_window_s
+//             (beta_j = cov(r, N^_j) / var(N^_j), weighted alike). A channel reading k times its
+//             force makes r = (1 - 1/k) N^_j, an exact fit; a constant r (an offset anywhere, or
+//             the reference off) is b_j, not a gain: through the origin it would be fitted by any
+//             pad loaded most of the time. A healthy walk leaves |beta_j| < 0.05 with under 15 %
 //             of r explained (the limb dynamics). The channel whose fit explains the largest share
-//             of r's power is raised as a gain fault when that share exceeds gain_explained and
+//             of r's variation is raised as a gain fault when that share exceeds gain_explained and
 //             every other channel's by gain_isolation_margin (the pads of one foot load together,
 //             and the sum cannot see moments, so a fault on one is often fitted nearly as well by
 //             its neighbour: then nothing is blamed and `unisolated` is raised instead) and
@@ -332,6 +334,9 @@ class ContactForceFdi {
   // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.
   std::vector<double> gain_xx_;
   std::vector<double> gain_xr_;
+  std::vector<double> gain_x_;  // exponentially weighted sum of N^_j (the fit's intercept)
+  double gain_r_ = 0.0;         // and of r
+  std::vector<double> gain_slope_;  // beta_j of the last judgement (scratch, sized at construction)
   double gain_rr_ = 0.0;
   // Per channel held as a gain fault, since its correction was last set: ticks, <r_raw, r_raw>
   // with r_raw = r + N_j - N^_j (the reading taken as it is) and <r, r>.
