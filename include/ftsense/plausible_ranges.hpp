@@ -12,6 +12,11 @@
 
 namespace ftsense::plausible {
 
+// The total mass of a robot [kg].
+inline PlausibleRange robot_mass_kg() {
+  return {0.5, 1000.0, "robot mass: 1 kg toys to 300 kg machines"};
+}
+
 // Low-pass cut-off frequency f_c [Hz]: tau = 1 / (2 pi f_c) from 160 s down to the Nyquist
 // frequency of the fastest loop.
 inline PlausibleRange cutoff_hz() {

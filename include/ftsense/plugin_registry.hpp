@@ -72,7 +72,14 @@ PluginInfo make_plugin_info() {
     Ports all;  // the union over the examples, in order of first appearance
     for (std::size_t e = 0; e < examples.size(); ++e) {
       Diagnostics local;
-      const std::string path = "/" + std::string(P::name) + "/example_params" + (parsed.is_array() ? "/" + std::to_string(e) : "");
+      // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "/" + to_string(e).
+      std::string path = "/";
+      path += P::name;
+      path += "/example_params";
+      if (parsed.is_array()) {
+        path += '/';
+        path += std::to_string(e);
+      }
       auto params = load_params<typename P::Params>(examples[e], path, P::name, local);
       diag.merge(local);
       if (local.has_errors()) return std::nullopt;

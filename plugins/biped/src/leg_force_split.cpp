@@ -5,12 +5,13 @@
 #include <limits>
 
 #include "ftsense/biped/frames.hpp"
+#include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::biped {
 
 void LegForceSplit::Params::describe(ParamSchema<Params>& schema) {
   schema.add("mass_kg", &Params::mass_kg, "total robot mass m; required unless mass_source is input")
-      .unit("kg").at_least(0.0).plausible(0.5, 1000.0, "robot mass: 1 kg toys to 300 kg machines");
+      .unit("kg").at_least(0.0).plausible(plausible::robot_mass_kg());
   schema.add("lateral_reach_m", &Params::lateral_reach_m,
              "c_lat_max of eq. 7; 0 records |c_lat| at each single-support onset")
       .unit("m").at_least(0.0)

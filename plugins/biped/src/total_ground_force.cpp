@@ -3,12 +3,13 @@
 #include <limits>
 
 #include "ftsense/biped/frames.hpp"
+#include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::biped {
 
 void TotalGroundForce::Params::describe(ParamSchema<Params>& schema) {
   schema.add("mass_kg", &Params::mass_kg, "total robot mass m; required unless mass_source is input")
-      .unit("kg").at_least(0.0).plausible(0.5, 1000.0, "robot mass: 1 kg toys to 300 kg machines");
+      .unit("kg").at_least(0.0).plausible(plausible::robot_mass_kg());
   schema.add_choice("mass_source", &Params::mass_source,
                     "where m comes from: mass_kg, or input port mass (e.g. the URDF's total mass)",
                     {{"param", MassSource::param}, {"input", MassSource::input}});

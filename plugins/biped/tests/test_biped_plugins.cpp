@@ -150,10 +150,24 @@ struct ContractSetup<biped::LipmZmp> {
   static double sample_period_s() { return 1e-2; }
 };
 
+template <>
+struct ContractSetup<biped::LimbInertiaCorrection> {
+  static Json params() { return {{"mass_kg", 114.0}, {"leg_mass_kg", 16.0}}; }
+  static std::size_t input_dim(std::string_view) { return 0; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    std::fill(v.begin(), v.end(), 0.0);
+    if (port == "total_force") v[2] = 1118.0;
+    if (port == "foot_pos") v[1] = 0.1, v[4] = -0.1;  // two feet
+  }
+  static double sample_period_s() { return 1e-3; }
+  // Positions walk by 1 mm per tick: accelerations of metres per second squared, as a leg's.
+  static double random_step() { return 0.001; }
+};
+
 using BipedPluginTypes = ::testing::Types<biped::LipmComEstimator, biped::LegForceSplit, biped::FootCop,
                                           biped::ContactForceDistribution, biped::ZmpFromContactForces,
                                           biped::ContactForceFdi, biped::SupportForceDistribution,
-                                          biped::TotalGroundForce, biped::LipmZmp>;
+                                          biped::TotalGroundForce, biped::LipmZmp, biped::LimbInertiaCorrection>;
 INSTANTIATE_TYPED_TEST_SUITE_P(Biped, PluginContract, BipedPluginTypes);
 
 }  // namespace ftsense::testing

@@ -5,6 +5,7 @@
 #include "ftsense/biped/contact_force_fdi.hpp"
 #include "ftsense/biped/foot_cop.hpp"
 #include "ftsense/biped/leg_force_split.hpp"
+#include "ftsense/biped/limb_inertia_correction.hpp"
 #include "ftsense/biped/lipm_com_estimator.hpp"
 #include "ftsense/biped/lipm_zmp.hpp"
 #include "ftsense/biped/support_force_distribution.hpp"
@@ -16,6 +17,6 @@ namespace ftsense::biped {
 
 using biped_plugins =
     PluginSet<LipmComEstimator, LegForceSplit, FootCop, ContactForceDistribution, ZmpFromContactForces,
-              ContactForceFdi, SupportForceDistribution, TotalGroundForce, LipmZmp>;
+              ContactForceFdi, SupportForceDistribution, TotalGroundForce, LipmZmp, LimbInertiaCorrection>;
 
 }  // namespace ftsense::biped

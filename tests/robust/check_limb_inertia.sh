@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# check_limb_inertia.sh FTSENSE CONFIG SCENARIO...
+# The total vertical ground force F_z = m (R_wb f_imu)_z of CONFIG's `split` stage against the
+# simulator's truth (the sum of the truth pad forces), without and with limb_inertia_correction
+# (the legs' mass, 16 kg each on the simulated SURALP, moving with their feet), on each fault-free
+# SCENARIO: prints the RMS error of both after the first 2 s, and fails unless the correction
+# removes at least a quarter of it (the swinging legs' inertia is the largest error the trunk IMU
+# leaves; docs/results.md, "The legs' inertia").
+set -u
+ftsense=$1; config=$2; shift 2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failed=0
+for scenario in "$@"; do
+  name=$(basename "$scenario" .json)
+  "$ftsense" simulate --scenario "$scenario" --out "$work/$name.csv" --quiet > /dev/null || { echo "FAIL: simulate $name"; exit 1; }
+  # The config with the legs' stage after `split`, at the log's sample period (as a user states it).
+  /usr/bin/python3 - "$config" "$work/$name.csv" "$work/legs.json" <<'PY' || { echo "FAIL: config"; exit 1; }
+import csv, json, sys
+config = json.load(open(sys.argv[1]))
+with open(sys.argv[2]) as f:
+    reader = csv.DictReader(f)
+    times = [float(next(reader)["time_s"]) for _ in range(3)]
+config["sample_period_s"] = round(times[2] - times[1], 9)
+stages = config["stages"]
+at = next(i for i, s in enumerate(stages) if s["name"] == "split")
+stages.insert(at + 1, {"name": "legs", "plugin": "limb_inertia_correction",
+                       "params": {"mass_kg": 114.0, "leg_mass_kg": 16.0},
+                       "inputs": {"total_force": "split.total_force",
+                                  "foot_pos": ["input.l_foot_pos", "input.r_foot_pos"]}})
+config.pop("$schema", None)
+json.dump(config, open(sys.argv[3], "w"), indent=1)
+PY
+  "$ftsense" run --config "$work/legs.json" --input "$work/$name.csv" --output "$work/${name}_run.csv" \
+    --record split.total_force,legs.total_force > /dev/null || { echo "FAIL: run $name"; exit 1; }
+  /usr/bin/python3 - "$work/$name.csv" "$work/${name}_run.csv" "$name" <<'PY' || failed=1
+import csv, math, sys
+log = list(csv.DictReader(open(sys.argv[1])))
+run = list(csv.DictReader(open(sys.argv[2])))
+truth_columns = [c for c in log[0] if c.startswith("truth/") and c.endswith("/force_N")]
+sums = {"split": 0.0, "legs": 0.0}
+n = 0
+for row, out in zip(log, run):
+    if float(row["time_s"]) < 2.0:
+        continue
+    truth = sum(float(row[c]) for c in truth_columns)
+    for stage in sums:
+        sums[stage] += (float(out[f"{stage}.total_force/2_N"]) - truth) ** 2
+    n += 1
+rms = {stage: math.sqrt(s / n) for stage, s in sums.items()}
+verdict = "ok  " if rms["legs"] <= 0.75 * rms["split"] else "FAIL"
+print(f"{verdict} {sys.argv[3]}: F_z error {rms['split']:.1f} N RMS from the trunk IMU alone, "
+      f"{rms['legs']:.1f} N with the legs' inertia ({n} ticks)")
+sys.exit(0 if verdict == "ok  " else 1)
+PY
+done
+exit $failed
