@@ -117,7 +117,8 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("sum_cutoff_hz", &Params::sum_cutoff_hz, "low-pass cut-off of the sum residual for the unisolated test")
       .unit("Hz").greater_than(0.0).plausible(plausible::cutoff_hz());
   schema.add("sum_threshold_N", &Params::sum_threshold_N,
-             "|low-passed sum residual| with no channel flagged that is an unisolated or virtual-sensor fault; 0: 7 % of weight_N")
+             "|low-passed corrected sum residual| (what the flagged channels' corrections leave) that is an "
+             "unisolated or virtual-sensor fault; 0: 7 % of weight_N")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("clear_s", &Params::clear_s, "time the raising test must stay clear to re-admit a channel")
       .unit("s").at_least(0.0).plausible(plausible::flag_delay_s());
