@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # check_limb_inertia.sh FTSENSE CONFIG SCENARIO...
 # The total vertical ground force F_z = m (R_wb f_imu)_z of CONFIG's `split` stage against the
-# simulator's truth (the sum of the truth pad forces), without and with limb_inertia_correction
-# (the legs' mass, 16 kg each on the simulated SURALP, moving with their feet), on each fault-free
+# simulator's truth (the sum of the truth pad forces), without and with its `legs` stage
+# (limb_inertia_correction: the legs' mass, 16 kg each on the simulated SURALP, moving with their
+# feet; added after `split` when the config has none), on each fault-free
 # SCENARIO: prints the RMS error of both after the first 2 s, and fails unless the correction
 # removes at least a quarter of it (the swinging legs' inertia is the largest error the trunk IMU
 # leaves; docs/results.md, "The legs' inertia").
@@ -14,7 +15,8 @@ failed=0
 for scenario in "$@"; do
   name=$(basename "$scenario" .json)
   "$ftsense" simulate --scenario "$scenario" --out "$work/$name.csv" --quiet > /dev/null || { echo "FAIL: simulate $name"; exit 1; }
-  # The config with the legs' stage after `split`, at the log's sample period (as a user states it).
+  # The config, with the legs' stage after `split` unless it has one (`legs`), at the log's sample
+  # period (as a user states it).
   /usr/bin/python3 - "$config" "$work/$name.csv" "$work/legs.json" <<'PY' || { echo "FAIL: config"; exit 1; }
 import csv, json, sys
 config = json.load(open(sys.argv[1]))
@@ -23,11 +25,12 @@ with open(sys.argv[2]) as f:
     times = [float(next(reader)["time_s"]) for _ in range(3)]
 config["sample_period_s"] = round(times[2] - times[1], 9)
 stages = config["stages"]
-at = next(i for i, s in enumerate(stages) if s["name"] == "split")
-stages.insert(at + 1, {"name": "legs", "plugin": "limb_inertia_correction",
-                       "params": {"mass_kg": 114.0, "leg_mass_kg": 16.0},
-                       "inputs": {"total_force": "split.total_force",
-                                  "foot_pos": ["input.l_foot_pos", "input.r_foot_pos"]}})
+if not any(s["name"] == "legs" for s in stages):  # configs/suralp_robust.json has it
+    at = next(i for i, s in enumerate(stages) if s["name"] == "split")
+    stages.insert(at + 1, {"name": "legs", "plugin": "limb_inertia_correction",
+                           "params": {"mass_kg": 114.0, "leg_mass_kg": 16.0},
+                           "inputs": {"total_force": "split.total_force",
+                                      "foot_pos": ["input.l_foot_pos", "input.r_foot_pos"]}})
 config.pop("$schema", None)
 json.dump(config, open(sys.argv[3], "w"), indent=1)
 PY

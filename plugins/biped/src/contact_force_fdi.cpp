@@ -300,6 +300,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_xr_.assign(n, 0.0);
   gain_x_.assign(n, 0.0);
   gain_slope_.assign(n, 0.0);
+  gain_stance_.assign(n, StanceSums{});
   gain_raw_rr_.assign(n, 0.0);
   gain_held_ticks_.assign(n, 0);
   gain_held_rr_.assign(n, 0.0);
@@ -809,13 +810,15 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   // The corrected sum residual: what no channel explains.
   const double residual = fz_ok ? total - fz : 0.0;
-  if (fz_ok) {
+  // Not within touchdown_guard_s of a touchdown: the impact, unseen by the trunk IMU, moves the
+  // residual as the load shifts between the feet, which a gain of the unloading pad would mimic.
+  if (fz_ok && !touching_down) {
     for (std::size_t j = 0; j < channels_.size(); ++j) {
       offset_or_gain_test(channels_[j], measured[j], height[j] > params_.airborne_height_m, residual);
     }
   }
-  gain_regression(measured, recovered, residual, fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded,
-                  t);
+  gain_regression(measured, recovered, height, residual,
+                  fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
   // Without F_z the residual is unknown, not zero: hold the filter rather than pull it to zero.
   if (fz_ok || !started_) sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
@@ -905,13 +908,27 @@ void ContactForceFdi::take_gain(Channel& c, double k) noexcept {
 }
 
 void ContactForceFdi::gain_regression(std::span<const double> measured, std::span<const double> recovered,
-                                      double residual, bool usable, double t) noexcept {
+                                      std::span<const double> height, double residual, bool usable,
+                                      double t) noexcept {
   if (!usable) return;  // the window keeps what it has; impacts and substitutions add nothing
   const double f = gain_forgetting_;
   for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
-    gain_xx_[j] = f * gain_xx_[j] + recovered[j] * recovered[j];
-    gain_xr_[j] = f * gain_xr_[j] + recovered[j] * residual;
-    gain_x_[j] = f * gain_x_[j] + recovered[j];
+    const double x = recovered[j];
+    const bool on_ground = height[j] <= params_.airborne_height_m;
+    gain_xx_[j] = f * gain_xx_[j] + x * x;
+    gain_xr_[j] = f * gain_xr_[j] + x * residual;
+    gain_x_[j] = f * gain_x_[j] + x;
+    // The same fit within each stance of the channel's point (each centred on its own means):
+    // the current stance's sums, and the centred sums of the stances closed before it.
+    StanceSums& g = gain_stance_[j];
+    g.w *= f, g.x *= f, g.r *= f, g.xx *= f, g.xr *= f, g.closed_xx *= f, g.closed_xr *= f;
+    if (on_ground) {
+      g.w += 1.0, g.x += x, g.r += residual, g.xx += x * x, g.xr += x * residual;
+    } else if (g.w > 0.0) {
+      g.closed_xx += g.xx - g.x * g.x / g.w;
+      g.closed_xr += g.xr - g.x * g.r / g.w;
+      g.w = g.x = g.r = g.xx = g.xr = 0.0;
+    }
   }
   gain_r_ = f * gain_r_ + residual;
   gain_rr_ = f * gain_rr_ + residual * residual;
@@ -1000,6 +1017,17 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   gain_unisolated_ = best_explained - second_explained < params_.gain_isolation_margin;
   if (gain_unisolated_) return;
+  // A new gain must hold within each stance too: a fault that begins as the pad lands (an offset
+  // b: r = 0 with N^ = 0 in the air before, r = b with N^ = N + b after) lies on a line across the
+  // landing, but within a stance r stays b while N^ moves. Only a confirmation: within a stance
+  // the limb dynamics follow the loads, too weak a test to raise a flag by itself.
+  if (c.type == FaultType::none) {
+    const StanceSums& g = gain_stance_[best];
+    const double x_variation = g.closed_xx + (g.w > 0.0 ? g.xx - g.x * g.x / g.w : 0.0);
+    const double covariation = g.closed_xr + (g.w > 0.0 ? g.xr - g.x * g.r / g.w : 0.0);
+    const double stance_beta = x_variation > 0.0 ? covariation / x_variation : 0.0;
+    if (!(stance_beta * beta > 0.0) || std::abs(stance_beta) <= threshold) return;
+  }
   // recovered_new = recovered (1 - beta): k_new = k / (1 - beta).
   double gain = (c.type == FaultType::gain ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
   if (std::abs(gain) < kMinGain) gain = std::copysign(kMinGain, gain);  // the recovery divides by it
@@ -1017,6 +1045,7 @@ void ContactForceFdi::restart_gain_window() noexcept {
   std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
   std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
   std::fill(gain_x_.begin(), gain_x_.end(), 0.0);
+  std::fill(gain_stance_.begin(), gain_stance_.end(), StanceSums{});
   gain_r_ = 0.0;
   std::fill(gain_raw_rr_.begin(), gain_raw_rr_.end(), 0.0);
   std::fill(gain_held_rr_.begin(), gain_held_rr_.end(), 0.0);

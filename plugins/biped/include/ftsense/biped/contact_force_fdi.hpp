@@ -82,11 +82,17 @@
 //             and the sum cannot see moments, so a fault on one is often fitted nearly as well by
 //             its neighbour: then nothing is blamed and `unisolated` is raised instead) and
 //             |beta_j| > gain_threshold, with k = 1 / (1 - beta_j), and its RMS load over the
-//             window is above gain_min_load_N; the same test refines k on the corrected residual
+//             window is above gain_min_load_N, and (a new flag only) the same fit within each
+//             stance of the pad (each stance centred on its own means) has beta of that sign and
+//             above gain_threshold too: an offset that begins as its pad lands (r = 0, N^ = 0 in
+//             the air; r = b, N^ = N + b after) lies on a line across the landing, but within a
+//             stance r stays b while N^ moves (a confirmation only: within a stance the limb
+//             dynamics follow the loads, too weak alone); the same test refines k on the corrected residual
 //             and re-admits the channel when k comes back within gain_threshold / 2 of 1, or, by
 //             model comparison (no isolation needed), when it carried load (RMS above
 //             gain_min_load_N) and its reading taken as it is leaves no more residual power than
-//             its correction does over the gain window since the correction was set. The window restarts after every decision, and takes no tick while a loaded channel is
+//             its correction does over the gain window since the correction was set. The window
+//             restarts after every decision, and takes no tick while a loaded channel is
 //             substituted from the total force (which absorbs the residual) or within
 //             touchdown_guard_s of a touchdown (impacts).
 //   follow    a channel raised as offset or drift whose smoothed reading spans less than
@@ -101,7 +107,9 @@
 //   offset or gain  a jump on a loaded pad (load L0 > gain_min_load_N before it) is an offset
 //             b or a gain k = 1 + b / L0 alike at its onset; as the load moves they part. Over the
 //             follow test's span, the corrected sum residual r (the channel taken as x - b) and
-//             r - (x - b) + x / k (taken as x / k) accumulate their power; once the leave-one-out
+//             r - (x - b) + x / k (taken as x / k) accumulate their power (not within
+//             touchdown_guard_s of a touchdown: the impact moves r as the load shifts between the
+//             feet, which a gain of the unloading pad mimics); once the leave-one-out
 //             force has moved by 2 sum_threshold_N, the gain is taken when it leaves under half
 //             the offset's power (a gain x2 raised on its jump no longer waits for the swing).
 //   negative  a pad only pushes: a loaded pad (leave-one-out force above gain_min_load_N)
@@ -287,7 +295,8 @@ class ContactForceFdi {
 
   void raise(Channel& c, FaultType type, double t) noexcept;
   // The stance-regression gain test (see the header comment); runs after recovery.
-  void gain_regression(std::span<const double> measured, std::span<const double> recovered, double residual,
+  void gain_regression(std::span<const double> measured, std::span<const double> recovered,
+                       std::span<const double> height, double residual,
                        bool usable, double t) noexcept;
   void restart_gain_window() noexcept;
   void clear(Channel& c) noexcept;
@@ -337,6 +346,13 @@ class ContactForceFdi {
   std::vector<double> gain_x_;  // exponentially weighted sum of N^_j (the fit's intercept)
   double gain_r_ = 0.0;         // and of r
   std::vector<double> gain_slope_;  // beta_j of the last judgement (scratch, sized at construction)
+  // The fit within each stance of channel j's point, exponentially weighted alike: the current
+  // stance's weight and sums of N^_j, r, N^_j^2, N^_j r, and the centred sums of closed stances.
+  struct StanceSums {
+    double w = 0.0, x = 0.0, r = 0.0, xx = 0.0, xr = 0.0;
+    double closed_xx = 0.0, closed_xr = 0.0;
+  };
+  std::vector<StanceSums> gain_stance_;
   double gain_rr_ = 0.0;
   // Per channel held as a gain fault, since its correction was last set: ticks, <r_raw, r_raw>
   // with r_raw = r + N_j - N^_j (the reading taken as it is) and <r, r>.
