@@ -42,6 +42,9 @@ constexpr double kMinGain = 0.1;
 // Tick counters stop here (about 12 days at 1 kHz): past it they would overflow.
 constexpr int kCountCap = 1'000'000'000;
 
+// sum (a - mean a)(b - mean b) over samples of total weight w, from sum a b, sum a and sum b.
+double centred(double sum_ab, double sum_a, double sum_b, double w) { return sum_ab - sum_a * sum_b / w; }
+
 bool corrects(FaultType type) {
   return type == FaultType::offset || type == FaultType::drift || type == FaultType::gain;
 }
@@ -299,7 +302,6 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_xx_.assign(n, 0.0);
   gain_xr_.assign(n, 0.0);
   gain_x_.assign(n, 0.0);
-  gain_slope_.assign(n, 0.0);
   gain_stance_.assign(n, StanceSums{});
   gain_raw_rr_.assign(n, 0.0);
   gain_held_ticks_.assign(n, 0);
@@ -925,8 +927,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     if (on_ground) {
       g.w += 1.0, g.x += x, g.r += residual, g.xx += x * x, g.xr += x * residual;
     } else if (g.w > 0.0) {
-      g.closed_xx += g.xx - g.x * g.x / g.w;
-      g.closed_xr += g.xr - g.x * g.r / g.w;
+      g.closed_xx += centred(g.xx, g.x, g.x, g.w);
+      g.closed_xr += centred(g.xr, g.x, g.r, g.w);
       g.w = g.x = g.r = g.xx = g.xr = 0.0;
     }
   }
@@ -981,21 +983,20 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   std::size_t best = gain_xx_.size();
   double best_explained = 0.0;
   double second_explained = 0.0;  // of any other channel, flagged or not: isolation needs a clear winner
-  std::vector<double>& slope = gain_slope_;
+  double beta = 0.0;  // the best channel's slope
   for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
     const Channel& c = channels_[j];
-    slope[j] = 0.0;
     if (!(gain_xx_[j] >= min_power)) continue;  // hardly loaded: nothing to see
-    const double x_variation = gain_xx_[j] - gain_x_[j] * gain_x_[j] / gain_weight_;
+    const double x_variation = centred(gain_xx_[j], gain_x_[j], gain_x_[j], gain_weight_);
     const double covariation = gain_xr_[j] - gain_x_[j] * r_mean;
     if (!(x_variation > 0.0)) continue;
-    slope[j] = covariation / x_variation;
     const double explained = covariation * covariation / (x_variation * r_variation);
     const bool judged = c.type == FaultType::none || c.type == FaultType::gain;  // others: by their own evidence
     if (judged && explained > best_explained) {
       second_explained = std::max(second_explained, best_explained);
       best = j;
       best_explained = explained;
+      beta = covariation / x_variation;
     } else {
       second_explained = std::max(second_explained, explained);
     }
@@ -1009,7 +1010,6 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     return;
   }
   Channel& c = channels_[best];
-  const double beta = slope[best];
   const double threshold = c.type == FaultType::none ? params_.gain_threshold : 0.5 * params_.gain_threshold;
   if (std::abs(beta) <= threshold) {
     gain_unisolated_ = false;
@@ -1023,8 +1023,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // the limb dynamics follow the loads, too weak a test to raise a flag by itself.
   if (c.type == FaultType::none) {
     const StanceSums& g = gain_stance_[best];
-    const double x_variation = g.closed_xx + (g.w > 0.0 ? g.xx - g.x * g.x / g.w : 0.0);
-    const double covariation = g.closed_xr + (g.w > 0.0 ? g.xr - g.x * g.r / g.w : 0.0);
+    const double x_variation = g.closed_xx + (g.w > 0.0 ? centred(g.xx, g.x, g.x, g.w) : 0.0);
+    const double covariation = g.closed_xr + (g.w > 0.0 ? centred(g.xr, g.x, g.r, g.w) : 0.0);
     const double stance_beta = x_variation > 0.0 ? covariation / x_variation : 0.0;
     if (!(stance_beta * beta > 0.0) || std::abs(stance_beta) <= threshold) return;
   }

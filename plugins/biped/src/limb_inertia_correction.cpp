@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "ftsense/biped/stacked_feet.hpp"
+#include "ftsense/low_pass_gain.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::biped {
@@ -25,18 +25,12 @@ void LimbInertiaCorrection::Params::describe(ParamSchema<Params>& schema) {
 
 LimbInertiaCorrection::LimbInertiaCorrection(const Params& params, const StageContext& context)
     : params_(params), period_s_(context.sample_period_s()) {
-  const double nyquist_hz = 0.5 / period_s_;
-  if (!(params.cutoff_hz < nyquist_hz)) {
-    throw ConfigError("/params/cutoff_hz", " = " + format_number(params.cutoff_hz) + " violates < " +
-                                               format_number(nyquist_hz) +
-                                               " (Nyquist frequency 1 / (2 T) of the pipeline, Hz)");
-  }
+  gain_ = low_pass_gain(params.cutoff_hz, period_s_);
   if (!(params.leg_mass_kg < params.mass_kg)) {
     throw ConfigError("/params/leg_mass_kg", " = " + format_number(params.leg_mass_kg) +
                                                  " kg: a leg weighs less than the whole robot (mass_kg = " +
                                                  format_number(params.mass_kg) + " kg)");
   }
-  gain_ = -std::expm1(-2.0 * std::numbers::pi * params.cutoff_hz * period_s_);
   feet_ = stacked_feet(context, 2);
   ports_.add_input(PortSpec{"total_force", 3, "N", "total ground reaction force M R_wb f_imu", PortRole::virtual_estimate}
                        .in_frame("world"));

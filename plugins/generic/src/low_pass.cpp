@@ -1,8 +1,8 @@
 #include "ftsense/generic/low_pass.hpp"
 
 #include <cmath>
-#include <numbers>
 
+#include "ftsense/low_pass_gain.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::generic {
@@ -16,13 +16,7 @@ void LowPass::Params::describe(ParamSchema<Params>& schema) {
 }
 
 LowPass::LowPass(const Params& params, const StageContext& context) : start_(params.start) {
-  const double nyquist_hz = 0.5 / context.sample_period_s();
-  if (!(params.cutoff_hz < nyquist_hz)) {
-    throw ConfigError("/params/cutoff_hz", " = " + format_number(params.cutoff_hz) + " violates < " +
-                                               format_number(nyquist_hz) +
-                                               " (Nyquist frequency 1 / (2 T) of the pipeline, Hz)");
-  }
-  a_ = -std::expm1(-2.0 * std::numbers::pi * params.cutoff_hz * context.sample_period_s());
+  a_ = low_pass_gain(params.cutoff_hz, context.sample_period_s());
   const std::size_t dim = context.wired_dim("signal", 1);
   ports_.add_input(PortSpec{"signal", dim, std::string(kAnyUnit), "the signal to smooth"}.sized_by("as wired"));
   ports_.add_output(PortSpec{"filtered", dim, std::string(kAnyUnit), "the low-passed signal"}.sized_by("as `signal`"));

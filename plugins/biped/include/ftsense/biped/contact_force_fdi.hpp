@@ -345,7 +345,6 @@ class ContactForceFdi {
   std::vector<double> gain_xr_;
   std::vector<double> gain_x_;  // exponentially weighted sum of N^_j (the fit's intercept)
   double gain_r_ = 0.0;         // and of r
-  std::vector<double> gain_slope_;  // beta_j of the last judgement (scratch, sized at construction)
   // The fit within each stance of channel j's point, exponentially weighted alike: the current
   // stance's weight and sums of N^_j, r, N^_j^2, N^_j r, and the centred sums of closed stances.
   struct StanceSums {
