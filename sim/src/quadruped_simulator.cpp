@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "ftsense/sim/free_body_accelerometer.hpp"
 #include "ftsense/sim/mujoco_model.hpp"
 #include "ftsense/sim/quadruped_leg_kinematics.hpp"
 #include "ftsense/sim/simulator.hpp"
@@ -110,7 +111,7 @@ SimulationSummary simulate_quadruped(const Scenario& sc, std::uint64_t seed, std
   const std::int64_t log_every = detail::log_every_ticks(sc, dt);
 
   const int trunk = require_id(m, mjOBJ_BODY, "trunk");
-  const int acc_adr = m->sensor_adr[require_id(m, mjOBJ_SENSOR, "imu_acc")];
+  FreeBodyAccelerometer accelerometer(m, require_id(m, mjOBJ_SITE, "imu"));
   const int gyro_adr = m->sensor_adr[require_id(m, mjOBJ_SENSOR, "imu_gyro")];
   std::array<int, kJoints> qadr{}, act{};
   for (std::size_t j = 0; j < kJoints; ++j) {
@@ -231,7 +232,9 @@ SimulationSummary simulate_quadruped(const Scenario& sc, std::uint64_t seed, std
     const double t = static_cast<double>(k) / ticks_per_s;
     const CrawlSample s = anchored(plan.sample(t));
     if (!control(s)) ++sum.ik_unreachable_ticks;
+    accelerometer.before_step(d);
     mj_step(m, d);  // derived quantities (contacts, xpos, sensors) now belong to time t
+    const Eigen::Vector3d specific_force = accelerometer.after_step(d);
 
     std::array<double, kLegs> fn{};
     double fsum = 0.0;
@@ -281,7 +284,7 @@ SimulationSummary simulate_quadruped(const Scenario& sc, std::uint64_t seed, std
       const bool acc_fault = sp.acc_fault_start_s && t >= *sp.acc_fault_start_s &&
                              (!sp.acc_fault_end_s || t < *sp.acc_fault_end_s);
       for (std::size_t i = 0; i < 3; ++i)
-        row.num(d->sensordata[acc_adr + static_cast<int>(i)] + sp.acc_bias_m_s2[i] +
+        row.num(specific_force[static_cast<Eigen::Index>(i)] + sp.acc_bias_m_s2[i] +
                 sp.acc_noise_std_m_s2 * imu_rng.normal() + (acc_fault ? sp.acc_fault_offset_m_s2[i] : 0.0));
       for (std::size_t i = 0; i < 3; ++i)
         row.num(d->sensordata[gyro_adr + static_cast<int>(i)] + sp.gyro_bias_rad_s[i] +

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "ftsense/sim/leg_kinematics.hpp"
+#include "ftsense/sim/free_body_accelerometer.hpp"
 #include "ftsense/sim/mujoco_model.hpp"
 #include "ftsense/sim/preview_control.hpp"
 #include "simulation_log.hpp"
@@ -163,7 +164,7 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
   const std::int64_t log_every = detail::log_every_ticks(sc, dt);
 
   const int trunk = require_id(m, mjOBJ_BODY, "trunk");
-  const int acc_adr = m->sensor_adr[require_id(m, mjOBJ_SENSOR, "imu_acc")];
+  FreeBodyAccelerometer accelerometer(m, require_id(m, mjOBJ_SITE, "imu"));
   const int gyro_adr = m->sensor_adr[require_id(m, mjOBJ_SENSOR, "imu_gyro")];
   std::array<int, 12> qadr{}, act{};
   for (std::size_t j = 0; j < 12; ++j) {
@@ -281,7 +282,9 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
     if (!control(s, com_plan)) ++sum.ik_unreachable_ticks;
     // After mj_step every derived quantity (xpos, contacts, sensors) belongs to time t; only
     // qpos/qvel have advanced, hence the joint positions saved above.
+    accelerometer.before_step(d);
     mj_step(m, d);
+    const Eigen::Vector3d specific_force = accelerometer.after_step(d);
 
     // Truth.
     std::array<double, 8> fn{};
@@ -350,7 +353,7 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
       const bool acc_fault = sp.acc_fault_start_s && t >= *sp.acc_fault_start_s &&
                              (!sp.acc_fault_end_s || t < *sp.acc_fault_end_s);
       for (int i = 0; i < 3; ++i)
-        row.num(d->sensordata[acc_adr + i] + sp.acc_bias_m_s2[static_cast<std::size_t>(i)] +
+        row.num(specific_force[i] + sp.acc_bias_m_s2[static_cast<std::size_t>(i)] +
                 sp.acc_noise_std_m_s2 * imu_rng.normal() +
                 (acc_fault ? sp.acc_fault_offset_m_s2[static_cast<std::size_t>(i)] : 0.0));
       for (int i = 0; i < 3; ++i)

@@ -467,13 +467,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // A pad's own landing: a pad on the ground left no load by the others, reading its zero
       // level, takes its load back as the foot rolls onto it. That contact is as abrupt as a
       // foot's touchdown and rings alike (at 200 Hz: tens of newtons in one tick, chatter on and
-      // off), so the jump and spike tests leave the pad alone for touchdown_guard_s after it; a
-      // fault that starts then is left to the sum residual and the air test.
+      // off), so the jump and spike tests leave the pad alone while it rings: until its changes
+      // have stayed below jump_threshold_N for jump_window_s, at most touchdown_guard_s after the
+      // landing (a ring that has died out is over; a step after it is judged like any other).
+      // A fault that starts while it rings is left to the sum residual and the air test.
       if (!airborne && std::isfinite(c.last_virtual) && c.last_virtual < params_.airborne_threshold_N &&
           std::abs(c.previous) <= params_.airborne_threshold_N && x > params_.airborne_threshold_N) {
         c.last_pad_landing_s = t;
+        c.last_landing_ring_s = t;
       }
-      const bool pad_landing = t - c.last_pad_landing_s < params_.touchdown_guard_s;
+      // Rung until the tick before: this tick's change is what the tests below judge.
+      const bool in_landing_guard = t - c.last_pad_landing_s < params_.touchdown_guard_s;
+      const bool pad_landing = in_landing_guard && t - c.last_landing_ring_s < params_.jump_window_s;
+      if (pad_landing && std::abs(change) > params_.jump_threshold_N) c.last_landing_ring_s = t;
       const double spike = c.previous - 0.5 * (x + c.previous2);
       const bool spikes_seen = !touching_down && !pad_landing;
       if (spikes_seen) {
@@ -508,8 +514,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // Any time but a landing: a rolling foot's pads change a few newtons per tick, far below
       // jump_threshold_N, and the sum-residual confirmation rejects what is not a sensor step.
       const bool may_jump = !touching_down && !pad_landing;
+      // A noise burst's swings are the fault the channel is flagged for, not steps.
       if (std::abs(change) > params_.jump_threshold_N && std::abs(innovation) > params_.jump_threshold_N && may_jump &&
-          !group_pending_) {
+          c.type != FaultType::noise && !group_pending_) {
         c.jump_pending = true;
         c.jump_size = change;
         c.candidate_load = c.previous;
@@ -566,7 +573,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
   }
   // While a loaded channel is substituted from the total force, the sum residual carries that
-  // channel's unmeasured changes: confirming a jump then takes three times the step.
+  // channel's unmeasured changes, and while one reads a noise burst, its swings (a 10 ms mean of
+  // 40 N noise moves by 13 N; spikes come too seldom to matter): confirming a jump then takes
+  // three times the step.
   // When such a channel's foot is rolling on or off (some pads up), its load changes fast and
   // unmeasured, and no jump is confirmed at all.
   bool substituting_loaded = false;
@@ -577,7 +586,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const bool substituted = channels_[j].type != FaultType::none && !own_estimate(channels_[j].type) && !airborne;
     const FaultType type = channels_[j].type;
     uncorrected_loaded = uncorrected_loaded || (type != FaultType::none && !corrects(type) && !airborne);
-    substituting_loaded = substituting_loaded || substituted;
+    const bool noisy_loaded = type == FaultType::noise && !airborne;
+    substituting_loaded = substituting_loaded || substituted || noisy_loaded;
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
   }
   if (substituting_rolling) group_pending_ = false;
@@ -907,6 +917,9 @@ void ContactForceFdi::take_gain(Channel& c, double k) noexcept {
   c.type = FaultType::gain;
   c.gain = k;
   c.sign_fault = k < 0.0;  // re-admitted when it reads right side up under load
+  // The stance regression's window holds residuals computed with this channel taken as x - b;
+  // refining k on them would fit the change of correction, not the sensor. Start a new one.
+  restart_gain_window();
 }
 
 void ContactForceFdi::gain_regression(std::span<const double> measured, std::span<const double> recovered,

@@ -12,8 +12,9 @@ namespace ftsense::biped {
 void LimbInertiaCorrection::Params::describe(ParamSchema<Params>& schema) {
   schema.add("mass_kg", &Params::mass_kg, "total mass M of the robot, the M of F = M R_wb f_imu")
       .unit("kg").greater_than(0.0).plausible(plausible::robot_mass_kg());
-  schema.add("leg_mass_kg", &Params::leg_mass_kg,
-             "mass m_l of one leg, taken to move with its foot (the links between hip and sole); 0: no correction")
+  schema.add("leg_effective_mass_kg", &Params::leg_effective_mass_kg,
+             "mass m_e that moves with each foot: sum over the leg's links of m_s rho_s, rho_s the link CoM's "
+             "distance from the hip over the foot's (leg straight); below the leg's mass; 0: no correction")
       .unit("kg").at_least(0.0).plausible(0.0, 200.0, "a leg weighs grams to tens of kilograms");
   schema.add("cutoff_hz", &Params::cutoff_hz,
              "cut-off f_c of the two low-passes before the second difference: the legs' motion bandwidth, below "
@@ -26,9 +27,9 @@ void LimbInertiaCorrection::Params::describe(ParamSchema<Params>& schema) {
 LimbInertiaCorrection::LimbInertiaCorrection(const Params& params, const StageContext& context)
     : params_(params), period_s_(context.sample_period_s()) {
   gain_ = low_pass_gain(params.cutoff_hz, period_s_);
-  if (!(params.leg_mass_kg < params.mass_kg)) {
-    throw ConfigError("/params/leg_mass_kg", " = " + format_number(params.leg_mass_kg) +
-                                                 " kg: a leg weighs less than the whole robot (mass_kg = " +
+  if (!(params.leg_effective_mass_kg < params.mass_kg)) {
+    throw ConfigError("/params/leg_effective_mass_kg", " = " + format_number(params.leg_effective_mass_kg) +
+                                                 " kg: a leg's effective mass is below the whole robot's (mass_kg = " +
                                                  format_number(params.mass_kg) + " kg)");
   }
   feet_ = stacked_feet(context, 2);
@@ -37,7 +38,7 @@ LimbInertiaCorrection::LimbInertiaCorrection(const Params& params, const StageCo
   ports_.add_input(PortSpec{"foot_pos", 3 * feet_, "m", "foot frame origins (x, y, z) stacked foot after foot"}
                        .in_frame("world")
                        .sized_by("as wired: 3 per foot"));
-  ports_.add_output(PortSpec{"total_force", 3, "N", "F + m_l sum_i (a_i - a_t): with the legs' inertia"}
+  ports_.add_output(PortSpec{"total_force", 3, "N", "F + m_e sum_i (a_i - a_t): with the legs' inertia"}
                         .in_frame("world"));
   feet_pos_.resize(3 * feet_);
 }
@@ -86,7 +87,7 @@ void LimbInertiaCorrection::step(const StepIO& io) noexcept {
       relative += p.second_difference() * per_tick2 - trunk_[axis].history[1];
     }
     // The second difference is centred on the middle sample: the trunk's acceleration of that tick.
-    out[axis] = force[axis] + (ready ? params_.leg_mass_kg * relative : 0.0);
+    out[axis] = force[axis] + (ready ? params_.leg_effective_mass_kg * relative : 0.0);
   }
 }
 

@@ -152,7 +152,7 @@ struct ContractSetup<biped::LipmZmp> {
 
 template <>
 struct ContractSetup<biped::LimbInertiaCorrection> {
-  static Json params() { return {{"mass_kg", 114.0}, {"leg_mass_kg", 16.0}}; }
+  static Json params() { return {{"mass_kg", 114.0}, {"leg_effective_mass_kg", 16.0}}; }
   static std::size_t input_dim(std::string_view) { return 0; }
   static void nominal_input(std::string_view port, std::span<double> v) {
     std::fill(v.begin(), v.end(), 0.0);

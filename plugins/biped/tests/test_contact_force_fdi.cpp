@@ -294,6 +294,34 @@ TEST(ContactForceFdi, ANoiseBurstIsClearedByTheNoiseTestNotHeldByItsSpikes) {
   EXPECT_LE(cleared_at, 500 + 38 + 50 + 10);
 }
 
+TEST(ContactForceFdi, ALoadedNoiseBurstTriplesTheStepThatConfirmsANeighboursJump) {
+  // Pad 2 reads a noise burst (+-12 N about its 300 N load) from tick 200, flagged noise by tick
+  // 400; F_z is the true loads' sum, so the sum residual carries the burst's swings. A neighbour's
+  // 50 N step at tick 600 is then not confirmed (it takes 3 x jump_confirm_N = 75 N: the swings
+  // of a real burst move a 10 ms mean by tens of newtons); a 100 N step at tick 800 is, on its
+  // window's last tick (809). Without the burst the 50 N step is an offset at once (tick 609).
+  for (const bool burst : {true, false}) {
+    SCOPED_TRACE(burst ? "with the burst" : "without it");
+    Feet feet(suralp(), 1e-3);
+    for (int k = 0; k < 900; ++k) {
+      double fz = 0.0;
+      for (std::size_t j = 0; j < kChannels; ++j) {
+        feet.measured[j] = moving(j, k, 0.0);
+        fz += feet.measured[j];
+      }
+      if (burst && k >= 200) feet.measured[2] += k % 2 == 0 ? 12.0 : -12.0;
+      if (k >= 600) feet.measured[5] += 50.0;
+      if (k >= 800) feet.measured[6] += 100.0;
+      feet.step(fz);
+      if (k == 400 && burst) {
+        ASSERT_EQ(feet.type(2), FaultType::noise);
+      }
+      ASSERT_EQ(feet.type(5), !burst && k >= 609 ? FaultType::offset : FaultType::none) << "tick " << k;
+      ASSERT_EQ(feet.type(6), k >= 809 ? FaultType::offset : FaultType::none) << "tick " << k;
+    }
+  }
+}
+
 TEST(ContactForceFdi, AJumpMustBeASurpriseNotAFastRamp) {
   // 200 Hz, F_z steady: a pad whose load speeds up smoothly (10 N per tick per tick) to 30 N per
   // tick moves the sum residual as much as a step would, but its linear prediction foresees each
@@ -340,6 +368,30 @@ TEST(ContactForceFdi, APadTakingItsLoadBackIsALandingNotAJumpOrASpike) {
     loaded.step(fz + moving(2, 0, 0.0));
     ASSERT_EQ(landed.type(2), k >= 61 ? FaultType::offset : FaultType::none) << "tick " << k;
     ASSERT_EQ(loaded.type(2), k >= 21 ? FaultType::offset : FaultType::none) << "tick " << k;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 2) {
+        ASSERT_EQ(landed.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+}
+
+TEST(ContactForceFdi, ALandedPadIsJudgedAgainOnceItsRingHasDiedOut) {
+  // The landing of the test above (200 Hz: 45, -5, 70 N, then 80 N from tick 23), and a 60 N
+  // sensor step at tick 40: 0.1 s after the landing, inside touchdown_guard_s, but the ring ended
+  // at tick 22 (its last change above jump_threshold_N) and jump_window_s (2 ticks) has passed
+  // since. The step is an offset on the next tick, as on any loaded pad; the ring is not.
+  const std::array<double, 4> landing{45.0, -5.0, 70.0, 80.0};
+  Feet landed(suralp(), 5e-3);
+  double fz = 0.0;
+  for (std::size_t j = 0; j < kChannels; ++j) fz += j == 2 ? 0.0 : moving(j, 0, 0.0);
+  for (int k = 0; k < 60; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) landed.measured[j] = moving(j, k, 0.0);
+    const double alternation = k % 2 == 0 ? 0.0 : 1.0;
+    landed.measured[2] = k < 20 ? alternation : k < 24 ? landing[static_cast<std::size_t>(k - 20)] : 80.0 + alternation;
+    if (k >= 40) landed.measured[2] += 60.0;
+    landed.step(fz);
+    ASSERT_EQ(landed.type(2), k >= 41 ? FaultType::offset : FaultType::none) << "tick " << k;
     for (std::size_t j = 0; j < kChannels; ++j) {
       if (j != 2) {
         ASSERT_EQ(landed.type(j), FaultType::none) << "channel " << j << ", tick " << k;

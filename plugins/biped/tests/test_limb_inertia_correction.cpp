@@ -29,18 +29,18 @@ struct Stage {
   }
 };
 
-LimbInertiaCorrection::Params legs(double leg_mass_kg) {
+LimbInertiaCorrection::Params legs(double leg_effective_mass_kg) {
   LimbInertiaCorrection::Params p;
   p.mass_kg = 114.0;
-  p.leg_mass_kg = leg_mass_kg;
+  p.leg_effective_mass_kg = leg_effective_mass_kg;
   p.cutoff_hz = 10.0;
   return p;
 }
 
 // Trunk accelerating up at a_t (F = M (a_t + g) e_z), foot 0 at a_t + a_z up and a_x forward,
 // foot 1 moving with the trunk, for 3 s at period T: the last output.
-std::vector<double> uniform_acceleration(double leg_mass_kg, double period_s, double a_t, double a_z, double a_x) {
-  Stage s(legs(leg_mass_kg), period_s, 2);
+std::vector<double> uniform_acceleration(double leg_effective_mass_kg, double period_s, double a_t, double a_z, double a_x) {
+  Stage s(legs(leg_effective_mass_kg), period_s, 2);
   const int ticks = static_cast<int>(std::lround(3.0 / period_s));
   for (int k = 0; k <= ticks; ++k) {
     const double t = k * period_s;

@@ -34,8 +34,8 @@
 //             shown, or when the channel sticks again at the value of its previous stuck episode
 //             (a clipped load returns to the same ceiling).
 //   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree (not
-//             within touchdown_guard_s of a touchdown or of the pad's own landing: a landing heel
-//             rings like a spike); the flag stays h after the last spike. Spikes of a faulty
+//             within touchdown_guard_s of a touchdown, nor while the pad rings after its own
+//             landing, as for jumps below: a landing heel rings like a spike); the flag stays h after the last spike. Spikes of a faulty
 //             sensor come at random (rate lambda, exponential gaps), so once an episode has n >= 2
 //             spikes over D seconds (lambda^ = (n - 1) / D), a gap of h = ln(1 / p_gap) / lambda^
 //             says the process has stopped: a running one leaves so long a gap with probability
@@ -59,17 +59,21 @@
 //             prediction 2 N_j,k-1 - N_j,k-2 (a step is a surprise, a fast healthy load change
 //             at a slow log rate is not), with no foot touching down within
 //             touchdown_guard_s (a landing impact jumps pads and, unseen by the trunk IMU, the
-//             sum residual; a rolling foot's pads change only a few N per tick), nor within
-//             touchdown_guard_s of the pad's own landing (a pad on the ground left no load by the
-//             others, on its zero level, that takes load back: tens of N in one tick at 200 Hz,
-//             unseen by the IMU like any contact); confirmed when the sum
+//             sum residual; a rolling foot's pads change only a few N per tick), nor while the
+//             pad rings after its own landing (a pad on the ground left no load by the others, on
+//             its zero level, that takes load back: tens of N in one tick at 200 Hz, chatter on
+//             and off): until its changes have stayed below jump_threshold_N for jump_window_s,
+//             at most touchdown_guard_s after the landing (a ring that has died out is over);
+//             a channel flagged as a noise burst is no candidate (its swings are that fault);
+//             confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
 //             each other): an abrupt fault, isolated at once. While a loaded channel is
 //             substituted from the total force (frozen, saturated, invalid; not a noise burst or spikes,
 //             which are recovered from their own readings), the sum carries its
-//             unmeasured changes, so confirmation then takes 3 x jump_confirm_N, and none is
-//             confirmed while that channel's foot rolls on or off.
+//             unmeasured changes, and while a loaded channel reads a noise burst, its swings: so
+//             confirmation then takes 3 x jump_confirm_N, and none is confirmed while a
+//             substituted channel's foot rolls on or off.
 //   gain      (stance regression) the corrected sum residual r = sum_i N^_i - F_z fitted, channel
 //             by channel, by r ~ b_j + beta_j N^_j over an exponential window of gain_window_s
 //             (beta_j = cov(r, N^_j) / var(N^_j), weighted alike). A channel reading k times its
@@ -92,7 +96,9 @@
 //             model comparison (no isolation needed), when it carried load (RMS above
 //             gain_min_load_N) and its reading taken as it is leaves no more residual power than
 //             its correction does over the gain window since the correction was set. The window
-//             restarts after every decision, and takes no tick while a loaded channel is
+//             restarts after every decision, and when the offset-or-gain test or the air test
+//             below re-types an offset as a gain (its residuals took that channel as x - b: k
+//             refined on them would fit the change of correction), and takes no tick while a loaded channel is
 //             substituted from the total force (which absorbs the residual) or within
 //             touchdown_guard_s of a touchdown (impacts).
 //   follow    a channel raised as offset or drift whose smoothed reading spans less than
@@ -254,6 +260,7 @@ class ContactForceFdi {
     double spike_quiet_s = 0.0;     // seen time since its last spike
     double spike_hold = 0.0;        // h: the flag stays until spike_quiet_s reaches it
     double last_pad_landing_s = -1e9;  // the pad last took load back from its zero level
+    double last_landing_ring_s = -1e9;  // its last change above jump_threshold_N since
     std::vector<double> second_diff;  // ring of |d2|, noise test
     std::vector<double> first_diff;   // ring of |d1| at the same ticks (whiteness)
     std::size_t second_diff_next = 0;
