@@ -873,8 +873,15 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
   c.virtual_lo = std::min(c.virtual_lo, c.virtual_smoothed);
   c.virtual_hi = std::max(c.virtual_hi, c.virtual_smoothed);
   const double load_span = c.virtual_hi - c.virtual_lo;
-  if (load_span < 2.0 * params_.sum_threshold_N) return;  // the load has not moved beyond the force's error
   const double reading_span = c.reading_hi - c.reading_lo;
+  // A frozen output whose own reading moves by sum_threshold_N again, half as much as its load at
+  // least, follows a load: a stuck sensor's noise never spans that, so the load's move need not
+  // first exceed the force's error twice over.
+  if (c.frozen_by_follow && reading_span >= params_.sum_threshold_N && reading_span >= 0.5 * load_span) {
+    clear(c);
+    return;
+  }
+  if (load_span < 2.0 * params_.sum_threshold_N) return;  // the load has not moved beyond the force's error
   if (!c.frozen_by_follow && reading_span < params_.follow_ratio * load_span) {
     c.type = FaultType::frozen;
     c.frozen_by_follow = true;

@@ -498,6 +498,41 @@ TEST(ContactForceFdi, AFrozenOutputIsReadmittedOnTheFirstLoadMoveItFollowsAgain)
   EXPECT_LE(readmitted_at, 1100 + 80 + 30);
 }
 
+// The same frozen output, but when its fault ends (tick 1100) the load moves only 100 N (200 to
+// 300 N, 2 N per tick), less than the 2 sum_threshold_N (160 N) that the follow test's own
+// decisions wait for. Its reading leaves the frozen 150 N for the load's 200 N and follows it:
+// it has spanned sum_threshold_N (80 N) at 230 N (tick 1115), more than half the load's move. No
+// stuck sensor's noise does that, so it is re-admitted then (plus the 10 Hz smoothing's lag),
+// where it used to wait for the next 160 N move.
+TEST(ContactForceFdi, AFrozenOutputWhoseReadingMovesBySumThresholdAgainIsReadmitted) {
+  Feet feet(suralp(), 1e-3);
+  int readmitted_at = -1;
+  for (int k = 0; k < 1600; ++k) {
+    const bool landed = k >= 200;
+    feet.left_foot_at(landed ? 0.0 : 0.1);
+    const double load = !landed  ? 0.0
+                        : k < 600  ? 200.0 + 2.0 * (k - 200)
+                        : k < 1000 ? 1000.0 - 2.0 * (k - 600)
+                        : k < 1100 ? 200.0
+                                   : std::min(300.0, 200.0 + 2.0 * (k - 1100));
+    for (std::size_t j = 1; j < kChannels; ++j) feet.measured[j] = j < 4 ? (landed ? 100.0 + (k % 2) : k % 2) : moving(j, k, 0.0);
+    double others = 0.0;
+    for (std::size_t j = 1; j < kChannels; ++j) others += feet.measured[j];
+    const double noise = k % 2 == 0 ? 1.0 : -1.0;
+    feet.measured[0] = (k < 1100 ? 150.0 : load) + noise;
+    feet.step(others + load);
+    if (k == 1099) {
+      ASSERT_EQ(feet.type(0), FaultType::frozen);
+    }
+    if (k >= 1100 && readmitted_at < 0 && feet.type(0) == FaultType::none) readmitted_at = k;
+    if (readmitted_at >= 0) {
+      ASSERT_EQ(feet.type(0), FaultType::none) << "tick " << k;
+    }
+  }
+  ASSERT_GE(readmitted_at, 1115);
+  EXPECT_LE(readmitted_at, 1115 + 30);
+}
+
 // Both feet flat, F_z exact. Pad 0 steps by +60 N at tick 100 (a confirmed jump: an offset) and
 // back at tick 400, while pad 5 of the other foot spikes every 20 ticks from tick 205 (flagged
 // spikes, recovered by its own median, not substituted from the total force). The jump back is

@@ -109,7 +109,9 @@
 //             a frozen output that keeps its noise; re-typed frozen and substituted. Re-admitted
 //             when the reading spans half the force's move again, each move of 2 sum_threshold_N
 //             judged on its own (the span restarts after each, so a reading that follows again
-//             need not match the moves it missed while frozen).
+//             need not match the moves it missed while frozen), or at once when the reading itself
+//             spans sum_threshold_N and at least half the force's move so far (no stuck sensor's
+//             noise spans that; the force need not first move twice its error).
 //   offset or gain  a jump on a loaded pad (load L0 > gain_min_load_N before it) is an offset
 //             b or a gain k = 1 + b / L0 alike at its onset; as the load moves they part. Over the
 //             follow test's span, the corrected sum residual r (the channel taken as x - b) and
