@@ -787,6 +787,25 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       known_sum += value;
     }
   }
+  // A noise burst's channel, loaded: its leave-one-out force carries the load's fast moves, which
+  // a low-pass of the reading lags by tens of newtons in a step; the low-pass is kept for what
+  // that force misses, the slow part of reading - force (complementary: v + LP(x - v)). Only while
+  // no loaded channel is substituted: their loads are what the total force leaves, so the noise
+  // channel's own share is then unknown, and the low-pass of its reading stands.
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const double x = measured[j];
+    if (!fz_ok || unknown_loaded > 0 || c.type != FaultType::noise || height[j] > params_.airborne_height_m ||
+        !std::isfinite(x)) {
+      c.noise_bias_set = false;
+      continue;
+    }
+    const double v = std::max(0.0, fz - (known_sum - recovered[j]));
+    c.noise_bias = c.noise_bias_set ? c.noise_bias + smoothing_ * ((x - v) - c.noise_bias) : c.smoothed - v;
+    c.noise_bias_set = true;
+    known_sum += (v + c.noise_bias) - recovered[j];
+    recovered[j] = v + c.noise_bias;
+  }
   // Channels that must be substituted share what the total force leaves (>= 0).
   const double share = fz_ok && unknown_loaded > 0 ? std::max(0.0, (fz - known_sum) / unknown_loaded) : 0.0;
   double total = known_sum;

@@ -140,8 +140,11 @@
 // a finite value, varying values, a reverse jump of the estimated size).
 //
 // Outputs per channel: fault, fault_type (codes of fault_type.hpp), fault_estimate (measured -
-// recovered), recovered (offset/drift: N - b(t); gain: N / k; noise: 10 Hz low-pass of N;
-// spikes: median of the last three readings; otherwise the virtual value),
+// recovered), recovered (offset/drift: N - b(t); gain: N / k; noise: v + a 10 Hz low-pass of
+// N - v, v the leave-one-out force, loaded and while no loaded channel is substituted (v carries
+// the load's fast moves, which a low-pass of N lags by tens of newtons; the low-pass keeps the
+// slow part v misses), else a 10 Hz low-pass of N; spikes: median of the last three readings;
+// otherwise the virtual value),
 // virtual (leave-one-out: 0 when airborne, else F_z - sum of the other channels' recovered
 // values; NaN while F_z is not finite, the virtual sensor not ready), virtual_ready (1 while F_z
 // is finite; while it is not, the sum residual holds and no channel is judged on it).
@@ -286,6 +289,8 @@ class ContactForceFdi {
     bool fit_has_air = false;
     double recovered = 0.0;
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
+    double noise_bias = 0.0;  // 10 Hz low-pass of reading - leave-one-out force, while flagged noise
+    bool noise_bias_set = false;
     // Does the reading follow the load? Ranges of the smoothed reading and of the leave-one-out
     // force since the channel was raised as offset or drift (or re-typed frozen).
     bool following = false;  // ranges being tracked
