@@ -578,7 +578,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // three times the step.
   // When such a channel's foot is rolling on or off (some pads up), its load changes fast and
   // unmeasured, and no jump is confirmed at all.
-  bool substituting_loaded = false;
+  bool unmeasured_in_residual = false;  // a loaded channel substituted, or reading a noise burst
   bool substituting_rolling = false;
   bool uncorrected_loaded = false;  // a loaded channel flagged as anything but a corrected fault
   for (std::size_t j = 0; j < channels_.size(); ++j) {
@@ -587,11 +587,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const FaultType type = channels_[j].type;
     uncorrected_loaded = uncorrected_loaded || (type != FaultType::none && !corrects(type) && !airborne);
     const bool noisy_loaded = type == FaultType::noise && !airborne;
-    substituting_loaded = substituting_loaded || substituted || noisy_loaded;
+    unmeasured_in_residual = unmeasured_in_residual || substituted || noisy_loaded;
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
   }
   if (substituting_rolling) group_pending_ = false;
-  const double confirm_N = substituting_loaded ? 3.0 * params_.jump_confirm_N : params_.jump_confirm_N;
+  const double confirm_N = unmeasured_in_residual ? 3.0 * params_.jump_confirm_N : params_.jump_confirm_N;
   // Confirm (or drop) the pending group once the window after the jump is complete.
   bool group_confirmed = false;
   bool group_decided = false;

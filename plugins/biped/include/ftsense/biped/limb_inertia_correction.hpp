@@ -15,12 +15,12 @@
 // rho = 0, thigh 6.5 kg at 0.21, shank 4 kg at 0.62, ankle link 0.5 kg at 0.82, foot and pads
 // 3 kg at 0.95-1 (sim/include/ftsense/sim/robot_model.hpp), m_e = 7.1 kg. There, the error of F_z
 // below 10 Hz in a fault-free walk falls from 8.2 to 5.2 N RMS (slow gait) and from 12.6 to
-// 8.4 N (fast gait); taking the whole 16 kg to move with the foot leaves 6.8 and 10.5 N (ctest
-// limb_inertia_total_force; docs/results.md). The acceleration is the second difference of p_i after two first-order
-// low-passes of cut-off f_c (`cutoff_hz`, the legs' motion bandwidth; it rejects the positions'
-// noise, which the second difference multiplies by 1 / T^2), exp-discretised so that the same
-// f_c holds at any rate; a_t passes through the same two low-passes so that both terms lag alike
-// (about 2 / (2 pi f_c) s). m_e = 0 returns F unchanged.
+// 8.4 N (fast gait) (ctest limb_inertia_total_force); taking the whole 16 kg to move with the foot
+// leaves 6.8 and 10.5 N (its script with 16 kg in the config; docs/results.md). The acceleration
+// is the second difference of p_i after two first-order low-passes of cut-off f_c (`cutoff_hz`,
+// the legs' motion bandwidth; it rejects the positions' noise, which the second difference
+// multiplies by 1 / T^2), exp-discretised so that the same f_c holds at any rate; a_t passes
+// through the same two low-passes so that both terms lag alike (about 2 / (2 pi f_c) s). m_e = 0 returns F unchanged.
 //
 // Ports: total_force (3, N, world) and foot_pos (3 per foot, stacked as wired, m, world) in;
 // total_force (3, N, world) out. A non-finite input gives NaN (the virtual sensor not ready) and
