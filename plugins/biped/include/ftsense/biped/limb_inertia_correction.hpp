@@ -20,7 +20,8 @@
 // is the second difference of p_i after two first-order low-passes of cut-off f_c (`cutoff_hz`,
 // the legs' motion bandwidth; it rejects the positions' noise, which the second difference
 // multiplies by 1 / T^2), exp-discretised so that the same f_c holds at any rate; a_t passes
-// through the same two low-passes so that both terms lag alike (about 2 / (2 pi f_c) s). m_e = 0 returns F unchanged.
+// through the same two low-passes so that both terms lag alike (about 2 / (2 pi f_c) s).
+// m_e = 0 returns F unchanged.
 //
 // Ports: total_force (3, N, world) and foot_pos (3 per foot, stacked as wired, m, world) in;
 // total_force (3, N, world) out. A non-finite input gives NaN (the virtual sensor not ready) and
