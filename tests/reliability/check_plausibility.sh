@@ -12,16 +12,23 @@ trap 'rm -rf "$work"' EXIT
 failures=0
 passes=0
 
-# with CONFIG JSON_POINTER VALUE OUT: CONFIG with the value at JSON_POINTER replaced.
+# with CONFIG JSON_POINTER VALUE OUT: CONFIG with the value at JSON_POINTER replaced. A "$ref" on
+# the way is replaced by a copy of its definition first, so only that place changes.
 with() {
   /usr/bin/python3 - "$@" <<'PY'
-import json, sys
+import copy, json, sys
 config, pointer, value, out = sys.argv[1:5]
 doc = json.load(open(config))
 node = doc
 keys = [int(k) if k.isdigit() else k for k in pointer.split("/")[1:]]
 for k in keys[:-1]:
-    node = node[k]
+    child = node[k]
+    if isinstance(child, dict) and set(child) == {"$ref"}:
+        target = doc
+        for part in child["$ref"].split("/")[1:]:
+            target = target[part]
+        node[k] = child = copy.deepcopy(target)
+    node = child
 node[keys[-1]] = json.loads(value)
 json.dump(doc, open(out, "w"), indent=1)
 PY

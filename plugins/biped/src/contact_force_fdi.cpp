@@ -147,6 +147,12 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
              "an offset or drift whose reading spans less than this share of its leave-one-out force's span is "
              "a frozen output that keeps its noise")
       .greater_than(0.0).less_than(0.5);
+  schema.add("points", &Params::points,
+             "the contact points (x, y) of each foot's channels on a rigid sole, foot frame, every foot alike (as "
+             "contact_point_height's points; a $ref to one definition keeps them one): a foot's loads in full "
+             "contact then lie on a plane, which apportions what the total force leaves among substituted "
+             "channels; empty: the sum alone (equal shares)")
+      .unit("m").count_at_most(64).plausible(plausible::foot_point_m());
 }
 
 void ContactForceFdi::LineFit::add(double t, double b, double weight) noexcept {
@@ -318,6 +324,15 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_.assign(feet_, {0.0, 0.0});
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
+  if (!params.points.empty() && params.points.size() != feet_points_) {
+    throw ConfigError("/params/points", "has " + std::to_string(params.points.size()) +
+                                            " points, not points_per_foot = " + std::to_string(feet_points_) +
+                                            " (one [x, y] per channel of a foot, in the order of measured)");
+  }
+  unmeasured_ = UnmeasuredContactLoads(params.points, feet_points_, feet_);
+  unknown_.assign(n, 0);
+  lower_bound_.assign(n, 0.0);
+  plane_usable_.assign(feet_, 0);
 }
 
 void ContactForceFdi::reset() noexcept {
@@ -346,6 +361,7 @@ void ContactForceFdi::reset() noexcept {
   std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
   restart_gain_window();
   gain_unisolated_ = false;
+  unmeasured_.reset();
 }
 
 void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
@@ -806,14 +822,34 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     known_sum += (v + c.noise_bias) - recovered[j];
     recovered[j] = v + c.noise_bias;
   }
-  // Channels that must be substituted share what the total force leaves (>= 0).
-  const double share = fz_ok && unknown_loaded > 0 ? std::max(0.0, (fz - known_sum) / unknown_loaded) : 0.0;
+  // Channels that must be substituted carry what the total force leaves, apportioned by the
+  // plane of a rigid sole where it holds (unmeasured_contact_loads.hpp); each at least 0, a
+  // saturated pad at least its ceiling (its reading, when it reads a load).
+  if (fz_ok && unknown_loaded > 0) {
+    for (std::size_t f = 0; f < feet_; ++f) plane_usable_[f] = 1;
+    for (std::size_t j = 0; j < channels_.size(); ++j) {
+      const Channel& c = channels_[j];
+      const bool airborne = height[j] > params_.airborne_height_m;
+      const bool unknown = c.type != FaultType::none && !own_estimate(c.type) && !airborne;
+      unknown_[j] = unknown ? 1 : 0;
+      const double x = measured[j];
+      lower_bound_[j] = unknown && c.type == FaultType::saturation && std::isfinite(x) &&
+                                x > params_.airborne_threshold_N
+                            ? x
+                            : 0.0;
+      // The plane holds in full contact only: every pad on the ground, every known one loaded.
+      if (airborne || (!unknown && !(recovered[j] > params_.airborne_threshold_N))) {
+        plane_usable_[j / feet_points_] = 0;
+      }
+    }
+    unmeasured_.solve(recovered, unknown_, lower_bound_, plane_usable_, fz - known_sum);
+  }
   double total = known_sum;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const bool airborne = height[j] > params_.airborne_height_m;
     if (c.type != FaultType::none && !own_estimate(c.type) && !airborne) {
-      recovered[j] = fz_ok ? share : c.recovered;
+      if (!fz_ok) recovered[j] = c.recovered;
       total += recovered[j];
     }
   }
@@ -841,6 +877,24 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   // The corrected sum residual: what no channel explains.
   const double residual = fz_ok ? total - fz : 0.0;
+  // The relations' fault-free statistics, for the substituted loads: the sum residual while no
+  // channel is flagged, a foot's plane while its pads are all healthy, on the ground and loaded.
+  if (fz_ok && all_finite_readings) {
+    bool none_flagged = true;
+    for (const Channel& c : channels_) none_flagged = none_flagged && c.type == FaultType::none;
+    if (none_flagged) unmeasured_.observe_sum(residual);
+  }
+  if (unmeasured_.relations_per_foot() > 0) {
+    for (std::size_t f = 0; f < feet_; ++f) {
+      bool full_contact = true;
+      for (std::size_t i = 0; i < feet_points_ && full_contact; ++i) {
+        const std::size_t j = f * feet_points_ + i;
+        full_contact = channels_[j].type == FaultType::none && std::isfinite(measured[j]) &&
+                       !(height[j] > params_.airborne_height_m) && measured[j] > params_.airborne_threshold_N;
+      }
+      if (full_contact) unmeasured_.observe_foot(f, measured.subspan(f * feet_points_, feet_points_));
+    }
+  }
   // Not within touchdown_guard_s of a touchdown: the impact, unseen by the trunk IMU, moves the
   // residual as the load shifts between the feet, which a gain of the unloading pad would mimic.
   if (fz_ok && !touching_down) {

@@ -784,5 +784,69 @@ TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsMeasuredCarries) {
   EXPECT_NEAR(outs[ContactForceFdi::kRecovered][0], 32.5 + 0.3 * (399 % 2 == 0 ? 1.0 : -1.0), 0.1);
 }
 
+// Two pads frozen at once, one on each foot, both loaded: the total force leaves their sum only.
+// Given the sole's layout (points), the loads of each foot lie on a plane, which tells each its
+// own share: recovered within 1e-4 N on this noiseless trace (the solver's ridge of 1e-9); without
+// it, they share equally. Both freeze below the largest load they have shown (not a ceiling).
+// Returns the largest |recovered - true| of the two over the last 200 ticks, and checks both were
+// flagged frozen.
+double frozen_pair_error(bool with_points) {
+  auto p = suralp();
+  if (with_points) p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  Feet feet(p, 1e-3);
+  constexpr double kPi = std::numbers::pi;
+  std::vector<double> truth(kChannels);
+  const int freeze = 600, ticks = 1000;
+  double worst = 0.0;
+  for (int k = 0; k < ticks; ++k) {
+    const double t = k * 1e-3;
+    // Each foot's pads carry a + b x + c y, a rolling load (under 2 N per tick).
+    const double left[3] = {300.0 + 50.0 * std::cos(2 * kPi * 0.5 * t), 600.0 + 300.0 * std::sin(2 * kPi * 0.7 * t),
+                            200.0 * std::cos(2 * kPi * 0.3 * t)};
+    const double right[3] = {450.0 + 40.0 * std::cos(2 * kPi * 0.4 * t), -500.0 + 200.0 * std::sin(2 * kPi * 0.6 * t),
+                             -150.0 + 100.0 * std::sin(2 * kPi * 0.9 * t)};
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double* plane = j < 4 ? left : right;
+      truth[j] = plane[0] + plane[1] * (j % 4 < 2 ? 0.12 : -0.12) +
+                 plane[2] * (j % 2 == 0 ? 0.075 : -0.075);
+    }
+    double sum = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      sum += truth[j];
+      // l_foot/p4 and r_foot/p3 stick at their last reading.
+      if (k < freeze || (j != 3 && j != 6)) feet.measured[j] = truth[j];
+    }
+    feet.step(sum);
+    if (k >= ticks - 200) {
+      EXPECT_EQ(feet.type(3), FaultType::frozen) << "tick " << k;
+      EXPECT_EQ(feet.type(6), FaultType::frozen) << "tick " << k;
+      for (const std::size_t j : {std::size_t{3}, std::size_t{6}}) {
+        worst = std::max(worst, std::abs(feet.outs[ContactForceFdi::kRecovered][j] - truth[j]));
+      }
+    }
+  }
+  return worst;
+}
+
+TEST(ContactForceFdi, TwoFrozenPadsOnTwoFeetAreRecoveredFromTheirSolesPlanes) {
+  const double with_points = frozen_pair_error(true);
+  const double equal_shares = frozen_pair_error(false);
+  std::printf("largest error of the two recovered pads: %.3g N with the sole's layout, %.1f N with equal shares\n",
+              with_points, equal_shares);
+  EXPECT_LT(with_points, 1e-4);
+  EXPECT_GT(equal_shares, 50.0);
+}
+
+TEST(ContactForceFdi, PointsMustDescribeEveryChannelOfAFoot) {
+  auto p = suralp();
+  p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}};
+  try {
+    const ContactForceFdi fdi(p, StageContext(1e-3, "fdi"));
+    FAIL() << "three points for four channels per foot";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.problems()[0].path, "/params/points");
+  }
+}
+
 }  // namespace
 }  // namespace ftsense::biped

@@ -144,7 +144,11 @@
 // N - v, v the leave-one-out force, loaded and while no loaded channel is substituted (v carries
 // the load's fast moves, which a low-pass of N lags by tens of newtons; the low-pass keeps the
 // slow part v misses), else a 10 Hz low-pass of N; spikes: median of the last three readings;
-// otherwise the virtual value),
+// otherwise (frozen, saturation, invalid: substituted) what the total force leaves once the other
+// channels are counted, apportioned among the substituted channels on the ground by least squares
+// on the sum and, when `points` gives the soles' layout and two or more are substituted, on the
+// plane a rigid sole's loads lie on in full contact (unmeasured_contact_loads.hpp; without it,
+// equal shares), each at least 0 and a saturated pad at least its reading, its ceiling),
 // virtual (leave-one-out: 0 when airborne, else F_z - sum of the other channels' recovered
 // values; NaN while F_z is not finite, the virtual sensor not ready), virtual_ready (1 while F_z
 // is finite; while it is not, the sum residual holds and no channel is judged on it).
@@ -168,6 +172,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ftsense/biped/unmeasured_contact_loads.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/plugin.hpp"
 
@@ -215,6 +220,7 @@ class ContactForceFdi {
     double gain_isolation_margin = 0.08;
     double gain_min_load_N = 0.0;
     double follow_ratio = 0.25;
+    std::vector<std::array<double, 2>> points;
     static void describe(ParamSchema<Params>& schema);
   };
 
@@ -377,6 +383,11 @@ class ContactForceFdi {
   int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
   bool gain_unisolated_ = false;  // a strong gain fit that no single channel stands out in
   int gain_window_ticks_ = 1;
+  // Substituted channels' loads: the sum and, on rigid soles, the plane relations.
+  UnmeasuredContactLoads unmeasured_{{}, 1, 1};
+  std::vector<char> unknown_;         // per channel, this tick
+  std::vector<double> lower_bound_;   // per channel, this tick
+  std::vector<char> plane_usable_;    // per foot, this tick
 };
 
 }  // namespace ftsense::biped
