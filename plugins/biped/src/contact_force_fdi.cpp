@@ -12,6 +12,7 @@
 
 #include "ftsense/biped/frames.hpp"
 #include "ftsense/fault_type.hpp"
+#include "ftsense/generic/chi_square.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::biped {
@@ -333,6 +334,19 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   unknown_.assign(n, 0);
   lower_bound_.assign(n, 0.0);
   plane_usable_.assign(feet_, 0);
+  const std::size_t relations = unmeasured_.relations_per_foot();
+  const std::size_t ring = static_cast<std::size_t>(2 * jump_window_ticks_);
+  relation_ring_.assign(feet_ * relations * ring, 0.0);
+  full_contact_ring_.assign(feet_ * ring, 0);
+  relation_group_.assign(feet_, 0);
+  relation_group_age_.assign(feet_, 0);
+  relation_expect_.assign(feet_ * relations, 0.0);
+  relation_step_.assign(feet_ * relations, 0.0);
+  relation_before_.assign(feet_ * relations, 0.0);
+  relation_step_known_.assign(feet_, 0);
+  relation_step_square_.assign(feet_ * relations, 0.0);
+  relation_step_count_.assign(feet_, 0.0);
+  relation_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s));
 }
 
 void ContactForceFdi::reset() noexcept {
@@ -362,6 +376,13 @@ void ContactForceFdi::reset() noexcept {
   restart_gain_window();
   gain_unisolated_ = false;
   unmeasured_.reset();
+  std::fill(full_contact_ring_.begin(), full_contact_ring_.end(), 0);
+  relation_next_ = 0;
+  relation_filled_ = 0;
+  std::fill(relation_group_.begin(), relation_group_.end(), 0);
+  std::fill(relation_step_known_.begin(), relation_step_known_.end(), 0);
+  std::fill(relation_step_square_.begin(), relation_step_square_.end(), 0.0);
+  std::fill(relation_step_count_.begin(), relation_step_count_.end(), 0.0);
 }
 
 void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
@@ -527,18 +548,26 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.first_diff[c.second_diff_next] = std::abs(change);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
       c.jump_pending = false;
+      c.relation_pending = false;
       // Any time but a landing: a rolling foot's pads change a few newtons per tick, far below
       // jump_threshold_N, and the sum-residual confirmation rejects what is not a sensor step.
       const bool may_jump = !touching_down && !pad_landing;
       // A noise burst's swings are the fault the channel is flagged for, not steps.
-      if (std::abs(change) > params_.jump_threshold_N && std::abs(innovation) > params_.jump_threshold_N && may_jump &&
-          c.type != FaultType::noise && !group_pending_) {
+      const bool steps = std::abs(change) > params_.jump_threshold_N &&
+                         std::abs(innovation) > params_.jump_threshold_N && c.type != FaultType::noise;
+      if (steps && may_jump && !group_pending_) {
         c.jump_pending = true;
         c.jump_size = change;
         c.candidate_load = c.previous;
         ++jump_candidates;
         // In the terms of the sum residual, which takes a gain fault's reading corrected.
         jump_sum += c.type == FaultType::gain ? change / c.gain : change;
+      } else if (steps && touching_down && !pad_landing && unmeasured_.relations_per_foot() > 0 &&
+                 relation_group_[j / feet_points_] != 1) {  // 2: decided last tick, free again
+        // Inside a touchdown guard the sum residual carries the impact; the foot's plane does not.
+        c.relation_pending = true;
+        c.jump_size = change;
+        c.candidate_load = c.previous;
       }
     }
     if (airborne) {
@@ -573,6 +602,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
   }
 
+  relation_jumps(measured, height, t);
   // Sum residual history for the jump confirmation.
   const double raw_residual = fz_ok ? raw_sum - fz : 0.0;
   residual_ring_[residual_next_] = raw_residual;
@@ -636,17 +666,23 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const double x = measured[j];
     if (!std::isfinite(x)) continue;
     // The channel's jump, when its group is decided.
-    if (group_decided && c.jump_member) {
+    const std::size_t foot = j / feet_points_;
+    const bool relation_decided = c.relation_member && relation_group_[foot] == 2;
+    if ((group_decided && c.jump_member) || relation_decided) {
+      const bool confirmed = relation_decided ? relation_confirmed(foot, t) : group_confirmed;
       c.jump_member = false;
+      c.relation_member = false;
       {
-        if (group_confirmed) {
+        if (confirmed) {
           // The size of the fault now: for a gain fault (k - 1) N = (1 - 1/k) x, x the reading
           // before this jump.
-          const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * c.jump_load_before
+          const double load_before = relation_decided ? c.relation_load_before : c.jump_load_before;
+          const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * load_before
                                                                    : c.offset + c.slope * (t - c.fit.t0);
           if (corrects(c.type) && std::abs(c.jump_size + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
             clear(c);  // the fault ended with a jump back
           } else if (c.type == FaultType::none) {
+            c.jump_load_before = load_before;  // the load the onset jump left (onset_gain)
             raise(c, FaultType::offset, t);
             c.fit.clear(t);
             c.fit.add(t, c.jump_size, 1.0);
@@ -918,6 +954,129 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     io.out(kCannotJudge)[j] = blind && channels_[j].type == FaultType::none ? 1.0 : 0.0;
   }
   started_ = true;
+}
+
+void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span<const double> height,
+                                     double t) noexcept {
+  const std::size_t relations = unmeasured_.relations_per_foot();
+  if (relations == 0) return;
+  const std::size_t ring = full_contact_ring_.size() / feet_;
+  const std::size_t w = static_cast<std::size_t>(jump_window_ticks_);
+  for (std::size_t f = 0; f < feet_; ++f) {
+    if (relation_group_[f] == 2) {  // decided on the last tick
+      relation_group_[f] = 0;
+      for (std::size_t i = 0; i < feet_points_; ++i) channels_[f * feet_points_ + i].relation_member = false;
+    }
+    // Full contact: every pad on the ground and carrying load (its reading, corrected), read as
+    // it is or corrected (a substituted or noisy pad would put its unmeasured changes in the plane).
+    bool full = true;
+    for (std::size_t i = 0; i < feet_points_; ++i) {
+      const std::size_t j = f * feet_points_ + i;
+      const Channel& c = channels_[j];
+      const double x = measured[j];
+      const double load = c.type == FaultType::gain                                    ? x / c.gain
+                          : c.type == FaultType::offset || c.type == FaultType::drift ? x - (c.offset + c.slope * (t - c.fit.t0))
+                                                                                      : x;
+      full = full && std::isfinite(x) && !(height[j] > params_.airborne_height_m) &&
+             load > params_.airborne_threshold_N && (c.type == FaultType::none || corrects(c.type));
+    }
+    full_contact_ring_[f * ring + relation_next_] = full ? 1 : 0;
+    for (std::size_t r = 0; r < relations; ++r) {
+      double value = 0.0;
+      for (std::size_t i = 0; i < feet_points_ && full; ++i) {
+        const std::size_t j = f * feet_points_ + i;
+        const Channel& c = channels_[j];
+        // As the jump test's sum takes them: a gain fault's reading corrected, an offset's as read.
+        value += unmeasured_.relation_weight(i, r) * (c.type == FaultType::gain ? measured[j] / c.gain : measured[j]);
+      }
+      relation_ring_[(f * relations + r) * ring + relation_next_] = value;
+    }
+  }
+  relation_next_ = (relation_next_ + 1) % ring;
+  relation_filled_ = std::min(relation_filled_ + 1, ring);
+  for (std::size_t f = 0; f < feet_; ++f) {
+    bool known = relation_filled_ == ring;
+    for (std::size_t k = 0; k < ring && known; ++k) known = full_contact_ring_[f * ring + k] != 0;
+    relation_step_known_[f] = known ? 1 : 0;
+    bool healthy = true, candidates = false;
+    for (std::size_t i = 0; i < feet_points_; ++i) {
+      const Channel& c = channels_[f * feet_points_ + i];
+      healthy = healthy && c.type == FaultType::none;
+      candidates = candidates || c.relation_pending;
+    }
+    if (known) {
+      for (std::size_t r = 0; r < relations; ++r) {
+        const double* values = &relation_ring_[(f * relations + r) * ring];
+        double before = 0.0, after = 0.0;
+        for (std::size_t i = 0; i < w; ++i) {
+          after += values[(relation_next_ + ring - 1 - i) % ring];
+          before += values[(relation_next_ + ring - 1 - w - i) % ring];
+        }
+        relation_step_[f * relations + r] = (after - before) / static_cast<double>(w);
+        relation_before_[f * relations + r] = before / static_cast<double>(w);
+      }
+      // The steps of a healthy foot: what the plane's departures and the sensors' noise do in a
+      // window, the bar a confirmed jump must clear.
+      if (healthy && relation_group_[f] == 0 && !candidates) {
+        for (std::size_t r = 0; r < relations; ++r) {
+          relation_step_square_[f * relations + r] += relation_step_[f * relations + r] * relation_step_[f * relations + r];
+        }
+        relation_step_count_[f] += 1.0;
+      }
+    }
+    if (relation_group_[f] == 0 && candidates) {
+      relation_group_[f] = 1;
+      relation_group_age_[f] = 0;
+      for (std::size_t r = 0; r < relations; ++r) relation_expect_[f * relations + r] = 0.0;
+      for (std::size_t i = 0; i < feet_points_; ++i) {
+        Channel& c = channels_[f * feet_points_ + i];
+        c.relation_member = c.relation_pending;
+        if (!c.relation_member) continue;
+        c.relation_load_before = c.candidate_load;
+        const double jump = c.type == FaultType::gain ? c.jump_size / c.gain : c.jump_size;
+        for (std::size_t r = 0; r < relations; ++r) {
+          relation_expect_[f * relations + r] += unmeasured_.relation_weight(i, r) * jump;
+        }
+      }
+    }
+    if (relation_group_[f] == 1 && relation_group_age_[f]++ >= jump_window_ticks_ - 1) relation_group_[f] = 2;
+  }
+  for (auto& c : channels_) c.relation_pending = false;  // this tick's candidates are in their groups
+}
+
+bool ContactForceFdi::relation_confirmed(std::size_t foot, double t) const noexcept {
+  const std::size_t relations = unmeasured_.relations_per_foot();
+  if (relations == 0 || relation_step_known_[foot] == 0 ||
+      relation_step_count_[foot] < UnmeasuredContactLoads::kMinSamples) {
+    return false;
+  }
+  // In units of each relation's fault-free step sigma: the step and the jumps' expected step both
+  // beyond z (the false-alarm target's quantile), alike in sign, and within z or half of it apart.
+  double observed = 0.0, expected = 0.0, agreement = 0.0;
+  for (std::size_t r = 0; r < relations; ++r) {
+    const double sigma =
+        std::sqrt(std::max(relation_step_square_[foot * relations + r] / relation_step_count_[foot], 1e-12));
+    const double step = relation_step_[foot * relations + r];
+    const double e = relation_expect_[foot * relations + r];
+    if (std::abs(step - e) > std::max(relation_z_ * sigma, 0.5 * std::abs(e))) return false;
+    // The plane held before the jump: a foot whose relation is already off holds a fault no one
+    // has found (a frozen pad that keeps its noise), and its steps are no evidence.
+    // Offsets and drifts already found count with their corrections (the ring holds them as read).
+    double before = relation_before_[foot * relations + r];
+    for (std::size_t i = 0; i < feet_points_; ++i) {
+      const Channel& c = channels_[foot * feet_points_ + i];
+      if (c.type == FaultType::offset || c.type == FaultType::drift) {
+        before -= unmeasured_.relation_weight(i, r) * (c.offset + c.slope * (t - c.fit.t0));
+      }
+    }
+    const double level = unmeasured_.relation_rms(foot, r);
+    if (!(std::abs(before) <= relation_z_ * level)) return false;
+    observed += (step / sigma) * (step / sigma);
+    expected += (e / sigma) * (e / sigma);
+    agreement += step * e / (sigma * sigma);
+  }
+  const double z2 = relation_z_ * relation_z_;
+  return observed >= z2 && expected >= z2 && agreement > 0.0;
 }
 
 void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_force, double t) noexcept {

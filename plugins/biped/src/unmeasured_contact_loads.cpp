@@ -46,6 +46,11 @@ UnmeasuredContactLoads::UnmeasuredContactLoads(std::span<const std::array<double
   gradient_.assign(channels, 0.0);
 }
 
+double UnmeasuredContactLoads::relation_rms(std::size_t foot, std::size_t relation) const noexcept {
+  if (foot >= feet_ || relation >= relations_ || relation_count_[foot] < kMinSamples) return std::nan("");
+  return std::sqrt(relation_square_[foot * relations_ + relation] / relation_count_[foot]);
+}
+
 void UnmeasuredContactLoads::reset() noexcept {
   sum_square_ = 0.0;
   sum_count_ = 0.0;

@@ -848,5 +848,59 @@ TEST(ContactForceFdi, PointsMustDescribeEveryChannelOfAFoot) {
   }
 }
 
+// The left foot swings and lands; 40 ms after its touchdown, inside the guard where the sum
+// residual carries the impact, r_foot/p1 (loaded) steps by +80 N. Returns the tick it is flagged
+// (-1: not by the trace's end, tick 940, still inside the 150 ms guard), and checks that no other
+// channel is flagged.
+int offset_flagged_inside_a_touchdown_guard(bool with_points) {
+  auto p = suralp();
+  if (with_points) p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  Feet feet(p, 1e-3);
+  constexpr double kPi = std::numbers::pi;
+  constexpr double kWeight = 1100.0;
+  const int lift = 600, land = 800, onset = 840, ticks = 940;
+  int flagged = -1;
+  for (int k = 0; k < ticks; ++k) {
+    const double t = k * 1e-3;
+    // The left foot's share of the weight: half on both feet, none in the air, back over 50 ms.
+    const double left_share = k < lift ? 0.5 : k < land ? 0.0 : std::min(0.5, 0.5 * (k - land + 1) / 50.0);
+    feet.left_foot_at(k >= lift && k < land ? 0.03 : 0.0);
+    const double pitch = 400.0 * std::sin(2 * kPi * 0.8 * t), roll = 150.0 * std::cos(2 * kPi * 0.5 * t);
+    double sum = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double share = j < 4 ? left_share : 1.0 - left_share;
+      const double x = j % 4 < 2 ? 0.12 : -0.12, y = j % 2 == 0 ? 0.075 : -0.075;
+      // Each foot's pads on a plane scaled by its share (under 2 N per tick but at the landing).
+      const double load = share * (kWeight / 4.0 + pitch * x + roll * y);
+      const double wiggle = load > 0.0 ? (k % 2 == 0 ? 0.3 : -0.3) : 0.0;  // no pad repeats itself
+      sum += load;
+      feet.measured[j] = load + wiggle + (j == 4 && k >= onset ? 80.0 : 0.0);
+    }
+    feet.step(sum);
+    if (flagged < 0 && feet.type(4) != FaultType::none) flagged = k;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 4) {
+        EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+  if (flagged >= 0) {
+    EXPECT_EQ(feet.type(4), FaultType::offset);
+    // The jump as read: 80 N plus that tick's load change (under 2 N) and the wiggle's flip (0.6 N).
+    EXPECT_NEAR(feet.outs[ContactForceFdi::kFaultEstimate][4], 80.0, 2.6);
+  }
+  return flagged;
+}
+
+TEST(ContactForceFdi, AStepInsideATouchdownGuardIsConfirmedByItsSolesPlane) {
+  const int with_points = offset_flagged_inside_a_touchdown_guard(true);
+  const int sum_only = offset_flagged_inside_a_touchdown_guard(false);
+  std::printf("offset 40 ms after a touchdown, flagged at tick %d with the soles' layout, %d without (onset 840)\n",
+              with_points, sum_only);
+  // The window after the step is complete 10 ticks after it (jump_window_s).
+  EXPECT_EQ(with_points, 840 + 9);
+  EXPECT_EQ(sum_only, -1);
+}
+
 }  // namespace
 }  // namespace ftsense::biped

@@ -74,6 +74,15 @@
 //             unmeasured changes, and while a loaded channel reads a noise burst, its swings: so
 //             confirmation then takes 3 x jump_confirm_N, and none is confirmed while a
 //             substituted channel's foot rolls on or off.
+//             Inside a touchdown guard, with the soles' layout given (`points`), a jump is
+//             confirmed by its foot's plane relations instead (unmeasured_contact_loads.hpp: a
+//             rigid sole's loads are affine in the pads' positions, through an impact too, which
+//             the sum residual cannot see past): the foot in full contact (every pad on the
+//             ground, loaded, read as it is or corrected) over both windows, each relation
+//             stepping by sum_j w_j jump_j within max(z sigma, 50 %), and the step and that
+//             expectation both beyond z sigma in the relations' norm; sigma the window step's
+//             RMS measured on the log's healthy full-contact ticks (at least 100), z the
+//             two-sided normal quantile of alpha = T / false_alarm_interval_s.
 //   gain      (stance regression) the corrected sum residual r = sum_i N^_i - F_z fitted, channel
 //             by channel, by r ~ b_j + beta_j N^_j over an exponential window of gain_window_s
 //             (beta_j = cov(r, N^_j) / var(N^_j), weighted alike). A channel reading k times its
@@ -283,6 +292,9 @@ class ContactForceFdi {
     // the last jump candidate
     bool jump_pending = false;  // a candidate this tick
     bool jump_member = false;   // in the group awaiting confirmation
+    bool relation_pending = false;  // a candidate inside a touchdown guard this tick
+    bool relation_member = false;   // in its foot's group awaiting the plane's confirmation
+    double relation_load_before = 0.0;  // the reading before that jump
     double jump_size = 0.0;
     double candidate_load = 0.0;
     double jump_load_before = 0.0;
@@ -328,6 +340,11 @@ class ContactForceFdi {
   // it) implies; none when the pad was not loaded or the jump is under a tenth of its load.
   [[nodiscard]] std::optional<double> onset_gain(const Channel& c) const noexcept;
   void take_gain(Channel& c, double k) noexcept;
+  // The feet's plane relations this tick: their window steps, their fault-free statistics and the
+  // groups of jumps inside a touchdown guard they confirm (after the channel tests).
+  void relation_jumps(std::span<const double> measured, std::span<const double> height, double t) noexcept;
+  // A foot's decided group: its relations stepped by what its jumps imply, beyond their noise.
+  [[nodiscard]] bool relation_confirmed(std::size_t foot, double t) const noexcept;
 
   Ports ports_;
   Params params_;
@@ -388,6 +405,24 @@ class ContactForceFdi {
   std::vector<char> unknown_;         // per channel, this tick
   std::vector<double> lower_bound_;   // per channel, this tick
   std::vector<char> plane_usable_;    // per foot, this tick
+  // Jumps inside a touchdown guard, confirmed by the foot's plane relations (the impact, which the
+  // trunk IMU does not see, leaves a rigid sole's loads on a plane). Per foot: the relations of the
+  // readings (as the jump test's sum takes them) over 2 jump windows, whether the foot was in full
+  // contact at each tick, the pending group's age and expected step, and the fault-free mean square
+  // of the relations' window steps.
+  std::vector<double> relation_ring_;     // feet x relations x 2 W
+  std::vector<char> full_contact_ring_;   // feet x 2 W
+  std::size_t relation_next_ = 0;
+  std::size_t relation_filled_ = 0;
+  std::vector<char> relation_group_;      // per foot: a group pending
+  std::vector<int> relation_group_age_;
+  std::vector<double> relation_expect_;   // feet x relations: sum of w_j x jump_j over the group
+  std::vector<double> relation_step_;     // feet x relations: this tick's window step
+  std::vector<double> relation_before_;   // feet x relations: the mean of the window before
+  std::vector<char> relation_step_known_; // per foot: the ring is full and in full contact
+  std::vector<double> relation_step_square_;  // feet x relations
+  std::vector<double> relation_step_count_;   // per foot
+  double relation_z_ = 6.0;  // the two-sided normal quantile of alpha = T / false_alarm_interval_s
 };
 
 }  // namespace ftsense::biped

@@ -51,6 +51,9 @@ class UnmeasuredContactLoads {
     return weights_[point * relations_ + relation];
   }
 
+  // The fault-free RMS of relation r on foot f [N]; NaN before kMinSamples ticks.
+  [[nodiscard]] double relation_rms(std::size_t foot, std::size_t relation) const noexcept;
+
   void reset() noexcept;
   // A tick where no channel is flagged: the sum residual sum_j N_j - F_z [N].
   void observe_sum(double residual) noexcept;
