@@ -344,6 +344,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   relation_step_.assign(feet_ * relations, 0.0);
   relation_before_.assign(feet_ * relations, 0.0);
   relation_step_known_.assign(feet_, 0);
+  relation_verdict_.assign(relations > 0 ? feet_ : 0, 0);
   relation_step_square_.assign(feet_ * relations, 0.0);
   relation_step_count_.assign(feet_, 0.0);
   relation_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s));
@@ -659,6 +660,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
   }
 
+  // The feet's plane verdicts, taken before any member is raised (a raise sets the offset the
+  // verdict's level check corrects by).
+  for (std::size_t f = 0; f < relation_verdict_.size(); ++f) {
+    relation_verdict_[f] = relation_group_[f] == 2 && relation_confirmed(f, t) ? 1 : 0;
+  }
   // Decisions.
   const int min_airborne_samples = min_airborne_samples_;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
@@ -669,7 +675,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const std::size_t foot = j / feet_points_;
     const bool relation_decided = c.relation_member && relation_group_[foot] == 2;
     if ((group_decided && c.jump_member) || relation_decided) {
-      const bool confirmed = relation_decided ? relation_confirmed(foot, t) : group_confirmed;
+      const bool confirmed = relation_decided ? relation_verdict_[foot] != 0 : group_confirmed;
       c.jump_member = false;
       c.relation_member = false;
       {

@@ -420,6 +420,7 @@ class ContactForceFdi {
   std::vector<double> relation_step_;     // feet x relations: this tick's window step
   std::vector<double> relation_before_;   // feet x relations: the mean of the window before
   std::vector<char> relation_step_known_; // per foot: the ring is full and in full contact
+  std::vector<char> relation_verdict_;    // per foot: its group decided and confirmed, this tick
   std::vector<double> relation_step_square_;  // feet x relations
   std::vector<double> relation_step_count_;   // per foot
   double relation_z_ = 6.0;  // the two-sided normal quantile of alpha = T / false_alarm_interval_s
