@@ -567,8 +567,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
                  relation_group_[j / feet_points_] != 1) {  // 2: decided last tick, free again
         // Inside a touchdown guard the sum residual carries the impact; the foot's plane does not.
         c.relation_pending = true;
-        c.jump_size = change;
-        c.candidate_load = c.previous;
+        c.relation_jump = change;
+        c.relation_candidate_load = c.previous;
       }
     }
     if (airborne) {
@@ -671,32 +671,32 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     Channel& c = channels_[j];
     const double x = measured[j];
     if (!std::isfinite(x)) continue;
-    // The channel's jump, when its group is decided.
-    const std::size_t foot = j / feet_points_;
-    const bool relation_decided = c.relation_member && relation_group_[foot] == 2;
-    if ((group_decided && c.jump_member) || relation_decided) {
-      const bool confirmed = relation_decided ? relation_verdict_[foot] != 0 : group_confirmed;
-      c.jump_member = false;
-      c.relation_member = false;
-      {
-        if (confirmed) {
-          // The size of the fault now: for a gain fault (k - 1) N = (1 - 1/k) x, x the reading
-          // before this jump.
-          const double load_before = relation_decided ? c.relation_load_before : c.jump_load_before;
-          const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * load_before
-                                                                   : c.offset + c.slope * (t - c.fit.t0);
-          if (corrects(c.type) && std::abs(c.jump_size + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
-            clear(c);  // the fault ended with a jump back
-          } else if (c.type == FaultType::none) {
-            c.jump_load_before = load_before;  // the load the onset jump left (onset_gain)
-            raise(c, FaultType::offset, t);
-            c.fit.clear(t);
-            c.fit.add(t, c.jump_size, 1.0);
-            c.offset = c.jump_size;
-            c.slope = 0.0;
-          }
-        }
+    // The channel's jump, when its group is decided: the sum residual's group, then (inside a
+    // touchdown guard) its foot's plane group; each with its own jump and load before it.
+    const auto decide = [&](double jump, double load_before) {
+      // The size of the fault now: for a gain fault (k - 1) N = (1 - 1/k) x, x the reading
+      // before this jump.
+      const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * load_before
+                                                         : c.offset + c.slope * (t - c.fit.t0);
+      if (corrects(c.type) && std::abs(jump + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
+        clear(c);  // the fault ended with a jump back
+      } else if (c.type == FaultType::none) {
+        c.jump_load_before = load_before;  // the load the onset jump left (onset_gain)
+        raise(c, FaultType::offset, t);
+        c.fit.clear(t);
+        c.fit.add(t, jump, 1.0);
+        c.offset = jump;
+        c.slope = 0.0;
       }
+    };
+    if (group_decided && c.jump_member) {
+      c.jump_member = false;
+      if (group_confirmed) decide(c.jump_size, c.jump_load_before);
+    }
+    const std::size_t foot = j / feet_points_;
+    if (c.relation_member && relation_group_[foot] == 2) {
+      c.relation_member = false;
+      if (relation_verdict_[foot] != 0) decide(c.relation_jump_size, c.relation_load_before);
     }
     // Frozen / saturation.
     if (c.stale_count >= frozen_ticks_) {
@@ -1038,8 +1038,9 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
         Channel& c = channels_[f * feet_points_ + i];
         c.relation_member = c.relation_pending;
         if (!c.relation_member) continue;
-        c.relation_load_before = c.candidate_load;
-        const double jump = c.type == FaultType::gain ? c.jump_size / c.gain : c.jump_size;
+        c.relation_load_before = c.relation_candidate_load;
+        c.relation_jump_size = c.relation_jump;
+        const double jump = c.type == FaultType::gain ? c.relation_jump / c.gain : c.relation_jump;
         for (std::size_t r = 0; r < relations; ++r) {
           relation_expect_[f * relations + r] += unmeasured_.relation_weight(i, r) * jump;
         }
@@ -1075,7 +1076,7 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, double t) const noexc
         before -= unmeasured_.relation_weight(i, r) * (c.offset + c.slope * (t - c.fit.t0));
       }
     }
-    const double level = unmeasured_.relation_rms(foot, r);
+    const double level = std::max(unmeasured_.relation_rms(foot, r), 1e-6);  // NaN: not learnt, no verdict
     if (!(std::abs(before) <= relation_z_ * level)) return false;
     observed += (step / sigma) * (step / sigma);
     expected += (e / sigma) * (e / sigma);

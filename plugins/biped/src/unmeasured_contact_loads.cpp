@@ -89,6 +89,7 @@ void UnmeasuredContactLoads::solve(std::span<double> loads, std::span<const char
     ++m;
   }
   if (m == 0) return;
+  if (!std::isfinite(leftover)) leftover = 0.0;  // no total force: the bounds alone
   // The feet whose plane relations enter: in full contact, holding an unknown, their variances
   // known; and only for two unknowns or more. One the sum determines alone, to the total force's
   // error, which a plane that holds to tens of newtons as a sole rolls cannot better.

@@ -294,7 +294,8 @@ class ContactForceFdi {
     bool jump_member = false;   // in the group awaiting confirmation
     bool relation_pending = false;  // a candidate inside a touchdown guard this tick
     bool relation_member = false;   // in its foot's group awaiting the plane's confirmation
-    double relation_load_before = 0.0;  // the reading before that jump
+    double relation_jump = 0.0, relation_candidate_load = 0.0;  // this tick's candidate
+    double relation_jump_size = 0.0, relation_load_before = 0.0;  // the group's: its jump, the reading before
     double jump_size = 0.0;
     double candidate_load = 0.0;
     double jump_load_before = 0.0;
@@ -414,7 +415,7 @@ class ContactForceFdi {
   std::vector<char> full_contact_ring_;   // feet x 2 W
   std::size_t relation_next_ = 0;
   std::size_t relation_filled_ = 0;
-  std::vector<char> relation_group_;      // per foot: a group pending
+  std::vector<char> relation_group_;      // per foot: 0 none, 1 pending, 2 decided this tick
   std::vector<int> relation_group_age_;
   std::vector<double> relation_expect_;   // feet x relations: sum of w_j x jump_j over the group
   std::vector<double> relation_step_;     // feet x relations: this tick's window step

@@ -83,8 +83,8 @@ class UnmeasuredContactLoads {
   std::vector<char> foot_rows_;         // per foot: its relations enter this solve
   std::vector<double> rhs_;             // per foot and relation: -w^T (known loads)
   std::vector<double> lower_;           // per unknown
-  std::vector<double> normal_;          // m x m normal matrix, then its Cholesky factor
-  std::vector<double> gradient_;        // m, then the solution
+  std::vector<double> normal_;          // n x n over the n free unknowns (stride n), then its Cholesky factor
+  std::vector<double> gradient_;        // n, then the solution
 };
 
 }  // namespace ftsense::biped
