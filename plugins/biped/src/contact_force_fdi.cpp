@@ -677,7 +677,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // The size of the fault now: for a gain fault (k - 1) N = (1 - 1/k) x, x the reading
       // before this jump.
       const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * load_before
-                                                         : c.offset + c.slope * (t - c.fit.t0);
+                                                         : fault_at(c, t);
       if (corrects(c.type) && std::abs(jump + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
         clear(c);  // the fault ended with a jump back
       } else if (c.type == FaultType::none) {
@@ -825,7 +825,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     double value = x;
     bool unknown = false;
     if (c.type == FaultType::offset || c.type == FaultType::drift) {
-      value = airborne ? 0.0 : x - (c.offset + c.slope * (t - c.fit.t0));
+      value = airborne ? 0.0 : x - fault_at(c, t);
     } else if (c.type == FaultType::gain) {
       value = airborne ? 0.0 : x / c.gain;
     } else if (c.type == FaultType::noise) {
@@ -981,7 +981,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
       const Channel& c = channels_[j];
       const double x = measured[j];
       const double load = c.type == FaultType::gain                                    ? x / c.gain
-                          : c.type == FaultType::offset || c.type == FaultType::drift ? x - (c.offset + c.slope * (t - c.fit.t0))
+                          : c.type == FaultType::offset || c.type == FaultType::drift ? x - fault_at(c, t)
                                                                                       : x;
       full = full && std::isfinite(x) && !(height[j] > params_.airborne_height_m) &&
              load > params_.airborne_threshold_N && (c.type == FaultType::none || corrects(c.type));
@@ -1073,7 +1073,7 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, double t) const noexc
     for (std::size_t i = 0; i < feet_points_; ++i) {
       const Channel& c = channels_[foot * feet_points_ + i];
       if (c.type == FaultType::offset || c.type == FaultType::drift) {
-        before -= unmeasured_.relation_weight(i, r) * (c.offset + c.slope * (t - c.fit.t0));
+        before -= unmeasured_.relation_weight(i, r) * fault_at(c, t);
       }
     }
     const double level = std::max(unmeasured_.relation_rms(foot, r), 1e-6);  // NaN: not learnt, no verdict

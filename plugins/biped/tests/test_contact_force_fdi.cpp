@@ -784,6 +784,9 @@ TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsMeasuredCarries) {
   EXPECT_NEAR(outs[ContactForceFdi::kRecovered][0], 32.5 + 0.3 * (399 % 2 == 0 ? 1.0 : -1.0), 0.1);
 }
 
+// SURALP's sole: four pads on a 0.24 m x 0.15 m rectangle (configs/suralp_robust.json).
+const std::vector<std::array<double, 2>> kSuralpSole = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+
 // Two pads frozen at once, one on each foot, both loaded: the total force leaves their sum only.
 // Given the sole's layout (points), the loads of each foot lie on a plane, which tells each its
 // own share: recovered within 1e-4 N on this noiseless trace (the solver's ridge of 1e-9); without
@@ -792,7 +795,7 @@ TEST(ContactForceFdi, AQuadrupedsPointFeetAreJudgedAsManyAsMeasuredCarries) {
 // flagged frozen.
 double frozen_pair_error(bool with_points) {
   auto p = suralp();
-  if (with_points) p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  if (with_points) p.points = kSuralpSole;
   Feet feet(p, 1e-3);
   constexpr double kPi = std::numbers::pi;
   std::vector<double> truth(kChannels);
@@ -854,7 +857,7 @@ TEST(ContactForceFdi, PointsMustDescribeEveryChannelOfAFoot) {
 // channel is flagged.
 int offset_flagged_inside_a_touchdown_guard(bool with_points) {
   auto p = suralp();
-  if (with_points) p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  if (with_points) p.points = kSuralpSole;
   Feet feet(p, 1e-3);
   constexpr double kPi = std::numbers::pi;
   constexpr double kWeight = 1100.0;

@@ -341,6 +341,8 @@ class ContactForceFdi {
   // it) implies; none when the pad was not loaded or the jump is under a tenth of its load.
   [[nodiscard]] std::optional<double> onset_gain(const Channel& c) const noexcept;
   void take_gain(Channel& c, double k) noexcept;
+  // An offset's or drift's size at time t, b + s (t - t0).
+  [[nodiscard]] static double fault_at(const Channel& c, double t) noexcept { return c.offset + c.slope * (t - c.fit.t0); }
   // The feet's plane relations this tick: their window steps, their fault-free statistics and the
   // groups of jumps inside a touchdown guard they confirm (after the channel tests).
   void relation_jumps(std::span<const double> measured, std::span<const double> height, double t) noexcept;
