@@ -11,6 +11,7 @@
 #include "ftsense/generic/random_walk_fault_filter.hpp"
 #include "ftsense/generic/signal_validator.hpp"
 #include "ftsense/generic/signature_isolator.hpp"
+#include "ftsense/generic/sum_constraint_residual.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
 #include "ftsense/generic/unloaded_reading_residual.hpp"
 #include "ftsense/plugin_set.hpp"
@@ -19,6 +20,6 @@ namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
-                                  UnloadedReadingResidual, SignatureIsolator, FaultClassifier>;
+                                  UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier>;
 
 }  // namespace ftsense::generic
