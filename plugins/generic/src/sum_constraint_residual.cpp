@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "ftsense/channel_values.hpp"
@@ -77,6 +78,7 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
   const auto residual = io.out(kResidual);
   const auto signature = io.out(kSignature);
   const auto sum_residual = io.out(kSumResidual);
+  const std::span<const double> loadable = loadable_ ? io.in(kLoadable) : std::span<const double>{};
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const std::size_t g = group_size_;
   for (std::size_t group = 0; group < groups_; ++group) {
@@ -98,7 +100,7 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
     double* block = signature.data() + group * g * g;
     for (std::size_t i = first; i < first + g; ++i) {
       // NaN (unknown) counts as loadable: nothing is judged on a guess.
-      const bool can_carry = !loadable_ || !(io.in(kLoadable)[i] < 0.5);
+      const bool can_carry = !loadable_ || !(loadable[i] < 0.5);
       double v = 0.0;
       if (can_carry) {
         // The others' sum is known when nobody is missing, or when i is the one missing.
