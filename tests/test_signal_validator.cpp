@@ -2,6 +2,7 @@
 // quantised or noisy sensors raise nothing (seeded noise, seeds printed).
 
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <random>
 #include <vector>
@@ -246,6 +247,71 @@ TEST(SignalValidator, ANoiseBurstIsFlaggedWithinAWindowAndClearsAfterIt) {
   EXPECT_GE(first, 1000);
   EXPECT_LE(first, 1100);
   EXPECT_LE(last, 1500 + 100 + 1);
+}
+
+TEST(SignalValidator, ABurstIsNoiseThoughItsSamplesLookLikeSpikesAndSparseSpikesStaySpikes) {
+  // 0.5 s of 10x noise: many of its samples pass the spike test on their own. Once the window's
+  // count shows the burst (within 0.1 s), every tick to the burst's end is typed noise. Then
+  // spikes of 40 sigma at 5 per second (0.2 s apart, so at most one in a 0.1 s window) are spikes.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.1;
+  OneChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 16;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  int first_noise = -1, noise_ticks = 0, spike_ticks = 0, other = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const bool burst = k >= 1000 && k < 1500;
+    const bool spike = k >= 2500 && (k - 2500) % 200 == 0;
+    const FaultType found = c.step(50.0 + (burst ? 10.0 : 1.0) * noise(rng) + (spike ? 40.0 : 0.0));
+    if (found == FaultType::noise && first_noise < 0) first_noise = k;
+    if (first_noise >= 0 && k < 1500) noise_ticks += found == FaultType::noise;
+    if (k >= 2500) spike_ticks += found == FaultType::spikes;
+    if (k >= 2500) other += found != FaultType::spikes && found != FaultType::none;
+  }
+  std::printf("burst 1000..1499: noise from %d, %d noise ticks; %d spike ticks, %d others after 2500\n", first_noise,
+              noise_ticks, spike_ticks, other);
+  ASSERT_GE(first_noise, 1000);
+  EXPECT_LE(first_noise, 1100);
+  EXPECT_EQ(noise_ticks, 1500 - first_noise);
+  EXPECT_GT(spike_ticks, 0);
+  EXPECT_EQ(other, 0);
+}
+
+TEST(SignalValidator, OnlyTheChosenTestsRunBesidesInvalidAndSaturation) {
+  // tests = [frozen]: a 100-sigma spike and a 10x noise burst raise nothing; a NaN and a reading at
+  // the upper limit still do, and a reading that stops moving is frozen.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.upper_limit = {1000.0};
+  p.tests = {"frozen"};
+  OneChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 17;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  int flagged = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const double sigma = k >= 1000 && k < 1500 ? 10.0 : 1.0;
+    flagged += c.step(50.0 + sigma * noise(rng) + (k == 500 ? 100.0 : 0.0)) != FaultType::none;
+  }
+  EXPECT_EQ(flagged, 0);
+  EXPECT_EQ(c.step(std::numeric_limits<double>::quiet_NaN()), FaultType::invalid);
+  EXPECT_EQ(c.step(1000.0), FaultType::saturation);
+  FaultType last = FaultType::none;
+  for (int k = 0; k < 200; ++k) last = c.step(50.0);
+  EXPECT_EQ(last, FaultType::frozen);
+}
+
+TEST(SignalValidator, AnUnknownTestIsAConfigError) {
+  Diagnostics d;
+  (void)load_params<SignalValidator::Params>(Json::parse(R"({"tests": ["frozen", "spike"]})"), "/stages/2/params",
+                                             "signal_validator", d);
+  ASSERT_EQ(d.errors().size(), 1u);
+  EXPECT_EQ(d.errors()[0].path, "/stages/2/params/tests/1");
+  EXPECT_NE(d.errors()[0].message.find("did you mean 'spikes'?"), std::string::npos);
 }
 
 TEST(SignalValidator, RefusesAWindowOfTooFewTicks) {

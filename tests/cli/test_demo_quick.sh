@@ -100,7 +100,7 @@ import csv, json, sys
 out = sys.argv[1]
 g = json.load(open(f"{out}/metrics.json"))["quadruped_generic"]
 cal = json.load(open(f"{out}/thresholds_quadruped_generic.json"))["stages"]
-assert len(cal["detect"]["params"]["noise_std"]) == 4 and len(cal["isolate"]["params"]["residual_noise_std"]) == 4, cal
+assert all(len(cal[s]["params"][p]) == 4 for s, p in (("detect", "noise_std"), ("isolate", "residual_noise_std"), ("validate", "noise_std"))), cal
 for walk in ("quadruped_clean", "quadruped_faults", "quadruped_more_faults", "quadruped_quiet_faults", "quadruped_faults_200hz"):
     assert g[walk]["summary"]["false_alarms_after_warmup"] == 0, (walk, g[walk]["summary"])
 rows = list(csv.DictReader(open(f"{out}/quadruped_faults_run_generic.csv")))
@@ -109,6 +109,20 @@ first_cannot = next(float(r["time_s"]) for r in rows if float(r["time_s"]) >= 5.
 assert first_cannot < 5.1, first_cannot
 assert all(r[f"{f}/fault"] == "0" for r in rows for f in feet), "a channel was blamed"
 assert all(r["lf_foot/cannot_judge"] == "1" for r in rows if float(r["time_s"]) >= first_cannot)
+PY
+# The validator's verdicts reach the monitor through fault_merge: the dropout (NaN 6-7 s) is
+# "invalid" on each of its ticks, from source 1 (the validator); the clipped foot (7 s on, a
+# constant reading) is flagged frozen within 0.1 s (window_s) and kept so to the walk's end, and
+# its recovered value is never NaN.
+/usr/bin/python3 - "$out" <<'PY' && ok "quadruped, generic parts: validator verdicts merged" || bad "quadruped, generic parts: validator verdicts merged"
+import csv, math, sys
+rows = list(csv.DictReader(open(f"{sys.argv[1]}/quadruped_more_faults_run_generic.csv")))
+drop = [r for r in rows if 6.0 <= float(r["time_s"]) < 7.0]
+assert drop and all(r["rf_foot/fault_type"] == "8" and r["rf_foot/fault"] == "1" for r in drop), "dropout not invalid"
+assert all(math.isfinite(float(r["rf_foot/recovered_N"])) for r in drop), "NaN recovered"
+clip = next(float(r["time_s"]) for r in rows if float(r["time_s"]) >= 7.0 and r["lh_foot/fault_type"] == "4")
+assert clip <= 7.1, clip
+assert all(r["lh_foot/fault_type"] == "4" for r in rows if float(r["time_s"]) >= clip), "frozen not held"
 PY
 grep -q 'The same logs through the generic FDI parts alone' "$out/report.md" && ok "report.md generic quadruped" || bad "report.md generic quadruped"
 # Issue 13's targets: seven, each over the runs it applies to, in the report, the metrics and stdout.

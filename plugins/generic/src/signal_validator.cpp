@@ -56,6 +56,23 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
              "frozen (b) when the reading moved less than this fraction of the reference's move")
       .greater_than(0.0)
       .at_most(1.0);
+  schema.add("tests", &Params::tests,
+             "the tests that run besides invalid and saturation: any of frozen, spikes, noise (without a "
+             "reference, spikes and noise need a signal whose own motion the sample rate resolves)");
+}
+
+namespace {
+constexpr std::array<std::string_view, 3> kOptionalTests{"frozen", "spikes", "noise"};
+}  // namespace
+
+void SignalValidator::Params::validate(Diagnostics& diag, std::string_view path) const {
+  const std::vector<std::string> names(kOptionalTests.begin(), kOptionalTests.end());
+  for (std::size_t i = 0; i < tests.size(); ++i) {
+    if (std::find(names.begin(), names.end(), tests[i]) == names.end()) {
+      diag.error(json_pointer_append(std::string(path) + "/tests", i),
+                 "unknown test '" + tests[i] + "' (invalid and saturation always run); " + suggest(tests[i], names));
+    }
+  }
 }
 
 SignalValidator::SignalValidator(const Params& params, const StageContext& context)
@@ -63,6 +80,12 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
       window_s_(params.window_s),
       follow_ratio_(params.follow_ratio),
       reference_(params.reference) {
+  const auto chosen = [&](std::string_view test) {
+    return std::find(params.tests.begin(), params.tests.end(), test) != params.tests.end();
+  };
+  frozen_test_ = chosen("frozen");
+  spike_test_ = chosen("spikes");
+  noise_test_ = chosen("noise");
   const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
   const auto noise_std = channel_values(params.noise_std, dim, "noise_std");
   const auto resolution = channel_values(params.resolution, dim, "resolution");
@@ -218,7 +241,8 @@ void SignalValidator::step(const StepIO& io) noexcept {
     s.x2 = s.x1;
     s.x1 = x[j];
     s.x_history = std::min(s.x_history + 1, 2);
-    if (found == FaultType::none && l.stale_test && s.reading_d2.filled == n && s.reading_d2.sum < l.stale_below) {
+    if (found == FaultType::none && frozen_test_ && l.stale_test && s.reading_d2.filled == n &&
+        s.reading_d2.sum < l.stale_below) {
       found = FaultType::frozen;
     }
 
@@ -234,7 +258,7 @@ void SignalValidator::step(const StepIO& io) noexcept {
       }
       push(s.lp_signal, lp_storage_, n + 1, s.lp_x);
       push(s.lp_reference, lp_storage_, n + 1, s.lp_r);
-      if (found == FaultType::none && s.lp_reference.filled == n + 1) {
+      if (found == FaultType::none && frozen_test_ && s.lp_reference.filled == n + 1) {
         const double reference_move = std::abs(s.lp_r - oldest(s.lp_reference, lp_storage_, n + 1));
         const double reading_move = std::abs(s.lp_x - oldest(s.lp_signal, lp_storage_, n + 1));
         if (reference_move >= l.min_reference_change && reading_move < follow_ratio_ * reference_move) {
@@ -264,10 +288,12 @@ void SignalValidator::step(const StepIO& io) noexcept {
     } else {
       s.y_history = 0;
     }
-    if (found == FaultType::none && s.spike_hold_s > 0.0) found = FaultType::spikes;
-    if (found == FaultType::none && s.tested_d2.filled == n && s.tested_d2.sum > noise_count_above_) {
+    // Noise before spikes: a burst is many spikes; isolated spikes stay under the count's bound.
+    if (found == FaultType::none && noise_test_ && s.tested_d2.filled == n &&
+        s.tested_d2.sum > noise_count_above_) {
       found = FaultType::noise;
     }
+    if (found == FaultType::none && spike_test_ && s.spike_hold_s > 0.0) found = FaultType::spikes;
     s.spike_hold_s -= sample_period_s_;
 
     fault[j] = found == FaultType::none ? 0.0 : 1.0;

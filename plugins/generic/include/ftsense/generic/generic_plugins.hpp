@@ -4,6 +4,7 @@
 #include "ftsense/generic/attitude_from_imu.hpp"
 #include "ftsense/generic/cusum_detector.hpp"
 #include "ftsense/generic/difference_residual.hpp"
+#include "ftsense/generic/fault_merge.hpp"
 #include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/generic/fault_recovery.hpp"
 #include "ftsense/generic/low_pass.hpp"
@@ -20,6 +21,6 @@ namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
-                                  UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier>;
+                                  UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge>;
 
 }  // namespace ftsense::generic

@@ -21,22 +21,28 @@
 //               |dr| >= `min_reference_change` (default 10 sqrt(sigma^2 + sigma_r^2)) while the
 //               low-passed reading moved by less than `follow_ratio` |dr|: a frozen output that
 //               still carries electrical noise. Low-pass time constant n T / 8.
-//   spikes      one reading off both neighbours and back: D = x_{t-1} - (x_{t-2} + x_t) / 2 with
-//               |D| > z sqrt(1.5 s^2) (z: the two-sided normal quantile of alpha; s^2 = sigma^2 +
-//               q^2 / 4 (the worst case: a value on a level boundary
-//               reads either level), plus sigma_r^2 on the residual x - r when a reference is given) and
-//               |x_t - x_{t-2}| < |D|. Seen one tick late; the flag holds for window_s.
-//   noise       more |d2| > 2 sqrt(6 s^2) in the window than healthy noise gives: healthy, each
+//   noise       more |d2| > 2 sqrt(6 s^2) in the window than healthy noise gives (s^2 = sigma^2 +
+//               q^2 / 4, the worst case: a value on a level boundary reads either level; plus
+//               sigma_r^2 on the residual x - r when a reference is given): healthy, each
 //               is over with p0 = P(|Z| > 2) = 4.55 %; the count's bound is n p0 + 2 z_alpha
 //               sqrt(p0 (1 - p0) n / 2) + 3 (overlapping d2 are correlated: n / 2 draws; the 3
 //               let one spike or step pass, which puts up to 3 large d2 in the window). On x - r
 //               with a reference, whose slow motion then cancels; without one, the signal's own
 //               motion at the tick rate must be small against its noise.
-// The type reported is the first that fires in the order above. A flag clears as soon as its
+//   spikes      one reading off both neighbours and back: D = x_{t-1} - (x_{t-2} + x_t) / 2 with
+//               |D| > z sqrt(1.5 s^2) (z: the two-sided normal quantile of alpha) and
+//               |x_t - x_{t-2}| < |D|. Seen one tick late; the flag holds for window_s.
+// Invalid and saturation always run; `tests` chooses among frozen, spikes and noise. Without a
+// reference, spikes and noise judge the reading's own second differences, so they hold only for a
+// signal whose own motion the sample rate resolves: a foot's landing logged at 200 Hz is one
+// sample off its neighbours, as a spike is. For such a signal leave them out or give a reference.
+// The type reported is the first that fires in the order above (noise before spikes: a burst is
+// many spikes, and isolated ones stay under the noise count's bound). A flag clears as soon as its
 // test passes again (frozen and noise: the window no longer shows it; spikes: window_s after the
 // last spike). Non-finite readings are left out of the windows.
 
 #include <array>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -68,7 +74,9 @@ class SignalValidator {
     std::vector<double> reference_noise_std{0.0};
     std::vector<double> min_reference_change{0.0};
     double follow_ratio = 0.25;
+    std::vector<std::string> tests{"frozen", "spikes", "noise"};
     static void describe(ParamSchema<Params>& schema);
+    void validate(Diagnostics& diag, std::string_view path) const;
   };
 
   enum Input : std::size_t { kSignal, kReference };
@@ -128,6 +136,7 @@ class SignalValidator {
   double noise_count_above_ = 0.0;  // more such |d2| in a window: noise
   double follow_ratio_ = 0.25;
   bool reference_ = false;
+  bool frozen_test_ = true, spike_test_ = true, noise_test_ = true;
 };
 
 }  // namespace ftsense::generic
