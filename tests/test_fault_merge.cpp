@@ -122,22 +122,24 @@ TEST(FaultMerge, EqualTypesTakeTheFirstSourceAndThreeSourcesMerge) {
 TEST(FaultMerge, TheUsersOrderComesFirstThenTheOtherTypesInCodeOrder) {
   FaultMerge::Params p;
   p.type_priority = {"noise"};
-  // ch 0: noise vs gain -> noise (listed); ch 1: gain (code 5) vs spikes (code 7) -> gain, code order.
-  const Merged m = merge_once(p, {1, 1, 1, 1},
-                              {code(FaultType::noise), code(FaultType::spikes), code(FaultType::gain),
-                               code(FaultType::gain)});
-  EXPECT_EQ(m.type, (std::vector<double>{code(FaultType::noise), code(FaultType::gain)}));
-  EXPECT_EQ(m.source, (std::vector<double>{1, 2}));
+  // ch 0: noise vs gain -> noise (listed); ch 1: gain (code 5) vs spikes (code 7) -> gain, code order;
+  // ch 2: unclassified vs gain (unlisted) -> gain: a named type before an unknown one.
+  const Merged m = merge_once(p, {1, 1, 1, 1, 1, 1},
+                              {code(FaultType::noise), code(FaultType::spikes), code(FaultType::unclassified),
+                               code(FaultType::gain), code(FaultType::gain), code(FaultType::gain)});
+  EXPECT_EQ(m.type, (std::vector<double>{code(FaultType::noise), code(FaultType::gain), code(FaultType::gain)}));
+  EXPECT_EQ(m.source, (std::vector<double>{1, 2, 2}));
 }
 
 TEST(FaultMerge, CannotJudgeHoldsOnlyWhileNoSourceFlagsTheChannel) {
   FaultMerge::Params p;
   p.cannot_judge = true;
   // ch 0: cannot judge, unflagged -> 1; ch 1: cannot judge but source 1 flags it -> 0;
-  // ch 2: judged -> 0; ch 3: NaN -> 0.
-  const Merged m = merge_once(p, {0, 1, 0, 0, 0, 0, 0, 0}, {0, code(FaultType::invalid), 0, 0, 0, 0, 0, 0},
-                              {1, 1, 0, kNaN});
-  EXPECT_EQ(m.cannot_judge, (std::vector<double>{1, 0, 0, 0}));
+  // ch 2: judged -> 0; ch 3: NaN -> 0; ch 4: 0.5 (nonzero) -> 1; ch 5: Inf -> 0.
+  const double inf = std::numeric_limits<double>::infinity();
+  const Merged m = merge_once(p, {0, 1, 0, 0, 0, 0, /**/ 0, 0, 0, 0, 0, 0},
+                              {0, code(FaultType::invalid), 0, 0, 0, 0, /**/ 0, 0, 0, 0, 0, 0}, {1, 1, 0, kNaN, 0.5, inf});
+  EXPECT_EQ(m.cannot_judge, (std::vector<double>{1, 0, 0, 0, 1, 0}));
   EXPECT_EQ(m.type[1], code(FaultType::invalid));
 }
 

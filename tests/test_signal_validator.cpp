@@ -305,13 +305,37 @@ TEST(SignalValidator, OnlyTheChosenTestsRunBesidesInvalidAndSaturation) {
   EXPECT_EQ(last, FaultType::frozen);
 }
 
-TEST(SignalValidator, AnUnknownTestIsAConfigError) {
+TEST(SignalValidator, WithoutTheFrozenTestAStillReadingIsNotFrozen) {
+  // tests = [spikes, noise]: a reading that stops moving (test a) and one that does not follow its
+  // moving reference (test b) raise nothing; with the default tests both are frozen.
+  for (const bool with_frozen : {false, true}) {
+    SignalValidator::Params p;
+    p.noise_std = {1.0};
+    p.reference = true;
+    p.reference_noise_std = {1.0};
+    if (!with_frozen) p.tests = {"spikes", "noise"};
+    OneChannel still(p, 1e-3), unfollowing(p, 1e-3);
+    FaultType last_still = FaultType::none, last_unfollowing = FaultType::none;
+    for (int k = 0; k < 500; ++k) {
+      const double load = 100.0 + 200.0 * std::sin(0.01 * k);  // 200 N swings, 0.6 s period
+      last_still = still.step(100.0, 100.0);
+      // Alternating +-1 (d2 = +-4, so not stale by test a; no spike, no noise) while the reference swings.
+      last_unfollowing = unfollowing.step(100.0 + (k % 2 ? 1.0 : -1.0), load);
+    }
+    EXPECT_EQ(last_still, with_frozen ? FaultType::frozen : FaultType::none);
+    EXPECT_EQ(last_unfollowing, with_frozen ? FaultType::frozen : FaultType::none);
+  }
+}
+
+TEST(SignalValidator, AnUnknownOrRepeatedTestIsAConfigError) {
   Diagnostics d;
-  (void)load_params<SignalValidator::Params>(Json::parse(R"({"tests": ["frozen", "spike"]})"), "/stages/2/params",
-                                             "signal_validator", d);
-  ASSERT_EQ(d.errors().size(), 1u);
+  (void)load_params<SignalValidator::Params>(Json::parse(R"({"tests": ["frozen", "spike", "frozen"]})"),
+                                             "/stages/2/params", "signal_validator", d);
+  ASSERT_EQ(d.errors().size(), 2u);
   EXPECT_EQ(d.errors()[0].path, "/stages/2/params/tests/1");
   EXPECT_NE(d.errors()[0].message.find("did you mean 'spikes'?"), std::string::npos);
+  EXPECT_EQ(d.errors()[1].path, "/stages/2/params/tests/2");
+  EXPECT_NE(d.errors()[1].message.find("twice"), std::string::npos);
 }
 
 TEST(SignalValidator, RefusesAWindowOfTooFewTicks) {

@@ -9,15 +9,15 @@ namespace ftsense::generic {
 void FaultMerge::Params::describe(ParamSchema<Params>& schema) {
   schema.add("sources", &Params::sources,
              "n, the parts whose verdicts are merged; inputs fault and fault_type each take n x channels values, "
-             "source after source")
+             "source after source (the channels are the wired values / n: check n against the wiring)")
       .at_least(2)
       .at_most(16);
   schema.add("type_priority", &Params::type_priority,
              "fault type names, the most specific first: a channel several sources flag takes the first of their "
              "types in this list; unlisted named types follow in code order, unclassified last");
   schema.add("cannot_judge", &Params::cannot_judge,
-             "adds input cannot_judge (one per channel) and output cannot_judge: the input while the channel is "
-             "not flagged");
+             "adds input cannot_judge (one per channel) and output cannot_judge: 1 while that input is nonzero "
+             "and finite and no source flags the channel");
 }
 
 void FaultMerge::Params::validate(Diagnostics& diag, std::string_view path) const {
@@ -80,7 +80,7 @@ FaultMerge::FaultMerge(const Params& params, const StageContext& context)
                         .sized_by("fault / sources"));
   if (cannot_judge_) {
     ports_.add_output(PortSpec{"cannot_judge", channels_, std::string(kDimensionless),
-                               "the input cannot_judge while no source flags the channel, else 0"}
+                               "1 while input cannot_judge is nonzero and finite and no source flags the channel, else 0"}
                           .sized_by("fault / sources"));
   }
 }

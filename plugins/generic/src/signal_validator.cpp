@@ -71,6 +71,10 @@ void SignalValidator::Params::validate(Diagnostics& diag, std::string_view path)
     if (std::find(names.begin(), names.end(), tests[i]) == names.end()) {
       diag.error(json_pointer_append(std::string(path) + "/tests", i),
                  "unknown test '" + tests[i] + "' (invalid and saturation always run); " + suggest(tests[i], names));
+    } else if (std::find(tests.begin(), tests.begin() + static_cast<std::ptrdiff_t>(i), tests[i]) !=
+               tests.begin() + static_cast<std::ptrdiff_t>(i)) {
+      diag.error(json_pointer_append(std::string(path) + "/tests", i),
+                 "'" + tests[i] + "' is listed twice; list each test once");
     }
   }
 }

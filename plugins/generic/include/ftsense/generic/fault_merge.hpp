@@ -11,8 +11,8 @@
 //               source whose code is none, unclassified or not a type counts as unclassified,
 //               which comes after every named type
 //   source_j  = k (1-based) of the source whose type was taken; the first of equals; 0 unflagged
-//   cannot_judge_j (with input `cannot_judge`) = its input while j is not flagged, else 0: a
-//               verdict from any part ends "cannot judge"
+//   cannot_judge_j (with input `cannot_judge`) = 1 while its input is nonzero and finite and no
+//               source flags j, else 0: a verdict from any part ends "cannot judge"
 //
 // Why a type order and not a source order: the evidence behind each type differs in how specific it
 // is. A value that is not a number, or one at the sensor's range limit, is certain on one sample;
