@@ -1,7 +1,10 @@
 // signature_isolator: on noiseless residual families it blames exactly the faulty channel with
 // its exact size, holds the verdict while the group is raised, never blames a neighbour whose
-// residual the fault excites, and says "cannot judge" when two channels' signatures are parallel.
+// residual the fault excites, and says "cannot judge" when two channels' signatures are parallel;
+// row weights count copies of one residual once; a second fault is blamed beside the first only
+// when what the first leaves clears the margin on its own, with both sizes fitted jointly.
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -14,12 +17,16 @@
 namespace ftsense::testing {
 template <>
 struct ContractSetup<generic::SignatureIsolator> {
-  static Json params() { return Json{{"group_size", 3}}; }
+  // Two faults a group and row weights: the contract covers the joint fit's path.
+  static Json params() { return Json{{"group_size", 3}, {"max_faults", 2}, {"row_weights", true}}; }
   static std::size_t input_dim(std::string_view port) { return port == "signature" ? 9 : 3; }
   static double sample_period_s() { return 0.01; }
   static void nominal_input(std::string_view port, std::span<double> v) {
     for (std::size_t i = 0; i < v.size(); ++i) {
-      v[i] = port == "alarm" ? 0.0 : port == "signature" ? (i % 4 == 0 ? 1.0 : 0.0) : 0.5 * static_cast<double>(i);
+      v[i] = port == "alarm"       ? 0.0
+             : port == "signature"  ? (i % 4 == 0 ? 1.0 : 0.0)
+             : port == "row_weight" ? 1.0
+                                    : 0.5 * static_cast<double>(i);
     }
   }
 };
@@ -137,6 +144,163 @@ TEST(SignatureIsolator, GroupsAreJudgedApartAndMustBeWhole) {
   p.group_size = 2;
   EXPECT_THROW(SignatureIsolator(p, StageContext(0.01, "iso", {{"residual", 3}, {"alarm", 3}, {"signature", 6}})),
                ConfigError);
+  p.max_faults = 3;  // more faults than a group has channels
+  EXPECT_THROW(SignatureIsolator(p, StageContext(0.01, "iso", {{"residual", 4}, {"alarm", 4}, {"signature", 8}})),
+               ConfigError);
+}
+
+// A group of four feet summing to a reference, as sum_constraint_residual gives it: a foot that
+// can carry load has the sum residual as its row (signature all ones, weight 1 / L), a foot in
+// the air its own reading (signature e_i, weight 1). Residuals of a fault f_j on each foot j.
+struct Feet {
+  SignatureIsolator isolator;
+  std::vector<double> r = std::vector<double>(4, 0.0), alarm = std::vector<double>(4, 1.0);
+  std::vector<double> signature = std::vector<double>(16, 0.0), weight = std::vector<double>(4, 0.0);
+  std::vector<double> fault = std::vector<double>(4, 0.0), type = fault, estimate = fault, cannot = fault;
+
+  explicit Feet(int max_faults, bool weights = true)
+      : isolator(params(max_faults, weights),
+                 StageContext(0.001, "iso",
+                              {{"residual", 4}, {"alarm", 4}, {"signature", 16}, {"row_weight", weights ? 4u : 0u}})) {
+    isolator.reset();
+  }
+  static SignatureIsolator::Params params(int max_faults, bool weights) {
+    SignatureIsolator::Params p;
+    p.group_size = 4;
+    p.max_faults = max_faults;
+    p.row_weights = weights;
+    return p;
+  }
+  // One tick: which feet are in the air, each foot's fault, the sum residual's extra part (a
+  // fault the feet's signatures do not carry); every residual raised unless `raised` is false.
+  void tick(const std::array<bool, 4>& air, const std::array<double, 4>& f, double extra = 0.0,
+            bool raised = true) {
+    double sum = extra;
+    std::size_t loaded = 0;
+    for (std::size_t j = 0; j < 4; ++j) {
+      sum += f[j];
+      loaded += air[j] ? 0 : 1;
+    }
+    for (std::size_t i = 0; i < 4; ++i) {
+      r[i] = air[i] ? f[i] : sum;
+      weight[i] = air[i] ? 1.0 : 1.0 / static_cast<double>(loaded);
+      alarm[i] = raised ? 1.0 : 0.0;
+      for (std::size_t j = 0; j < 4; ++j) signature[i * 4 + j] = air[i] ? (i == j ? 1.0 : 0.0) : 1.0;
+    }
+    std::vector<std::span<const double>> ins{r, alarm, signature};
+    if (isolator.ports().inputs().size() > 3) ins.emplace_back(weight);
+    const std::span<double> outs[] = {fault, type, estimate, cannot};
+    isolator.step(StepIO{0.0, ins, outs});
+  }
+};
+
+TEST(SignatureIsolator, CopiesOfOneResidualCountOnceInTheFaultSize) {
+  // Foot 2 in the air reads 40 N off; the loaded rows (the sum residual) read 44: 4 N more that no
+  // foot's signature carries. Weighted, the sum counts once beside foot 2's own row: f = (44 + 40)
+  // / 2 = 42. Unweighted, the three loaded rows would count three times: (3 x 44 + 40) / 4 = 43.
+  const std::array<bool, 4> air{false, false, true, false};
+  const std::array<double, 4> f{0.0, 0.0, 40.0, 0.0};
+  Feet weighted(1), unweighted(1, false);
+  weighted.tick(air, f, 4.0);
+  unweighted.tick(air, f, 4.0);
+  ASSERT_EQ(weighted.fault, (std::vector<double>{0, 0, 1, 0}));
+  ASSERT_EQ(unweighted.fault, (std::vector<double>{0, 0, 1, 0}));
+  EXPECT_NEAR(weighted.estimate[2], 42.0, 1e-12);
+  EXPECT_NEAR(unweighted.estimate[2], 43.0, 1e-12);
+}
+
+TEST(SignatureIsolator, ASecondFaultIsBlamedBesideTheFirstWithBothSizesExact) {
+  Feet feet(2);
+  // Foot 0 in the air, 30 N off: blamed with its size.
+  feet.tick({true, false, false, false}, {30.0, 0.0, 0.0, 0.0});
+  ASSERT_EQ(feet.fault, (std::vector<double>{1, 0, 0, 0}));
+  EXPECT_NEAR(feet.estimate[0], 30.0, 1e-12);
+  // Foot 0 lands and foot 3 lifts, 20 N low: the sum reads 10, foot 3's own row -20. Foot 0's
+  // column (the sum) leaves foot 3's row, which only foot 3 explains (feet 1 and 2 load as foot
+  // 0 does: their columns are foot 0's, no candidates). Fitted jointly: 30 and -20.
+  feet.tick({false, false, false, true}, {30.0, 0.0, 0.0, -20.0});
+  EXPECT_EQ(feet.fault, (std::vector<double>{1, 0, 0, 1}));
+  EXPECT_NEAR(feet.estimate[0], 30.0, 1e-12);
+  EXPECT_NEAR(feet.estimate[3], -20.0, 1e-12);
+  EXPECT_EQ(feet.cannot, (std::vector<double>(4, 0.0)));
+  // Both land: their columns are alike. Foot 3 keeps the size it showed while apart, foot 0
+  // takes what foot 3 leaves of the sum; foot 0 grows to 35 N: both stay blamed while the group
+  // is raised, foot 0 followed, and both are free when it clears.
+  feet.tick({false, false, false, false}, {35.0, 0.0, 0.0, -20.0});
+  EXPECT_EQ(feet.fault, (std::vector<double>{1, 0, 0, 1}));
+  EXPECT_NEAR(feet.estimate[0], 35.0, 1e-12);
+  EXPECT_NEAR(feet.estimate[3], -20.0, 1e-12);
+  feet.tick({false, false, false, false}, {0.0, 0.0, 0.0, 0.0}, 0.0, false);
+  EXPECT_EQ(feet.fault, (std::vector<double>(4, 0.0)));
+  EXPECT_EQ(feet.estimate, (std::vector<double>(4, 0.0)));
+
+  // With one fault a group (the default), foot 3 is not blamed and nobody says cannot judge.
+  Feet one(1);
+  one.tick({true, false, false, false}, {30.0, 0.0, 0.0, 0.0});
+  one.tick({false, false, false, true}, {30.0, 0.0, 0.0, -20.0});
+  EXPECT_EQ(one.fault, (std::vector<double>{1, 0, 0, 0}));
+  EXPECT_EQ(one.cannot, (std::vector<double>(4, 0.0)));
+}
+
+TEST(SignatureIsolator, AFurtherFaultMustItselfClearTheMargin) {
+  // What foot 0 leaves is foot 3's own row, gain f3^2 (sigma 1, weight 1): blamed from the
+  // margin up, and below it nobody is blamed or said to be unjudgeable.
+  Feet probe(2);
+  const double edge = std::sqrt(probe.isolator.isolation_margin());
+  for (const double share : {0.99, 1.01}) {
+    Feet feet(2);
+    feet.tick({true, false, false, false}, {30.0, 0.0, 0.0, 0.0});
+    feet.tick({false, false, false, true}, {30.0, 0.0, 0.0, -share * edge});
+    EXPECT_EQ(feet.fault[3], share > 1.0 ? 1.0 : 0.0) << share;
+    EXPECT_EQ(feet.cannot, (std::vector<double>(4, 0.0))) << share;
+  }
+}
+
+TEST(SignatureIsolator, WhatTheBlamedLeaveOnAlikeFeetCannotBeJudged) {
+  // Foot 0 blamed in the air; the three loaded feet's sum carries 50 N more that their alike
+  // columns cannot tell apart: none is blamed, each says cannot judge, foot 0 stays blamed.
+  Feet feet(2);
+  feet.tick({true, false, false, false}, {30.0, 0.0, 0.0, 0.0});
+  feet.tick({true, false, false, false}, {30.0, 0.0, 0.0, 0.0}, 50.0);
+  EXPECT_EQ(feet.fault, (std::vector<double>{1, 0, 0, 0}));
+  EXPECT_EQ(feet.cannot, (std::vector<double>{0, 1, 1, 1}));
+  // Foot 0 is fitted on its own row and the sum alike (weight 1 each): (30 + 80) / 2.
+  EXPECT_NEAR(feet.estimate[0], 55.0, 1e-12);
+}
+
+TEST(SignatureIsolator, NoFurtherVerdictWhileABlamedChannelIsUnseen) {
+  // Foot 0 blamed; next tick no residual sees it (its column 0) while foot 3's row shows 20 N:
+  // foot 0's fault cannot be taken out, so foot 3 is not blamed for what might be foot 0's; foot 0
+  // stays blamed with its last size.
+  Feet feet(2);
+  feet.tick({true, false, false, false}, {30.0, 0.0, 0.0, 0.0});
+  feet.tick({false, false, false, true}, {30.0, 0.0, 0.0, -20.0});
+  Feet unseen(2);
+  unseen.tick({true, false, false, false}, {30.0, 0.0, 0.0, 0.0});
+  unseen.r = feet.r;
+  unseen.signature = feet.signature;
+  unseen.weight = feet.weight;
+  for (std::size_t i = 0; i < 4; ++i) unseen.signature[i * 4] = 0.0;
+  const std::vector<std::span<const double>> ins{unseen.r, unseen.alarm, unseen.signature, unseen.weight};
+  const std::span<double> outs[] = {unseen.fault, unseen.type, unseen.estimate, unseen.cannot};
+  unseen.isolator.step(StepIO{0.0, ins, outs});
+  EXPECT_EQ(feet.fault, (std::vector<double>{1, 0, 0, 1}));  // seen: foot 3 blamed beside foot 0
+  EXPECT_EQ(unseen.fault, (std::vector<double>{1, 0, 0, 0}));
+  EXPECT_NEAR(unseen.estimate[0], 30.0, 1e-12);
+}
+
+TEST(SignatureIsolator, ARowOfUnknownWeightIsLeftOut) {
+  // Foot 2 in the air; the loaded rows' weight is not a number: only foot 2's own row is used,
+  // so its size is its own reading's, 40, and the sum's 44 is not seen.
+  Feet feet(1);
+  const std::array<bool, 4> air{false, false, true, false};
+  feet.tick(air, {0.0, 0.0, 40.0, 0.0}, 4.0);
+  feet.weight = {std::nan(""), -1.0, 1.0, std::nan("")};
+  const std::vector<std::span<const double>> ins{feet.r, feet.alarm, feet.signature, feet.weight};
+  const std::span<double> outs[] = {feet.fault, feet.type, feet.estimate, feet.cannot};
+  feet.isolator.step(StepIO{0.0, ins, outs});
+  EXPECT_EQ(feet.fault, (std::vector<double>{0, 0, 1, 0}));
+  EXPECT_NEAR(feet.estimate[2], 40.0, 1e-12);
 }
 
 }  // namespace

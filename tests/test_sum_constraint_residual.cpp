@@ -37,7 +37,7 @@ namespace {
 using generic::SumConstraintResidual;
 
 struct Outputs {
-  std::vector<double> virtual_value, residual, signature, sum_residual;
+  std::vector<double> virtual_value, residual, signature, sum_residual, row_weight;
 };
 
 // One step of a stage of `channels` channels in groups of `group_size` (0: one group).
@@ -52,10 +52,10 @@ Outputs step_once(int group_size, bool with_loadable, const std::vector<double>&
   stage.reset();
   const std::size_t g = group_size > 0 ? static_cast<std::size_t>(group_size) : x.size();
   Outputs o{std::vector<double>(x.size()), std::vector<double>(x.size()), std::vector<double>(x.size() * g),
-            std::vector<double>(reference.size())};
+            std::vector<double>(reference.size()), std::vector<double>(x.size())};
   std::vector<std::span<const double>> ins{x, reference};
   if (with_loadable) ins.emplace_back(loadable);
-  const std::span<double> outs[] = {o.virtual_value, o.residual, o.signature, o.sum_residual};
+  const std::span<double> outs[] = {o.virtual_value, o.residual, o.signature, o.sum_residual, o.row_weight};
   stage.step(StepIO{0.0, ins, outs});
   return o;
 }
@@ -69,6 +69,8 @@ TEST(SumConstraintResidual, LeaveOneOutValuesResidualsAndSignatureOfOneGroup) {
   EXPECT_EQ(o.signature, (std::vector<double>{1, 1, 1,  //
                                               1, 1, 1,  //
                                               0, 0, 1}));
+  // The two loaded rows are one observation (the sum residual), the airborne row one of its own.
+  EXPECT_EQ(o.row_weight, (std::vector<double>{0.5, 0.5, 1.0}));
 }
 
 TEST(SumConstraintResidual, WithoutLoadableEveryChannelIsJudgedOnTheSum) {
@@ -76,6 +78,7 @@ TEST(SumConstraintResidual, WithoutLoadableEveryChannelIsJudgedOnTheSum) {
   EXPECT_EQ(o.virtual_value, (std::vector<double>{3.0, 4.0, 5.0}));
   EXPECT_EQ(o.residual, (std::vector<double>{-1.0, -1.0, -1.0}));
   EXPECT_EQ(o.signature, std::vector<double>(9, 1.0));
+  EXPECT_EQ(o.row_weight, std::vector<double>(3, 1.0 / 3.0));
 }
 
 TEST(SumConstraintResidual, TheVirtualValueIsBoundedByWhatPhysicsAllowsTheResidualIsNot) {
@@ -84,9 +87,9 @@ TEST(SumConstraintResidual, TheVirtualValueIsBoundedByWhatPhysicsAllowsTheResidu
   SumConstraintResidual::Params p;
   p.virtual_min = {1.5};
   SumConstraintResidual stage(p, StageContext(1e-3, "sum", {{"signal", 2}, {"reference", 1}}));
-  std::vector<double> x{2.0, 3.0}, reference{4.0}, v(2), r(2), s(4), sum(1);
+  std::vector<double> x{2.0, 3.0}, reference{4.0}, v(2), r(2), s(4), sum(1), w(2);
   const std::span<const double> ins[] = {x, reference};
-  const std::span<double> outs[] = {v, r, s, sum};
+  const std::span<double> outs[] = {v, r, s, sum, w};
   stage.step(StepIO{0.0, ins, outs});
   EXPECT_EQ(v, (std::vector<double>{1.5, 2.0}));
   EXPECT_EQ(r, (std::vector<double>{1.0, 1.0}));
@@ -100,6 +103,7 @@ TEST(SumConstraintResidual, GroupsHaveTheirOwnReferences) {
   EXPECT_EQ(o.residual, (std::vector<double>{-2.0, -2.0, 1.0, 1.0}));
   EXPECT_EQ(o.sum_residual, (std::vector<double>{-2.0, 1.0}));
   EXPECT_EQ(o.signature, std::vector<double>(8, 1.0));
+  EXPECT_EQ(o.row_weight, std::vector<double>(4, 0.5));
 }
 
 TEST(SumConstraintResidual, AMissingReadingLeavesItsOwnVirtualValueAndNothingElseJudgedOnTheSum) {
@@ -126,6 +130,7 @@ TEST(SumConstraintResidual, AnUnknownReferenceIsNotJudgedAndUnknownContactCounts
   EXPECT_EQ(o.virtual_value[1], 0.0);
   EXPECT_EQ(o.residual[1], 3.0);
   EXPECT_TRUE(std::isnan(o.sum_residual[0]));
+  EXPECT_EQ(o.row_weight, (std::vector<double>{1.0, 1.0}));  // one loaded row: the sum once
 }
 
 TEST(SumConstraintResidual, GroupsMustBeWholeAndOfTwoOrMore) {

@@ -615,8 +615,9 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
                 "`sum_constraint_residual` -> `cusum_detector` -> `signature_isolator` -> `fault_classifier`, and "
                 "`signal_validator`, merged by `fault_merge` -> `fault_recovery`; calibrated on the clean crawl by "
                 "`ftsense calibrate`; per scenario, "
-                "`quadruped_generic_<scenario>/report.md`). They isolate one fault at a time, and a fault on a loaded "
-                "foot only once a swing tells it from its loaded neighbours: see docs/architecture.md.");
+                "`quadruped_generic_<scenario>/report.md`). They isolate a fault on a loaded foot only once a swing "
+                "tells it from its loaded neighbours, and a further faulty foot only where what the first leaves "
+                "shows on its own row, in its swing: see docs/architecture.md.");
   doc.table(std::move(generic_faults));
   doc.heading("Fault-free endurance");
   doc.paragraph("Fault-free walks of " + endurance_s + " s at both gaits and three seeds: false alarms after the 2 s warm-up.");

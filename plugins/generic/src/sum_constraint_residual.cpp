@@ -69,6 +69,10 @@ SumConstraintResidual::SumConstraintResidual(const Params& params, const StageCo
                         .sized_by("channels x group_size"));
   ports_.add_output(PortSpec{"sum_residual", groups_, std::string(kAnyUnit), "sum_G x - R_G per group"}
                         .sized_by("channels / group_size"));
+  ports_.add_output(PortSpec{"row_weight", channels_, std::string(kDimensionless),
+                             "w_i: 1 / L for the L residuals of a group's channels that can carry load (copies of one "
+                             "sum), 1 for a channel judged on its own reading (signature_isolator's input)"}
+                        .sized_by("as `signal`"));
 }
 
 void SumConstraintResidual::step(const StepIO& io) noexcept {
@@ -78,6 +82,7 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
   const auto residual = io.out(kResidual);
   const auto signature = io.out(kSignature);
   const auto sum_residual = io.out(kSumResidual);
+  const auto row_weight = io.out(kRowWeight);
   const std::span<const double> loadable = loadable_ ? io.in(kLoadable) : std::span<const double>{};
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const std::size_t g = group_size_;
@@ -97,10 +102,14 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
     const double r = reference[group];
     const bool reference_known = std::isfinite(r);
     sum_residual[group] = missing == 0 && reference_known ? finite_sum - r : kNaN;
+    // NaN (unknown) counts as loadable: nothing is judged on a guess.
+    const auto can_carry_load = [&](std::size_t i) { return !loadable_ || !(loadable[i] < 0.5); };
+    std::size_t loaded = 0;
+    for (std::size_t i = first; i < first + g; ++i) loaded += can_carry_load(i) ? 1 : 0;
     double* block = signature.data() + group * g * g;
     for (std::size_t i = first; i < first + g; ++i) {
-      // NaN (unknown) counts as loadable: nothing is judged on a guess.
-      const bool can_carry = !loadable_ || !(loadable[i] < 0.5);
+      const bool can_carry = can_carry_load(i);
+      row_weight[i] = can_carry ? 1.0 / static_cast<double>(loaded) : 1.0;  // loaded >= 1 here
       double v = 0.0;
       if (can_carry) {
         // The others' sum is known when nobody is missing, or when i is the one missing.

@@ -22,6 +22,13 @@
 //                                 = x_j             (cannot: its own reading)
 //   signature  S_ij = d residual_i / d x_j = 1 for every j of G   (row i can carry load)
 //                                          = delta_ij               (row i cannot)
+//   row_weight w_i = 1 / L_G   (row i can carry load; L_G of the group's channels can)
+//                  = 1         (row i cannot)
+//
+// The rows of the channels that can carry load are L_G copies of one number, the group's sum
+// residual: one observation, not L_G. A statistic that sums the squares of whitened rows (the
+// isolator's GLR) weighs row i by w_i, so the sum counts once, and each reading off the ground
+// once on its own.
 //
 // A fault f on channel j shifts the residuals by f S_.j: every loaded row and j's own row. The
 // loaded channels' columns are alike, so a fault on a loaded channel is not told from its loaded
@@ -57,7 +64,7 @@ class SumConstraintResidual {
   };
 
   enum Input : std::size_t { kSignal, kReference, kLoadable };
-  enum Output : std::size_t { kVirtual, kResidual, kSignature, kSumResidual };
+  enum Output : std::size_t { kVirtual, kResidual, kSignature, kSumResidual, kRowWeight };
 
   SumConstraintResidual(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
