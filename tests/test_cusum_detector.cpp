@@ -291,6 +291,34 @@ TEST(CusumDetector, RefusesParametersThatCannotMeetTheTarget) {
   EXPECT_THROW(CusumDetector(q, StageContext(1e-3, "c", {{"residual", 3}})), ConfigError);
 }
 
+TEST(CusumDetector, AChangeOfManyNoiseDeviationsRaisesOnTheSampleBeyondK) {
+  // min_change 60 sigma on a white residual: k = 30, and even h = 0 keeps false alarms rarer than
+  // a day (a sample 30 sigma out), so h is the least positive: the first sample beyond k raises,
+  // one below does not, and the flag clears on the next sample back at the centre. (Before, such
+  // a change was refused, and `ftsense calibrate` could not start on a config that gave min_change
+  // in a unit whose noise it had yet to measure.)
+  CusumDetector::Params p;
+  p.min_change = {60.0};
+  CusumDetector c(p, StageContext(1e-3, "c", {{"residual", 1}}));
+  EXPECT_GT(c.threshold(0), 0.0);
+  EXPECT_LT(c.threshold(0), 1e-6);
+  std::vector<double> r{0.0}, fault{0.0}, type{0.0}, statistic{0.0}, direction{0.0}, judged{0.0};
+  const auto step = [&](double x) {
+    r[0] = x;
+    const std::span<const double> ins[] = {r};
+    const std::span<double> outs[] = {fault, type, statistic, direction, judged};
+    c.step(StepIO{1.0, ins, outs});
+    return fault[0];
+  };
+  c.reset();
+  EXPECT_EQ(step(0.0), 0.0);
+  EXPECT_EQ(step(29.9), 0.0);
+  EXPECT_EQ(step(-29.9), 0.0);
+  EXPECT_EQ(step(30.5), 1.0);
+  EXPECT_EQ(step(0.0), 0.0);
+  EXPECT_EQ(step(-30.5), 1.0);
+}
+
 TEST(ResidualStatistics, ExactValuesOnAShortSequence) {
   // r = 1, 2, 3, 4: c = 2.5, sigma^2 = 1.25; the three pairs give covariance 1.25 and variance
   // (2.75 + 2.75) / 2 about c, so rho1 = 1.25 / 2.75.

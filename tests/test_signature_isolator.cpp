@@ -17,13 +17,14 @@
 namespace ftsense::testing {
 template <>
 struct ContractSetup<generic::SignatureIsolator> {
-  // Two faults a group and row weights: the contract covers the joint fit's path.
+  // Two faults a group, row weights and a raised alarm: the nominal and allocation checks run the
+  // joint fit's path.
   static Json params() { return Json{{"group_size", 3}, {"max_faults", 2}, {"row_weights", true}}; }
   static std::size_t input_dim(std::string_view port) { return port == "signature" ? 9 : 3; }
   static double sample_period_s() { return 0.01; }
   static void nominal_input(std::string_view port, std::span<double> v) {
     for (std::size_t i = 0; i < v.size(); ++i) {
-      v[i] = port == "alarm"       ? 0.0
+      v[i] = port == "alarm"       ? 1.0
              : port == "signature"  ? (i % 4 == 0 ? 1.0 : 0.0)
              : port == "row_weight" ? 1.0
                                     : 0.5 * static_cast<double>(i);
@@ -280,13 +281,18 @@ TEST(SignatureIsolator, NoFurtherVerdictWhileABlamedChannelIsUnseen) {
   unseen.r = feet.r;
   unseen.signature = feet.signature;
   unseen.weight = feet.weight;
-  for (std::size_t i = 0; i < 4; ++i) unseen.signature[i * 4] = 0.0;
+  // Feet 1 and 2 unseen too, so foot 3 is the only candidate (its gain on the raw z, 50, clears
+  // the margin): only the rule keeps it from being blamed.
+  for (std::size_t i = 0; i < 4; ++i) {
+    for (std::size_t j = 0; j < 3; ++j) unseen.signature[i * 4 + j] = 0.0;
+  }
   const std::vector<std::span<const double>> ins{unseen.r, unseen.alarm, unseen.signature, unseen.weight};
   const std::span<double> outs[] = {unseen.fault, unseen.type, unseen.estimate, unseen.cannot};
   unseen.isolator.step(StepIO{0.0, ins, outs});
   EXPECT_EQ(feet.fault, (std::vector<double>{1, 0, 0, 1}));  // seen: foot 3 blamed beside foot 0
   EXPECT_EQ(unseen.fault, (std::vector<double>{1, 0, 0, 0}));
   EXPECT_NEAR(unseen.estimate[0], 30.0, 1e-12);
+  EXPECT_EQ(unseen.cannot, (std::vector<double>(4, 0.0)));
 }
 
 TEST(SignatureIsolator, ARowOfUnknownWeightIsLeftOut) {

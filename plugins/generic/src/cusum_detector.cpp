@@ -11,6 +11,11 @@
 
 namespace ftsense::generic {
 
+namespace {
+// The least CUSUM threshold, in noise standard deviations: S >= h means S > 0.
+constexpr double kLeastThreshold = 1e-9;
+}  // namespace
+
 void CusumDetector::Params::describe(ParamSchema<Params>& schema) {
   schema
       .add("noise_std", &Params::noise_std,
@@ -68,13 +73,16 @@ CusumDetector::CusumDetector(const Params& params, const StageContext& context)
   for (std::size_t j = 0; j < dim; ++j) {
     inv_std_[j] = 1.0 / noise_std[j];
     reference_[j] = std::sqrt(samples_per_tick_) * 0.5 * min_change[j] / noise_std[j];
-    threshold_[j] = cusum_threshold_for_arl(reference_[j], arl_per_side, cusum_overshoot(1.0));
-    if (!(threshold_[j] > 0.0 && std::isfinite(threshold_[j]))) {
+    // h = 0 when even that keeps false alarms rarer than asked (a change of many noise deviations:
+    // one sample beyond k is a change); S >= h must then mean S > 0, so h is the least positive.
+    threshold_[j] = std::max(cusum_threshold_for_arl(reference_[j], arl_per_side, cusum_overshoot(1.0)),
+                             kLeastThreshold);
+    if (!std::isfinite(threshold_[j])) {
       throw ConfigError("/params/min_change/" + std::to_string(j),
                         " = " + format_number(min_change[j]) + " is " +
                             format_number(min_change[j] / noise_std[j]) +
-                            " noise standard deviations: no CUSUM threshold reaches the false-alarm interval "
-                            "with it; give a smaller min_change or a larger noise_std");
+                            " noise standard deviations and gives no finite CUSUM threshold; give a finite "
+                            "min_change and noise_std");
     }
   }
   ports_.add_input(PortSpec{"residual", dim, std::string(kAnyUnit), "the residual r (zero-mean when fault-free)"}

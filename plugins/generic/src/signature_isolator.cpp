@@ -37,7 +37,7 @@ void SignatureIsolator::Params::describe(ParamSchema<Params>& schema) {
       .plausible(1.0, 1e9, "from a second (tests) to decades");
   schema.add("max_faults", &Params::max_faults,
              "how many channels of a group may be blamed at once (at most group_size); a further one only "
-             "when what the blamed ones leave clears the margin")
+             "when its own GLR gain on what the blamed ones leave clears the margin")
       .at_least(1)
       .at_most(64);
   schema.add("row_weights", &Params::row_weights,
@@ -173,7 +173,7 @@ void SignatureIsolator::fit_blamed(std::size_t first, std::size_t n) noexcept {
   solve_gram(n, fit_rhs_.data(), fit_size_.data());
   // The fitted columns' new sizes; a spanned column's stays.
   for (std::size_t a = 0; a < n; ++a) {
-    if (fit_factor_[a * g + a] > 0.0) estimate_[first + fit_index_[a]] = fit_size_[a];
+    if (fit_factor_[a * g + a] > 0.0 && std::isfinite(fit_size_[a])) estimate_[first + fit_index_[a]] = fit_size_[a];
   }
 }
 
@@ -200,7 +200,10 @@ void SignatureIsolator::step(const StepIO& io) noexcept {
       z_[i] = r[first + i] * scale;
       known = known && (scale == 0.0 || std::isfinite(z_[i]));
       if (scale == 0.0 || !std::isfinite(z_[i])) z_[i] = 0.0;
-      for (std::size_t j = 0; j < g; ++j) columns_[i * g + j] = signature[(first + i) * g + j] * scale;
+      // A row left out is 0 in every column (a NaN signature entry there must not spoil the column).
+      for (std::size_t j = 0; j < g; ++j) {
+        columns_[i * g + j] = scale == 0.0 ? 0.0 : signature[(first + i) * g + j] * scale;
+      }
     }
     if (!raised) {
       // Nothing raised: every channel of the group is free again.
@@ -217,7 +220,7 @@ void SignatureIsolator::step(const StepIO& io) noexcept {
           sq += columns_[i * g + j] * columns_[i * g + j];
         }
         column_sq_[j] = sq;
-        usable_[j] = finite && sq > kMinColumnNorm ? 1 : 0;
+        usable_[j] = finite && std::isfinite(sq) && sq > kMinColumnNorm ? 1 : 0;
       }
       // The blamed channels seen this tick, fitted jointly.
       std::size_t n = 0;

@@ -16,7 +16,9 @@
 //   S+ = max(0, S+ + e - k_e),   S- = max(0, S- - e - k_e),   raised when S+ or S- >= h,
 //
 // with h from cusum_design.hpp so that the mean time between false alarms of the two-sided test
-// is `false_alarm_interval_s` (2 x that interval, in ticks, per side). A shift mu of z is then
+// is `false_alarm_interval_s` (2 x that interval, in ticks, per side); when even h = 0 keeps false
+// alarms rarer (a change of many noise deviations), h is the least positive, 1e-9: one sample
+// beyond k_e raises. A shift mu of z is then
 // detected after about (h + 1.166) / (sqrt(w) mu - k_e) ticks: the same time in seconds at any
 // rate, since sqrt(w) ~ sqrt(T / (2 tau_c)) and h ~ 1 / sqrt(w) as T shrinks. Without the
 // whitening a correlated residual would move S like a smooth curve, not a random walk, and the

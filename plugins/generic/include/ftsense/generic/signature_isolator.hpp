@@ -27,21 +27,27 @@
 // `cannot_judge` (collinear sensors, whose signatures are nearly parallel, are not told apart by
 // guessing). With `max_faults` above 1, a further channel is blamed on the same terms while the
 // group stays raised, and only when its gain itself clears the margin (no detector stands behind
-// what the blamed channels leave); while what they leave clears it and no channel is singled
-// out, the unblamed channels are `cannot_judge`. A column that the blamed columns span this tick
-// (|t_j|^2 - <c, G^-1 c> at most 1e-9 |t_j|^2) is no candidate: its fault would be theirs. Blamed
-// channels stay blamed while any residual of the group is raised, and are released when none is:
-// the healthy neighbours whose residuals a fault excites are never blamed for it. Columns with
+// what the blamed channels leave); while the best such gain clears it and no channel is singled
+// out, the unblamed channels are `cannot_judge` (judged only while fewer than `max_faults` are
+// blamed and every blamed channel is seen; a leftover that only spanned columns could explain is
+// not reported). A column that the blamed columns span this tick (|t_j|^2 - <c, G^-1 c> at most
+// 1e-9 |t_j|^2) is no candidate: its fault would be theirs. Blamed channels stay blamed while any
+// residual of the group is raised, and are released when none is. With one fault a group, the
+// healthy neighbours whose residuals a fault excites are never blamed for it; with several, that
+// holds as far as the signature is exact: a relative error e in S leaves about e f of a blamed
+// fault f on the neighbours' rows, blamed once (e f / sigma)^2 clears the margin. Columns with
 // |t_j|^2 below 1e-12 (a channel no residual sees this tick) are not candidates, and a blamed one
 // keeps its last size (no further channel is blamed while one is unseen: its fault would be
 // blamed on another). A blamed column that the earlier blamed columns span this tick keeps its
 // last size too, and the others are fitted to what it leaves (two loaded feet both blamed: the
-// later one's size was seen while it stood apart, and holds while it does not).
+// later one keeps the size it had on the last tick it stood apart; any change along the shared
+// direction, a growing drift among them, goes to the earlier blamed).
 //
 // Outputs per channel: fault (1 blamed), fault_type (unclassified when blamed: the type is a
 // classifier's work), fault_estimate f_j of a blamed channel in the residual's unit (0
 // otherwise), cannot_judge (1 while its group is raised and it is neither blamed nor told apart).
-// Allocation-free: the work vectors are sized at construction; the fit costs O(g |B|^2) a tick.
+// Allocation-free: the work vectors are sized at construction; a raised group costs
+// O(g^2 |B| + g |B|^2 + |B|^3) a tick.
 
 #include <array>
 #include <string_view>
