@@ -188,6 +188,10 @@ struct Feet {
       alarm[i] = raised ? 1.0 : 0.0;
       for (std::size_t j = 0; j < 4; ++j) signature[i * 4 + j] = air[i] ? (i == j ? 1.0 : 0.0) : 1.0;
     }
+    step();
+  }
+  // One step on the vectors as they stand.
+  void step() {
     std::vector<std::span<const double>> ins{r, alarm, signature};
     if (isolator.ports().inputs().size() > 3) ins.emplace_back(weight);
     const std::span<double> outs[] = {fault, type, estimate, cannot};
@@ -286,9 +290,7 @@ TEST(SignatureIsolator, NoFurtherVerdictWhileABlamedChannelIsUnseen) {
   for (std::size_t i = 0; i < 4; ++i) {
     for (std::size_t j = 0; j < 3; ++j) unseen.signature[i * 4 + j] = 0.0;
   }
-  const std::vector<std::span<const double>> ins{unseen.r, unseen.alarm, unseen.signature, unseen.weight};
-  const std::span<double> outs[] = {unseen.fault, unseen.type, unseen.estimate, unseen.cannot};
-  unseen.isolator.step(StepIO{0.0, ins, outs});
+  unseen.step();
   EXPECT_EQ(feet.fault, (std::vector<double>{1, 0, 0, 1}));  // seen: foot 3 blamed beside foot 0
   EXPECT_EQ(unseen.fault, (std::vector<double>{1, 0, 0, 0}));
   EXPECT_NEAR(unseen.estimate[0], 30.0, 1e-12);
@@ -302,9 +304,7 @@ TEST(SignatureIsolator, ARowOfUnknownWeightIsLeftOut) {
   const std::array<bool, 4> air{false, false, true, false};
   feet.tick(air, {0.0, 0.0, 40.0, 0.0}, 4.0);
   feet.weight = {std::nan(""), -1.0, 1.0, std::nan("")};
-  const std::vector<std::span<const double>> ins{feet.r, feet.alarm, feet.signature, feet.weight};
-  const std::span<double> outs[] = {feet.fault, feet.type, feet.estimate, feet.cannot};
-  feet.isolator.step(StepIO{0.0, ins, outs});
+  feet.step();
   EXPECT_EQ(feet.fault, (std::vector<double>{0, 0, 1, 0}));
   EXPECT_NEAR(feet.estimate[2], 40.0, 1e-12);
 }

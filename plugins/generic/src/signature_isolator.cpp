@@ -191,6 +191,7 @@ void SignatureIsolator::step(const StepIO& io) noexcept {
     const std::size_t first = group * g;
     std::size_t* order = blamed_order_.data() + first;
     std::size_t& count = blamed_count_[group];
+    const auto blamed = [&](std::size_t j) { return std::find(order, order + count, j) != order + count; };
     bool raised = false;
     bool known = true;
     for (std::size_t i = 0; i < g; ++i) {
@@ -235,9 +236,7 @@ void SignatureIsolator::step(const StepIO& io) noexcept {
         long best = -1, second = -1;
         double best_gain = -1.0, second_gain = -1.0;
         for (std::size_t j = 0; j < g; ++j) {
-          bool is_blamed = false;
-          for (std::size_t k = 0; k < count; ++k) is_blamed = is_blamed || order[k] == j;
-          if (is_blamed || usable_[j] == 0) continue;
+          if (blamed(j) || usable_[j] == 0) continue;
           double tz = 0.0;
           for (std::size_t i = 0; i < g; ++i) tz += columns_[i * g + j] * fit_z_[i];
           double explained = 0.0, spanned = 0.0;
@@ -278,8 +277,7 @@ void SignatureIsolator::step(const StepIO& io) noexcept {
       }
     }
     for (std::size_t j = 0; j < g; ++j) {
-      bool is_blamed = false;
-      for (std::size_t k = 0; k < count; ++k) is_blamed = is_blamed || order[k] == j;
+      const bool is_blamed = blamed(j);
       fault[first + j] = is_blamed ? 1.0 : 0.0;
       type[first + j] = fault_code(is_blamed ? FaultType::unclassified : FaultType::none);
       estimate[first + j] = is_blamed ? estimate_[first + j] : 0.0;
