@@ -327,6 +327,53 @@ TEST(SignalValidator, WithoutTheFrozenTestAStillReadingIsNotFrozen) {
   }
 }
 
+TEST(SignalValidator, ARunOnTheRestValueIsNoFrozenEvidenceButARunElsewhereStillIs) {
+  // A foot force sensor whose driver reports an unloaded foot as exactly 0 N: loaded, it reads
+  // 6 +- 1 alternating (sigma = 1, d2 = +-4; no spike where it lifts off); from tick f it is in
+  // the air and reads 0; it lands at tick l and reads 10 +- 1. Without rest_value the window of
+  // zeros is frozen on the tick the last nonzero d2 (d2(f + 1) = x(f - 1) = 7: 49, above the stale
+  // bound) leaves it, f + n + 1, until the landing's d2(l) = 9; with rest_value 0 nothing is
+  // flagged. Then it freezes at 11 from tick g: frozen on tick g + n - 2 either way (as in the
+  // test above), since no reading of that window is at rest.
+  for (const bool with_rest : {false, true}) {
+    SignalValidator::Params p;
+    p.noise_std = {1.0};
+    p.window_s = 0.05;
+    if (with_rest) p.rest_value = {0.0};
+    OneChannel c(p, 1e-3);
+    const int n = static_cast<int>(c.validator.window_ticks());
+    constexpr int kAir = 300, kLanding = 800, kFreeze = 1200;
+    double last = 0.0;
+    for (int k = 0; k < kFreeze + 200; ++k) {
+      const bool air = k >= kAir && k < kLanding;
+      const double alternating = k % 2 ? 1.0 : -1.0;
+      if (k < kFreeze) last = air ? 0.0 : (k < kAir ? 6.0 : 10.0) + alternating;
+      const FaultType expected = k >= kFreeze + n - 2                   ? FaultType::frozen
+                                 : !with_rest && air && k >= kAir + n + 1 ? FaultType::frozen
+                                                                          : FaultType::none;
+      ASSERT_EQ(c.step(last), expected) << (with_rest ? "rest 0" : "no rest") << ", tick " << k;
+    }
+  }
+}
+
+TEST(SignalValidator, AReadingStuckOnItsRestValueIsFrozenWhenItsReferenceMoves) {
+  // rest_value 0 keeps test (a) off on exact zeros; test (b) still sees a reading that stays at
+  // 0 while its reference (the load it should carry) swings by 200 N, and nothing while the
+  // reference is 0 too (the foot in the air).
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.rest_value = {0.0};
+  p.reference = true;
+  p.reference_noise_std = {1.0};
+  OneChannel c(p, 1e-3);
+  int flagged_in_air = 0;
+  for (int k = 0; k < 1000; ++k) flagged_in_air += c.step(0.0, 0.0) != FaultType::none;
+  EXPECT_EQ(flagged_in_air, 0);
+  FaultType last = FaultType::none;
+  for (int k = 0; k < 500; ++k) last = c.step(0.0, 100.0 + 100.0 * std::sin(0.01 * k));
+  EXPECT_EQ(last, FaultType::frozen);
+}
+
 TEST(SignalValidator, AnUnknownOrRepeatedTestIsAConfigError) {
   Diagnostics d;
   (void)load_params<SignalValidator::Params>(Json::parse(R"({"tests": ["frozen", "spike", "frozen"]})"),

@@ -132,13 +132,16 @@ std::vector<std::string> walk_row(const std::string& walk, const Json& scenario,
 
 // The conditions the robust pipeline was not tuned on (issue 13): force sensors quantised to 1 N
 // or 5 N, logs at 200 Hz or 500 Hz, frozen outputs that keep their noise, intermittent faults,
-// channels healthy again after a burst, a sign flip or a gain that ends.
+// channels healthy again after a burst, a sign flip or a gain that ends, and a driver that reports
+// small readings as exactly 0 N.
 const std::vector<std::string> kConditions{"clean_quantised_1N", "clean_quantised_5N", "quantised_1N", "quantised_5N",
                                            "clean_200hz",        "clean_500hz",        "faults_200hz", "faults_500hz",
-                                           "frozen_noisy",       "intermittent",       "heal_after"};
+                                           "frozen_noisy",       "intermittent",       "heal_after",
+                                           "clean_zero_clamped"};
 
-// A copy of `config` told what a user knows of the scenario's log: its sample period, and the
-// force sensors' resolution for contact_force_fdi (the scenario's sensors.force.resolution_N).
+// A copy of `config` told what a user knows of the scenario's log: its sample period, and for
+// contact_force_fdi the force sensors' resolution and their driver's zero clamp (the scenario's
+// sensors.force.resolution_N and zero_below_N).
 // The copy is written to `target`; a relative `urdf` parameter is made absolute, since the copy
 // lives in another folder than the config it was made from.
 std::string config_for_log(const std::string& config, const Json& scenario, const std::string& target) {
@@ -151,10 +154,13 @@ std::string config_for_log(const std::string& config, const Json& scenario, cons
     }
   }
   c["sample_period_s"] = scenario.value("log_period_s", c.value("sample_period_s", 0.001));
-  const Json::json_pointer resolution("/sensors/force/resolution_N");
-  if (scenario.contains(resolution)) {
+  // What a user knows of the sensors: their resolution, and the driver's zero clamp.
+  for (const auto& [key, param] :
+       {std::pair{"resolution_N", "resolution_N"}, std::pair{"zero_below_N", "zero_clamp_N"}}) {
+    const Json::json_pointer known(std::string("/sensors/force/") + key);
+    if (!scenario.contains(known)) continue;
     for (auto& stage : c["stages"]) {
-      if (stage.value("plugin", "") == "contact_force_fdi") stage["params"]["resolution_N"] = scenario.at(resolution);
+      if (stage.value("plugin", "") == "contact_force_fdi") stage["params"][param] = scenario.at(known);
     }
   }
   c.erase("$schema");
@@ -374,7 +380,8 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
                                {}};
   const std::string generic_thresholds = out + "/thresholds_quadruped_generic.json";
   for (const std::string s : {"quadruped_clean", "quadruped_faults", "quadruped_more_faults", "quadruped_quiet_faults",
-                              "quadruped_faults_200hz"}) {
+                              "quadruped_faults_200hz", "quadruped_clean_zero_clamped",
+                              "quadruped_faults_zero_clamped"}) {
     const std::string run_out = out + "/" + s + "_run.csv";
     ScoredRun scored_run;
     if (int rc = simulate_run_score(configs, out, s, duration, configs + "/quadruped.json", out + "/" + s + "_config.json",

@@ -213,7 +213,8 @@ SimulationSummary simulate_quadruped(const Scenario& sc, std::uint64_t seed, std
     for (const auto& f : sc.faults)
       if (f.channel == static_cast<int>(c)) fs.push_back(f);
     force.emplace_back(static_cast<int>(c), sc.sensors.force_noise_std_N, std::move(fs), dt, seed,
-                       static_cast<double>(log_every) * dt, sc.sensors.force_resolution_N);
+                       static_cast<double>(log_every) * dt, sc.sensors.force_resolution_N,
+                       sc.sensors.force_zero_below_N);
   }
   Rng imu_rng(seed, 1), enc_rng(seed, 2), base_rng(seed, 3);
   const SensorParams& sp = sc.sensors;

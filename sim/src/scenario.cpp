@@ -236,6 +236,7 @@ void read_sensors(const json& j, const std::string& path, SensorParams& s, std::
     ObjectReader rf(*f, r.at("force"), e);
     rf.number("noise_std_N", s.force_noise_std_N, false, closed(0.0, 1000.0));
     rf.number("resolution_N", s.force_resolution_N, false, closed(0.0, 1000.0));
+    rf.number("zero_below_N", s.force_zero_below_N, closed(0.0, 1000.0));
     rf.finish();
   }
   if (const json* f = r.object("imu", false)) {

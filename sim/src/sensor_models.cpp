@@ -34,11 +34,13 @@ double Rng::normal() {
 }
 
 ForceChannelModel::ForceChannelModel(int channel, double noise_std, std::vector<FaultSpec> faults,
-                                     double dt, std::uint64_t seed, double sample_period, double resolution)
+                                     double dt, std::uint64_t seed, double sample_period, double resolution,
+                                     std::optional<double> zero_below)
     : noise_std_(noise_std),
       dt_(dt),
       sample_period_(sample_period > 0.0 ? sample_period : dt),
       resolution_(resolution),
+      zero_below_(zero_below),
       rng_(seed, 100 + static_cast<std::uint64_t>(channel)) {
   std::uint64_t stream = 1000 + 100 * static_cast<std::uint64_t>(channel);
   std::sort(faults.begin(), faults.end(),
@@ -87,6 +89,8 @@ ForceChannelModel::Output ForceChannelModel::step(std::int64_t k, double true_fo
   }
   // + 0.0 turns the -0 of a small negative reading into 0 (printed "0", not "-0").
   if (resolution_ > 0.0 && std::isfinite(y)) y = resolution_ * std::round(y / resolution_) + 0.0;
+  // The driver clamps what the ADC gives it (NaN compares false and stays NaN).
+  if (zero_below_ && y < *zero_below_) y = 0.0;
   last_output_ = y;
   has_last_ = true;
   return {y, code};

@@ -255,7 +255,7 @@ SimulationSummary simulate(const Scenario& sc, std::uint64_t seed, std::ostream&
     for (const auto& f : sc.faults)
       if (f.channel == c) fs.push_back(f);
     force.emplace_back(c, sc.sensors.force_noise_std_N, std::move(fs), dt, seed, log_every * dt,
-                       sc.sensors.force_resolution_N);
+                       sc.sensors.force_resolution_N, sc.sensors.force_zero_below_N);
   }
   Rng imu_rng(seed, 1), enc_rng(seed, 2), base_rng(seed, 3);
   const SensorParams& sp = sc.sensors;

@@ -217,3 +217,31 @@ TEST(ForceChannel, ResolutionQuantisesEveryReadingFaultsIncluded) {
   ForceChannelModel nan_channel(dropout.channel, 2.0, {dropout}, kDt, kSeed, kDt, 5.0);
   EXPECT_TRUE(std::isnan(nan_channel.step(0, 100.0).value));
 }
+
+TEST(ForceChannel, ZeroClampReadsExactZerosBelowItFaultsIncluded) {
+  // An unloaded foot (true force 0) under 0.5 N noise with a 1.5 N clamp, then loaded at 50 N
+  // with a -80 N offset on part of it: every reading is the unclamped one where that is at least
+  // 1.5 N, else exactly 0 (the offset's negative readings too). After quantisation (q = 1).
+  FaultSpec f = fault(FaultType::offset, 3.0, 3.5);
+  f.offset_N = -80.0;
+  ForceChannelModel ch(f.channel, 0.5, {f}, kDt, kSeed, kDt, 1.0, 1.5);
+  ForceChannelModel plain(f.channel, 0.5, {f}, kDt, kSeed, kDt, 1.0);  // the same noise, no clamp
+  int zeros_unloaded = 0;
+  for (std::int64_t k = 0; k < 4000; ++k) {
+    const double load = k < 2000 ? 0.0 : 50.0;
+    const double y = ch.step(k, load).value;
+    const double x = plain.step(k, load).value;
+    EXPECT_EQ(y, x < 1.5 ? 0.0 : x) << k;
+    EXPECT_FALSE(std::signbit(y)) << k;
+    if (k < 2000) zeros_unloaded += y == 0.0;
+    if (k >= 3000 && k < 3500) {
+      EXPECT_EQ(y, 0.0) << k;  // 50 - 80 N clamped
+    }
+  }
+  // Unloaded, a reading is nonzero only where 0.5 N noise rounds to 2 N or more: P(n >= 1.5) =
+  // 0.13 %; of 2000 ticks at least 1990 read exactly 0.
+  EXPECT_GE(zeros_unloaded, 1990);
+  FaultSpec dropout = fault(FaultType::invalid, 0.0);
+  ForceChannelModel nan_channel(dropout.channel, 0.5, {dropout}, kDt, kSeed, kDt, 0.0, 1.5);
+  EXPECT_TRUE(std::isnan(nan_channel.step(0, 100.0).value));
+}

@@ -54,20 +54,23 @@ out = sys.argv[1]
 expected = {"clean_quantised_1N": (0.001, 1.0), "clean_quantised_5N": (0.001, 5.0), "quantised_1N": (0.001, 1.0),
             "quantised_5N": (0.001, 5.0), "clean_200hz": (0.005, None), "clean_500hz": (0.002, None),
             "faults_200hz": (0.005, None), "faults_500hz": (0.002, None), "frozen_noisy": (0.001, None),
-            "intermittent": (0.001, None), "heal_after": (0.001, None)}
+            "intermittent": (0.001, None), "heal_after": (0.001, None), "clean_zero_clamped": (0.001, None)}
 summary = json.load(open(f"{out}/metrics.json"))["conditions"]
 for name, (period, resolution) in expected.items():
     c = json.load(open(f"{out}/robust_{name}_config.json"))
     assert c["sample_period_s"] == period, (name, c["sample_period_s"])
     fdi = [s for s in c["stages"] if s["plugin"] == "contact_force_fdi"][0]
     assert fdi["params"].get("resolution_N") == resolution, (name, fdi["params"].get("resolution_N"))
+    assert fdi["params"].get("zero_clamp_N") == (6.0 if name == "clean_zero_clamped" else None), name
     json.load(open(f"{out}/robust_{name}/metrics.json"))
     rows = sum(1 for _ in open(f"{out}/{name}_run_robust.csv")) - 1
     assert rows == round(9.0 / period), (name, rows)  # 9 s walks at the log's own rate
     assert name in summary, name
+# A driver's zero clamp: pads that carry less than 6 N read exact zeros, and none is frozen.
+assert summary["clean_zero_clamped"]["summary"]["false_alarms_after_warmup"] == 0, summary["clean_zero_clamped"]["summary"]
 PY
 rows=$(sed -n '/^  scenario  *T \[s\]/,/^$/p' "$out/stdout" | grep -cE '^  (clean_|quantised|faults_|frozen|intermittent|heal)')
-[ "$rows" -eq 11 ] && ok "conditions table in the summary" || bad "conditions table in the summary: $rows rows"
+[ "$rows" -eq 12 ] && ok "conditions table in the summary" || bad "conditions table in the summary: $rows rows"
 grep -q '^| scenario | log period \[s\] | resolution \[N\] |' "$out/report.md" && ok "report.md conditions table" || bad "report.md conditions table"
 # The quadruped by JSON alone (issue 14 acceptance 1): both walks scored, the virtual force per
 # foot in stance measured on every foot, the tables in report.md.
@@ -86,7 +89,8 @@ for walk in ("quadruped_clean", "quadruped_faults"):
 delays = {c["channel"]: c["detection_delay_s"] for c in q["quadruped_faults"]["channels"]}
 assert delays["lf_foot"] is not None and delays["lf_foot"] < 0.1, delays
 assert delays["rh_foot"] is not None and delays["rh_foot"] < 3.0, delays
-for walk in ("quadruped_clean", "quadruped_faults", "quadruped_faults_200hz"):
+for walk in ("quadruped_clean", "quadruped_faults", "quadruped_faults_200hz", "quadruped_clean_zero_clamped",
+             "quadruped_faults_zero_clamped"):
     assert q[walk]["summary"]["false_alarms_after_warmup"] == 0, (walk, q[walk]["summary"])
 PY
 grep -q '^| walk | foot | stance ticks | virtual force RMS error \[N\] |' "$out/report.md" && ok "report.md quadruped table" || bad "report.md quadruped table"
@@ -101,8 +105,15 @@ out = sys.argv[1]
 g = json.load(open(f"{out}/metrics.json"))["quadruped_generic"]
 cal = json.load(open(f"{out}/thresholds_quadruped_generic.json"))["stages"]
 assert all(len(cal[s]["params"][p]) == 4 for s, p in (("detect", "noise_std"), ("isolate", "residual_noise_std"), ("validate", "noise_std"))), cal
-for walk in ("quadruped_clean", "quadruped_faults", "quadruped_more_faults", "quadruped_quiet_faults", "quadruped_faults_200hz"):
+for walk in ("quadruped_clean", "quadruped_faults", "quadruped_more_faults", "quadruped_quiet_faults", "quadruped_faults_200hz",
+             "quadruped_clean_zero_clamped", "quadruped_faults_zero_clamped"):
     assert g[walk]["summary"]["false_alarms_after_warmup"] == 0, (walk, g[walk]["summary"])
+# A driver that reports an unloaded foot as exactly 0 N (quadruped_clean_zero_clamped): the feet in
+# the air read exact zeros for seconds, and the validator (rest_value 0) flags none of them.
+rows = list(csv.DictReader(open(f"{out}/quadruped_clean_zero_clamped_run_generic.csv")))
+zeros = sum(1 for r in rows for f in ("lf_foot", "rf_foot", "lh_foot", "rh_foot") if float(r[f"{f}/measured_N"]) == 0.0)
+assert zeros > 1000, zeros  # 1830 foot-ticks of exact zeros in the 9 s walk
+assert all(r[f"{f}/fault"] == "0" for r in rows for f in ("lf_foot", "rf_foot", "lh_foot", "rh_foot")), "a clamped foot in the air was flagged"
 rows = list(csv.DictReader(open(f"{out}/quadruped_faults_run_generic.csv")))
 feet = ("lf_foot", "rf_foot", "lh_foot", "rh_foot")
 first_cannot = next(float(r["time_s"]) for r in rows if float(r["time_s"]) >= 5.0 and r["lf_foot/cannot_judge"] == "1")

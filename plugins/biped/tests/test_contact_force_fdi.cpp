@@ -244,6 +244,32 @@ TEST(ContactForceFdi, UnloadedPadOnItsZeroLevelIsNoEvidenceOfAFrozenSensor) {
   }
 }
 
+TEST(ContactForceFdi, AClampedZeroIsFrozenEvidenceOnlyWhereTheLoadSurelyExceedsTheClamp) {
+  // Both feet on the ground; pad 0 reads exactly 0 from the start while the total force leaves it
+  // `load` N (its leave-one-out force). n_f = 20 ticks at 1 kHz (frozen_min_s). Without a clamp
+  // stated, a healthy noisy sensor never repeats 0 under 12 N (above airborne_threshold_N = 8 N):
+  // frozen on tick 20. With zero_clamp_N = 6 N, a zero says only "under 6 N", and 12 N is within
+  // the total force's error bound (sum_threshold_N = 80 N): no evidence. Under 200 N (> 6 + 80 N) a
+  // zero is a stuck sensor with or without the clamp: frozen on tick 20.
+  struct Case {
+    double clamp_N, load_N;
+    bool frozen;
+  };
+  for (const Case& c : {Case{0.0, 12.0, true}, Case{6.0, 12.0, false}, Case{6.0, 200.0, true}}) {
+    SCOPED_TRACE("zero_clamp_N " + std::to_string(c.clamp_N) + ", load " + std::to_string(c.load_N) + " N");
+    ContactForceFdi::Params p = suralp();
+    p.zero_clamp_N = c.clamp_N;
+    Feet feet(p, 1e-3);
+    for (int k = 0; k < 500; ++k) {
+      double sum = 0.0;
+      for (std::size_t j = 1; j < kChannels; ++j) sum += feet.measured[j] = moving(j, k, 0.0);
+      feet.measured[0] = 0.0;
+      feet.step(sum + c.load_N);
+      ASSERT_EQ(feet.type(0), c.frozen && k >= 20 ? FaultType::frozen : FaultType::none) << "tick " << k;
+    }
+  }
+}
+
 TEST(ContactForceFdi, NoiseTestTellsWhiteJitterFromAFastSmoothLoadAndFromAChatteringFoot) {
   // 200 Hz: the 0.05 s window is 10 ticks; 6 second differences above 4 sqrt(6) 2 N = 19.6 N,
   // with the foot's summed reading above 2 x 19.6 N (4 pads), make a burst when the window is

@@ -28,6 +28,10 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("lower_limit", &Params::lower_limit,
              "lower end of the measuring range (saturation at it); empty: none (a force sensor's 0 N is "
              "a healthy unloaded reading, not a limit); one value applies to all");
+  schema.add("rest_value", &Params::rest_value,
+             "the value the sensor's driver reads, exactly, when unloaded (0 for a foot force sensor "
+             "that reports 0 N in the air); a run on it is not frozen by the reading alone; empty: none; "
+             "one value applies to all");
   schema.add("window_s", &Params::window_s, "window of the frozen, noise and spike tests")
       .unit("s")
       .greater_than(0.0)
@@ -95,6 +99,7 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
   const auto resolution = channel_values(params.resolution, dim, "resolution");
   const auto upper = channel_values(params.upper_limit, dim, "upper_limit", true);
   const auto lower = channel_values(params.lower_limit, dim, "lower_limit", true);
+  const auto rest = channel_values(params.rest_value, dim, "rest_value", true);
   const auto reference_noise = channel_values(params.reference_noise_std, dim, "reference_noise_std");
   const auto min_change = channel_values(params.min_reference_change, dim, "min_reference_change");
 
@@ -140,6 +145,8 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     l.upper = std::isfinite(upper[j]) ? upper[j] : std::numeric_limits<double>::infinity();
     l.lower = std::isfinite(lower[j]) ? lower[j] : -std::numeric_limits<double>::infinity();
     l.stale_test = noise_std[j] >= 0.5 * q;
+    l.has_rest = std::isfinite(rest[j]);
+    l.rest = l.has_rest ? rest[j] : 0.0;
     l.stale_below = 6.0 * sigma2 * static_cast<double>(window_) * low_quantile;
     l.noise_level = 2.0 * std::sqrt(6.0 * tested2);
     l.spike_above = spike_z * std::sqrt(1.5 * tested2);
@@ -245,8 +252,10 @@ void SignalValidator::step(const StepIO& io) noexcept {
     s.x2 = s.x1;
     s.x1 = x[j];
     s.x_history = std::min(s.x_history + 1, 2);
+    // The d2 window spans the last n + 2 readings; one of them at rest makes it no evidence.
+    s.since_rest = l.has_rest && std::abs(x[j] - l.rest) <= l.half_step ? 0 : std::min(s.since_rest + 1, n + 2);
     if (found == FaultType::none && frozen_test_ && l.stale_test && s.reading_d2.filled == n &&
-        s.reading_d2.sum < l.stale_below) {
+        s.since_rest >= n + 2 && s.reading_d2.sum < l.stale_below) {
       found = FaultType::frozen;
     }
 

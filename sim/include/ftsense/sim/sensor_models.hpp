@@ -22,7 +22,10 @@
 //     invalid     NaN (dropout)
 //     saturation  clamp(y, min_N, max_N)
 //   y = q round(y / q) with the resolution q > 0 (an ADC quantises whatever reaches it, faults
-//   included; NaN stays NaN).
+//   included; NaN stays NaN);
+//   y = 0 if y < z, with `zero_below` z given: the zero clamp of a driver that reports an unloaded
+//   foot as exactly 0 N (a foot in the air reads exact zeros but for noise above z; a negative
+//   reading, even a fault's, reads 0).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -81,6 +84,7 @@ inline constexpr double kQuadrupedForceNoiseStdN = 0.5;
 struct SensorParams {
   double force_noise_std_N = 2.0;
   double force_resolution_N = 0.0;  ///< quantisation step of the force readings; 0: none
+  std::optional<double> force_zero_below_N;  ///< readings below this read exactly 0; absent: none
   double acc_noise_std_m_s2 = 0.05;
   std::array<double, 3> acc_bias_m_s2 = {0.02, -0.015, 0.03};
   double gyro_noise_std_rad_s = 0.002;
@@ -114,9 +118,11 @@ struct FaultState {
 class ForceChannelModel {
  public:
   /// `dt` is the simulation tick (k counts them); `sample_period` the sensor's (a multiple of dt:
-  /// step is then called every sample_period / dt ticks); `resolution` the quantisation step.
+  /// step is then called every sample_period / dt ticks); `resolution` the quantisation step;
+  /// `zero_below` the driver's zero clamp (none: no clamp).
   ForceChannelModel(int channel, double noise_std, std::vector<FaultSpec> faults, double dt,
-                    std::uint64_t seed, double sample_period = 0.0, double resolution = 0.0);
+                    std::uint64_t seed, double sample_period = 0.0, double resolution = 0.0,
+                    std::optional<double> zero_below = std::nullopt);
   struct Output {
     double value;
     FaultType fault;
@@ -135,6 +141,7 @@ class ForceChannelModel {
   double dt_;
   double sample_period_;
   double resolution_;
+  std::optional<double> zero_below_;
   Rng rng_;
   std::vector<Active> faults_;
   double last_output_ = 0.0;

@@ -29,7 +29,13 @@
 //             tick (a load at the level's centre), so n_f = max(frozen_min_s / T, ln alpha / ln p)
 //             (5 N steps and 2 N noise: p = 0.79, 77 ticks at 1 kHz). An unloaded pad (airborne,
 //             or left no load by the others: leave-one-out force below airborne_threshold_N) that
-//             reads its zero level (|N_j| <= q / 2) is not evidence (a sensor may clip at 0). Saturation when the value is at the top of the range (upper_limit_N - q/2,
+//             reads its zero level (|N_j| <= q / 2) is not evidence (a sensor may clip at 0).
+//             With a driver that reports any reading below c = zero_clamp_N as exactly 0, a zero
+//             reading only says that the pad carries less than c: it is evidence only while the
+//             leave-one-out force, whose error the sum residual's bound sum_threshold_N covers,
+//             puts the load above c + sum_threshold_N (a pad that rolls off, or lifts before its
+//             foot's kinematics says so, reads exact zeros for tens of ticks while its
+//             leave-one-out force still shows a few newtons). Saturation when the value is at the top of the range (upper_limit_N - q/2,
 //             when given), or a load (> airborne_threshold_N) that is the largest the channel has
 //             shown, or when the channel sticks again at the value of its previous stuck episode
 //             (a clipped load returns to the same ceiling).
@@ -211,6 +217,7 @@ class ContactForceFdi {
     double touchdown_guard_s = 0.15;
     double touchdown_height_m = 0.001;
     double resolution_N = 0.0;
+    double zero_clamp_N = 0.0;
     double upper_limit_N = 0.0;
     double frozen_min_s = 0.02;
     double false_alarm_interval_s = 86400.0;
@@ -374,6 +381,7 @@ class ContactForceFdi {
   int noise_window_ticks_;
   int frozen_ticks_ = 2;        // n_f, the frozen test's run length
   double repeat_band_N_ = 0.0;  // q / 2
+  double zero_evidence_above_N_ = 0.0;  // a zero reading is frozen evidence above this load
   int jump_window_ticks_;
   int min_airborne_samples_ = 10;
   static constexpr double kSmoothingHz = 10.0;  // cutoff of `smoothed` and `virtual_smoothed`

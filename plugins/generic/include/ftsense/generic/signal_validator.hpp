@@ -17,6 +17,11 @@
 //               sum(d2^2 over n) < 6 sigma^2 chi2_nu(alpha) / nu, nu = 36 n / 70 (Satterthwaite:
 //               overlapping d2 are correlated). Only when sigma >= q / 2: a sensor quantised
 //               coarser than its noise repeats itself when healthy (an unloaded foot reads 0).
+//               Nor while the window holds a reading at the sensor's rest value (`rest_value`,
+//               within q / 2): a driver that clamps an unloaded sensor there (a foot force
+//               sensor reporting exactly 0 N in the air) repeats it exactly while healthy, so a
+//               run on that value is no evidence of its own; frozen test (b) and the constraint
+//               residuals judge it against what the sensor should read.
 //               (b) with a reference: over the window, the low-passed reference moved by
 //               |dr| >= `min_reference_change` (default 10 sqrt(sigma^2 + sigma_r^2)) while the
 //               low-passed reading moved by less than `follow_ratio` |dr|: a frozen output that
@@ -68,6 +73,7 @@ class SignalValidator {
     std::vector<double> resolution{0.0};
     std::vector<double> upper_limit{};
     std::vector<double> lower_limit{};
+    std::vector<double> rest_value{};
     double window_s = 0.1;
     double false_alarm_interval_s = 86400.0;
     bool reference = false;
@@ -95,6 +101,8 @@ class SignalValidator {
     double half_step = 0.0;          // q / 2
     double upper = 0.0, lower = 0.0;  // saturation limits (+-inf: none)
     bool stale_test = true;           // sigma >= q / 2
+    double rest = 0.0;                // the value the driver clamps an unloaded sensor to
+    bool has_rest = false;
     double stale_below = 0.0;         // sum(d2^2) of the reading below this: frozen (a)
     double noise_level = 0.0;         // |d2| of the tested quantity above this counts for noise
     double spike_above = 0.0;         // |D| above this: spike
@@ -111,6 +119,7 @@ class SignalValidator {
     double y1 = 0.0, y2 = 0.0;  // previous two tested values (x, or x - r with a reference)
     double x1 = 0.0, x2 = 0.0;  // previous two readings
     int y_history = 0, x_history = 0;  // consecutive finite values seen, up to 2
+    std::size_t since_rest = 0;        // ticks since the reading was last at its rest value
     Window tested_d2;    // 1 where |d2| of the tested quantity > noise_level, else 0
     Window reading_d2;   // d2^2 of the reading
     Window lp_signal;    // low-passed reading, n + 1 values (only its ends are used)
