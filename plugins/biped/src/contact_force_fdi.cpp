@@ -95,8 +95,8 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
       .unit("N").at_least(0.0)
       .plausible(0.0, 100.0, "force sensors quantise in steps of up to a few newtons");
   schema.add("zero_clamp_N", &Params::zero_clamp_N,
-             "the sensors' driver reports any reading below this as exactly 0 N (0: no clamp): a zero "
-             "reading is then frozen evidence only while the leave-one-out force exceeds it by sum_threshold_N")
+             "the sensors' driver reports any reading below this as exactly 0 N (0: none known): a zero "
+             "reading is frozen evidence only while the leave-one-out force exceeds it by sum_threshold_N")
       .unit("N").at_least(0.0)
       .plausible(0.0, 1000.0, "a clamp of a few noise deviations");
   schema.add("upper_limit_N", &Params::upper_limit_N,
@@ -269,9 +269,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   }
   derive(params_.sum_threshold_N, kSumThresholdWeight * params.weight_N);
   derive(params_.gain_min_load_N, kGainMinLoadWeight * params.weight_N);
-  zero_evidence_above_N_ = params_.zero_clamp_N > 0.0
-                               ? std::max(params_.airborne_threshold_N, params_.zero_clamp_N + params_.sum_threshold_N)
-                               : params_.airborne_threshold_N;
+  zero_evidence_above_N_ = std::max(params_.airborne_threshold_N, params_.zero_clamp_N + params_.sum_threshold_N);
   if (params_.airborne_clear_N >= params_.airborne_threshold_N) {
     const auto shown = [](double given, double used) {
       return format_number(used) + (given == 0.0 ? " (derived from noise_std_N)" : "");
@@ -499,10 +497,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (c.type == FaultType::invalid) clear(c);  // a finite value re-admits at once
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
-      // An unloaded pad (in the air, or on the ground with no load left for it) on its zero level
-      // may repeat itself (a sensor that clips at zero or has a dead band): no evidence either
-      // way, so the run neither grows nor restarts. Any other value repeated in the air is
-      // evidence (a noisy sensor does not repeat 1.3 N).
+      // A pad on its zero level that may carry no more than a driver's zero clamp (in the air, or
+      // on the ground with a load within the clamp and the total force's error) may repeat
+      // itself: no evidence either way, so the run neither grows nor restarts. Any other value
+      // repeated in the air is evidence (a noisy sensor does not repeat 1.3 N).
       const bool unloaded = airborne || (std::isfinite(c.last_virtual) && c.last_virtual < zero_evidence_above_N_);
       const bool unloaded_zero = unloaded && std::abs(x) <= repeat_band_N_;
       if (std::abs(change) > repeat_band_N_) {

@@ -244,18 +244,18 @@ TEST(ContactForceFdi, UnloadedPadOnItsZeroLevelIsNoEvidenceOfAFrozenSensor) {
   }
 }
 
-TEST(ContactForceFdi, AClampedZeroIsFrozenEvidenceOnlyWhereTheLoadSurelyExceedsTheClamp) {
+TEST(ContactForceFdi, AZeroIsFrozenEvidenceOnlyWhereTheLoadSurelyExceedsADriversZeroClamp) {
   // Both feet on the ground; pad 0 reads exactly 0 from the start while the total force leaves it
-  // `load` N (its leave-one-out force). n_f = 20 ticks at 1 kHz (frozen_min_s). Without a clamp
-  // stated, a healthy noisy sensor never repeats 0 under 12 N (above airborne_threshold_N = 8 N):
-  // frozen on tick 20. With zero_clamp_N = 6 N, a zero says only "under 6 N", and 12 N is within
-  // the total force's error bound (sum_threshold_N = 80 N): no evidence. Under 200 N (> 6 + 80 N) a
-  // zero is a stuck sensor with or without the clamp: frozen on tick 20.
+  // `load` N (its leave-one-out force). n_f = 20 ticks at 1 kHz (frozen_min_s). A zero says only
+  // that the load is under the driver's clamp (zero_clamp_N, 0 when none is known), and the
+  // leave-one-out force is known within sum_threshold_N = 80 N: 12 N is no evidence; 200 N is,
+  // frozen on tick 20; 100 N is under a 30 N clamp but not under none.
   struct Case {
     double clamp_N, load_N;
     bool frozen;
   };
-  for (const Case& c : {Case{0.0, 12.0, true}, Case{6.0, 12.0, false}, Case{6.0, 200.0, true}}) {
+  for (const Case& c : {Case{0.0, 12.0, false}, Case{0.0, 200.0, true}, Case{0.0, 100.0, true}, Case{30.0, 100.0, false},
+                        Case{30.0, 200.0, true}}) {
     SCOPED_TRACE("zero_clamp_N " + std::to_string(c.clamp_N) + ", load " + std::to_string(c.load_N) + " N");
     ContactForceFdi::Params p = suralp();
     p.zero_clamp_N = c.clamp_N;

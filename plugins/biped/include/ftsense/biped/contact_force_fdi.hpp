@@ -30,12 +30,14 @@
 //             (5 N steps and 2 N noise: p = 0.79, 77 ticks at 1 kHz). An unloaded pad (airborne,
 //             or left no load by the others: leave-one-out force below airborne_threshold_N) that
 //             reads its zero level (|N_j| <= q / 2) is not evidence (a sensor may clip at 0).
-//             With a driver that reports any reading below c = zero_clamp_N as exactly 0, a zero
-//             reading only says that the pad carries less than c: it is evidence only while the
-//             leave-one-out force, whose error the sum residual's bound sum_threshold_N covers,
-//             puts the load above c + sum_threshold_N (a pad that rolls off, or lifts before its
-//             foot's kinematics says so, reads exact zeros for tens of ticks while its
-//             leave-one-out force still shows a few newtons). Saturation when the value is at the top of the range (upper_limit_N - q/2,
+//             Nor is a zero reading where the load may be within the clamp of such a driver: a
+//             driver that reports any reading below c = zero_clamp_N (0 when not known) as exactly
+//             0 makes a zero say only that the pad carries less than c, so a zero is evidence
+//             only while the leave-one-out force, whose error the sum residual's bound
+//             sum_threshold_N covers, puts the load above c + sum_threshold_N (a pad that rolls
+//             off, or lifts before its foot's kinematics says so, reads exact zeros for tens of
+//             ticks while its leave-one-out force still shows a few newtons). A sensor stuck at 0
+//             under a lighter load is off by less than that bound. Saturation when the value is at the top of the range (upper_limit_N - q/2,
 //             when given), or a load (> airborne_threshold_N) that is the largest the channel has
 //             shown, or when the channel sticks again at the value of its previous stuck episode
 //             (a clipped load returns to the same ceiling).
