@@ -356,6 +356,28 @@ TEST(SignalValidator, ARunOnTheRestValueIsNoFrozenEvidenceButARunElsewhereStillI
   }
 }
 
+TEST(SignalValidator, StuckAgainAtThePreviousEpisodesValueIsSaturationElsewhereFrozen) {
+  // No limits given. A reading that alternates 6 +- 1 (sigma = 1, d2 = +-4: not stale) sticks at 11
+  // from tick 100, moves again from 300, sticks at 11 from 500, moves from 700 and sticks at 11.001
+  // from 900. Entering a stretch from 7, 5 gives d2 = 2, then -4, then 0: the window keeps d2 = 4,
+  // 16 (sum 20, below the stale bound, 31.55) from tick s + n - 1 on; one tick earlier it also
+  // holds the 16 before (36). The first stretch is frozen (one stuck value cannot tell a clip from a
+  // freeze), the second saturation (a clip returns to its ceiling), the third frozen (another
+  // value, by 1 mN: q = 0, so only an exact repeat is the same value). Moving, nothing is flagged.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.05;
+  OneChannel c(p, 1e-3);
+  const int n = static_cast<int>(c.validator.window_ticks());
+  for (int k = 0; k < 1100; ++k) {
+    const int start = k >= 900 ? 900 : k >= 500 && k < 700 ? 500 : k >= 100 && k < 300 ? 100 : -1;
+    const double x = start < 0 ? 6.0 + (k % 2 ? 1.0 : -1.0) : start == 900 ? 11.001 : 11.0;
+    FaultType expected = FaultType::none;
+    if (start >= 0 && k >= start + n - 1) expected = start == 500 ? FaultType::saturation : FaultType::frozen;
+    ASSERT_EQ(c.step(x), expected) << "tick " << k;
+  }
+}
+
 TEST(SignalValidator, AReadingStuckOnItsRestValueIsFrozenWhenItsReferenceMoves) {
   // rest_value 0 keeps test (a) off on exact zeros; test (b) still sees a reading that stays at
   // 0 while its reference (the load it should carry) swings by 200 N, and nothing while the

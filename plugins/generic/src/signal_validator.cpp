@@ -254,10 +254,16 @@ void SignalValidator::step(const StepIO& io) noexcept {
     s.x_history = std::min(s.x_history + 1, 2);
     // The d2 window spans the last n + 2 readings; one of them at rest makes it no evidence.
     s.since_rest = l.has_rest && std::abs(x[j] - l.rest) <= l.half_step ? 0 : std::min(s.since_rest + 1, n + 2);
-    if (found == FaultType::none && frozen_test_ && l.stale_test && s.reading_d2.filled == n &&
-        s.since_rest >= n + 2 && s.reading_d2.sum < l.stale_below) {
-      found = FaultType::frozen;
+    const bool stuck = found == FaultType::none && frozen_test_ && l.stale_test && s.reading_d2.filled == n &&
+                       s.since_rest >= n + 2 && s.reading_d2.sum < l.stale_below;
+    if (stuck && !s.stuck) {
+      // A new stuck episode: at the previous one's value, a clip.
+      s.clipped = s.stuck_before && std::abs(x[j] - s.stuck_value) <= l.half_step;
+      s.stuck_value = x[j];
+      s.stuck_before = true;
     }
+    s.stuck = stuck;
+    if (stuck) found = s.clipped ? FaultType::saturation : FaultType::frozen;
 
     // Frozen (b): the reading does not follow the reference's move over the window.
     if (reference_ && std::isfinite(r)) {

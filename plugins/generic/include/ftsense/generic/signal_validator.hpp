@@ -11,7 +11,12 @@
 // at any rate.
 //
 //   invalid     x is NaN or Inf: flagged on that tick.
-//   saturation  x >= upper_limit - q / 2 or x <= lower_limit + q / 2: flagged on that tick.
+//   saturation  x >= upper_limit - q / 2 or x <= lower_limit + q / 2: flagged on that tick. And,
+//               limits given or not, a reading that frozen test (a) finds stuck again at the value
+//               of its previous stuck episode (within q / 2), after moving in between: a clipped
+//               signal returns to the same ceiling whenever its input exceeds it, while a frozen
+//               sensor does not leave its value and come back (the first episode is frozen: one
+//               stuck value alone cannot tell a clip from a freeze).
 //   frozen      (a) the reading has less tick-to-tick variation than its own noise allows: with
 //               d2 = x_t - 2 x_{t-1} + x_{t-2} (6 sigma^2 in variance, slow motion removed),
 //               sum(d2^2 over n) < 6 sigma^2 chi2_nu(alpha) / nu, nu = 36 n / 70 (Satterthwaite:
@@ -120,6 +125,10 @@ class SignalValidator {
     double x1 = 0.0, x2 = 0.0;  // previous two readings
     int y_history = 0, x_history = 0;  // consecutive finite values seen, up to 2
     std::size_t since_rest = 0;        // ticks since the reading was last at its rest value
+    bool stuck = false;                // frozen test (a) failed on the previous tick
+    bool clipped = false;              // the present stuck episode sits where the previous one did
+    double stuck_value = 0.0;          // the value of the last stuck episode
+    bool stuck_before = false;         // an earlier stuck episode exists
     Window tested_d2;    // 1 where |d2| of the tested quantity > noise_level, else 0
     Window reading_d2;   // d2^2 of the reading
     Window lp_signal;    // low-passed reading, n + 1 values (only its ends are used)
