@@ -44,6 +44,10 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("reference", &Params::reference,
              "adds input reference (a virtual sensor of the same quantity): the frozen test (b), and the "
              "spike and noise tests on reading - reference");
+  schema.add("guard", &Params::guard,
+             "adds input guard (nonzero on ticks whose own motion the rate does not resolve, such as a "
+             "landing: change_guard after the contact flags): there no spike is seen and no second "
+             "difference counts as noise");
   schema
       .add("reference_noise_std", &Params::reference_noise_std,
            "standard deviation sigma_r of the reference's noise at the tick rate, in the signal's unit; "
@@ -87,7 +91,8 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     : sample_period_s_(context.sample_period_s()),
       window_s_(params.window_s),
       follow_ratio_(params.follow_ratio),
-      reference_(params.reference) {
+      reference_(params.reference),
+      guard_(params.guard) {
   const auto chosen = [&](std::string_view test) {
     return std::find(params.tests.begin(), params.tests.end(), test) != params.tests.end();
   };
@@ -161,6 +166,14 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
   if (reference_) {
     ports_.add_input(PortSpec{"reference", dim, std::string(kAnyUnit),
                               "a virtual sensor of the same quantity (reference)", PortRole::virtual_estimate}
+                         .sized_by("as `signal`"));
+  }
+  if (guard_) {
+    guard_input_ = reference_ ? 2 : 1;
+    ports_.add_input(PortSpec{"guard", dim, std::string(kDimensionless),
+                              "nonzero on a tick whose own motion the rate does not resolve (a transient): no spike "
+                              "or noise evidence there",
+                              PortRole::virtual_estimate}
                          .sized_by("as `signal`"));
   }
   ports_.add_output(PortSpec{"fault", dim, std::string(kDimensionless), "1 while a test fails, else 0"}
@@ -290,14 +303,15 @@ void SignalValidator::step(const StepIO& io) noexcept {
       clear(s.lp_reference);
     }
 
-    // Spikes and noise: on x, or on x - r with a reference.
+    // Spikes and noise: on x, or on x - r with a reference; not on a guarded tick (NaN: guarded).
     const double y = x[j] - r;
+    const bool guarded = guard_ && !(io.in(guard_input_)[j] == 0.0);
     if (std::isfinite(y)) {
       if (s.y_history == 2) {
         const double d2 = y - 2.0 * s.y1 + s.y2;
-        push(s.tested_d2, sums_storage_, n, std::abs(d2) > l.noise_level ? 1.0 : 0.0);
+        push(s.tested_d2, sums_storage_, n, !guarded && std::abs(d2) > l.noise_level ? 1.0 : 0.0);
         const double off_neighbours = s.y1 - 0.5 * (s.y2 + y);
-        if (std::abs(off_neighbours) > l.spike_above && std::abs(y - s.y2) < std::abs(off_neighbours)) {
+        if (!guarded && std::abs(off_neighbours) > l.spike_above && std::abs(y - s.y2) < std::abs(off_neighbours)) {
           s.spike_hold_s = window_s_;
         }
       }

@@ -2,6 +2,7 @@
 // The generic plugins any fault detection problem needs, as one plugin set.
 
 #include "ftsense/generic/attitude_from_imu.hpp"
+#include "ftsense/generic/change_guard.hpp"
 #include "ftsense/generic/cusum_detector.hpp"
 #include "ftsense/generic/difference_residual.hpp"
 #include "ftsense/generic/fault_merge.hpp"
@@ -21,6 +22,7 @@ namespace ftsense::generic {
 
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
-                                  UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge>;
+                                  UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge,
+                                  ChangeGuard>;
 
 }  // namespace ftsense::generic

@@ -45,7 +45,10 @@
 // Invalid and saturation always run; `tests` chooses among frozen, spikes and noise. Without a
 // reference, spikes and noise judge the reading's own second differences, so they hold only for a
 // signal whose own motion the sample rate resolves: a foot's landing logged at 200 Hz is one
-// sample off its neighbours, as a spike is. For such a signal leave them out or give a reference.
+// sample off its neighbours, as a spike is. For such a signal leave them out, give a reference,
+// or give a `guard` input (change_guard after the contact flags): on a tick it marks, no spike is
+// seen and no second difference counts as noise, so the tests judge the ticks between
+// transients.
 // The type reported is the first that fires in the order above (noise before spikes: a burst is
 // many spikes, and isolated ones stay under the noise count's bound). A flag clears as soon as its
 // test passes again (frozen and noise: the window no longer shows it; spikes: window_s after the
@@ -65,8 +68,8 @@ class SignalValidator {
   static constexpr std::string_view name = "signal_validator";
   static constexpr std::string_view summary =
       "invalid, saturated, frozen, spiky or noisy readings per channel, against the sensor's noise and resolution";
-  // For the config reference's port table and the schema (plugin.hpp): input reference is optional.
-  static constexpr std::string_view example_params = R"([{}, {"reference": true}])";
+  // For the config reference's port table and the schema (plugin.hpp): inputs reference and guard are optional.
+  static constexpr std::string_view example_params = R"([{}, {"reference": true, "guard": true}])";
 
   // `ftsense calibrate` measures each reading's white noise from its second differences.
   static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
@@ -82,6 +85,7 @@ class SignalValidator {
     double window_s = 0.1;
     double false_alarm_interval_s = 86400.0;
     bool reference = false;
+    bool guard = false;
     std::vector<double> reference_noise_std{0.0};
     std::vector<double> min_reference_change{0.0};
     double follow_ratio = 0.25;
@@ -155,6 +159,8 @@ class SignalValidator {
   double follow_ratio_ = 0.25;
   bool reference_ = false;
   bool frozen_test_ = true, spike_test_ = true, noise_test_ = true;
+  bool guard_ = false;
+  std::size_t guard_input_ = 0;  // index of input guard, after signal (and reference)
 };
 
 }  // namespace ftsense::generic

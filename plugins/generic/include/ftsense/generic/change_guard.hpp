@@ -1,0 +1,56 @@
+#pragma once
+// Guard after a change of state: 1 for hold_s after an input channel changes, else 0.
+//
+//   g_j(t) = 1  if some channel i in scope(j) changed at a tick t_c with t - t_c < hold_s
+//               (|s_i(t_c) - s_i(t_c - T)| > tolerance, or s_i(t_c) not finite: unknown counts
+//               as a change, so nothing is judged on a guess)
+//   g_j(t) = 0  otherwise
+//   scope(j) = every channel (`scope` any) or j alone (`scope` own).
+//
+// The input is a state that other signals follow abruptly: contact flags from kinematics, a gait
+// phase. The output marks the ticks where a signal's own motion is not resolved by the sample
+// rate (a foot's landing logged at 200 Hz is one sample off its neighbours, as a spike is, and
+// every foot's load shifts when one lands), for a validator's `guard` input. hold_s is the time
+// such a transient takes to die out, in seconds, so the same config holds at any rate.
+
+#include <string_view>
+#include <vector>
+
+#include "ftsense/plugin.hpp"
+
+namespace ftsense::generic {
+
+class ChangeGuard {
+ public:
+  static constexpr std::string_view name = "change_guard";
+  static constexpr std::string_view summary =
+      "1 for hold_s after a state input (contact flags, a gait phase) changes: the transient's ticks";
+
+  enum class Scope { any, own };
+  struct Params {
+    double hold_s = 0.15;
+    double tolerance = 0.0;
+    Scope scope = Scope::any;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kState };
+  enum Output : std::size_t { kGuard };
+
+  ChangeGuard(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept;
+  void step(const StepIO& io) noexcept;
+
+ private:
+  Ports ports_;
+  std::vector<double> previous_;
+  std::vector<double> since_change_s_;  // per channel; +inf: no change seen
+  bool started_ = false;
+  double hold_s_;
+  double tolerance_;
+  double sample_period_s_;
+  Scope scope_;
+};
+
+}  // namespace ftsense::generic
