@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <cstdio>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -98,6 +99,7 @@ TEST(SignalValidator, AFrozenReadingIsFlaggedOnTheTickItsLastMovesLeaveTheWindow
   SignalValidator::Params p;
   p.noise_std = {1.0};
   p.window_s = 0.05;
+  p.noise_margin = 1.0;  // the bound as computed below; NoiseMargin* tests the margin
   OneChannel c(p, 1e-3);
   const std::size_t n = c.validator.window_ticks();
   ASSERT_EQ(n, 50u);
@@ -339,6 +341,7 @@ TEST(SignalValidator, ARunOnTheRestValueIsNoFrozenEvidenceButARunElsewhereStillI
     SignalValidator::Params p;
     p.noise_std = {1.0};
     p.window_s = 0.05;
+    p.noise_margin = 1.0;  // the stale bound of the test above
     if (with_rest) p.rest_value = {0.0};
     OneChannel c(p, 1e-3);
     const int n = static_cast<int>(c.validator.window_ticks());
@@ -367,6 +370,7 @@ TEST(SignalValidator, StuckAgainAtThePreviousEpisodesValueIsSaturationElsewhereF
   SignalValidator::Params p;
   p.noise_std = {1.0};
   p.window_s = 0.05;
+  p.noise_margin = 1.0;  // the stale bound of the tests above
   OneChannel c(p, 1e-3);
   const int n = static_cast<int>(c.validator.window_ticks());
   for (int k = 0; k < 1100; ++k) {
@@ -394,6 +398,43 @@ TEST(SignalValidator, AReadingStuckOnItsRestValueIsFrozenWhenItsReferenceMoves) 
   FaultType last = FaultType::none;
   for (int k = 0; k < 500; ++k) last = c.step(0.0, 100.0 + 100.0 * std::sin(0.01 * k));
   EXPECT_EQ(last, FaultType::frozen);
+}
+
+TEST(SignalValidator, NoiseMarginKeepsAHealthySensorNoisierOrQuieterThanStatedUnflagged) {
+  // A slow load with white noise of 1.3 and of 1 / 1.3 times the stated sigma = 1, 100 s at 1 kHz
+  // (seed 41). With the default margin (1.5) none of the tests flags anything; with no margin the
+  // noisier sensor raises the noise or spike test (the bound's false-alarm target assumes sigma
+  // exactly). A tenfold noise burst is still noise with the margin.
+  constexpr unsigned kSeed = 41;
+  std::printf("seed %u\n", kSeed);
+  for (const double margin : {1.5, 1.0}) {
+    for (const double ratio : {1.3, 1.0 / 1.3}) {
+      SignalValidator::Params p;
+      p.noise_std = {1.0};
+      p.noise_margin = margin;
+      OneChannel c(p, 1e-3);
+      std::mt19937_64 rng(kSeed);
+      std::normal_distribution<double> noise(0.0, ratio);
+      int flagged = 0;
+      for (int k = 0; k < 100000; ++k) {
+        flagged += c.step(300.0 + 100.0 * std::sin(2.0 * std::numbers::pi * 0.5 * k * 1e-3) + noise(rng)) != FaultType::none;
+      }
+      std::printf("margin %.1f, noise x%.2f: %d ticks flagged\n", margin, ratio, flagged);
+      if (margin > 1.0) {
+        EXPECT_EQ(flagged, 0) << "noise x" << ratio;
+      } else if (ratio > 1.0) {
+        EXPECT_GT(flagged, 0);
+      }
+    }
+  }
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  OneChannel c(p, 1e-3);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  FaultType last = FaultType::none;
+  for (int k = 0; k < 300; ++k) last = c.step(300.0 + (k >= 100 ? 10.0 : 1.0) * noise(rng));
+  EXPECT_EQ(last, FaultType::noise);
 }
 
 TEST(SignalValidator, AnUnknownOrRepeatedTestIsAConfigError) {

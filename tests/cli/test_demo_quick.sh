@@ -118,11 +118,7 @@ rows = list(csv.DictReader(open(f"{out}/quadruped_faults_run_generic.csv")))
 feet = ("lf_foot", "rf_foot", "lh_foot", "rh_foot")
 first_cannot = next(float(r["time_s"]) for r in rows if float(r["time_s"]) >= 5.0 and r["lf_foot/cannot_judge"] == "1")
 assert first_cannot < 5.1, first_cannot
-assert all(r[f"{f}/fault"] == "0" for r in rows for f in ("lf_foot", "rf_foot", "lh_foot")), "a channel was blamed"
-# rh_foot's gain x1.5 (from 6 s) scales its noise by 1.5: the validator's noise test flags that,
-# and nothing else flags rh_foot.
-rh = [r for r in rows if r["rh_foot/fault"] != "0"]
-assert all(float(r["time_s"]) >= 6.0 and r["rh_foot/fault_type"] == "6" for r in rh), "rh_foot flagged other than noise"
+assert all(r[f"{f}/fault"] == "0" for r in rows for f in feet), "a channel was blamed"
 assert all(r["lf_foot/cannot_judge"] == "1" for r in rows if float(r["time_s"]) >= first_cannot)
 PY
 # The validator's verdicts reach the monitor through fault_merge: the dropout (NaN 6-7 s) is

@@ -64,6 +64,11 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
              "frozen (b) when the reading moved less than this fraction of the reference's move")
       .greater_than(0.0)
       .at_most(1.0);
+  schema.add("noise_margin", &Params::noise_margin,
+             "a healthy reading's noise may lie between noise_std / m and m noise_std (load-dependent noise, a "
+             "calibration on another log): the tests keep their false-alarm rate over that range")
+      .at_least(1.0)
+      .plausible(1.0, 4.0, "noise specifications hold within a factor of 1 to 2");
   schema.add("tests", &Params::tests,
              "the tests that run besides invalid and saturation: any of frozen, spikes, noise (without a "
              "reference, spikes and noise need a signal whose own motion the sample rate resolves)");
@@ -141,6 +146,7 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     // variance q^2 / 4 (q^2 / 12 is only the average over values).
     const double quantisation2 = q * q / 4.0;
     const double tested2 = sigma2 + quantisation2 + (reference_ ? reference_noise[j] * reference_noise[j] : 0.0);
+    const double m = params.noise_margin;
     l.half_step = 0.5 * q;
     if (std::isfinite(upper[j]) && std::isfinite(lower[j]) && !(upper[j] - lower[j] > q)) {
       throw ConfigError("/params/upper_limit/" + std::to_string(j),
@@ -152,9 +158,9 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     l.stale_test = noise_std[j] >= 0.5 * q;
     l.has_rest = std::isfinite(rest[j]);
     l.rest = l.has_rest ? rest[j] : 0.0;
-    l.stale_below = 6.0 * sigma2 * static_cast<double>(window_) * low_quantile;
-    l.noise_level = 2.0 * std::sqrt(6.0 * tested2);
-    l.spike_above = spike_z * std::sqrt(1.5 * tested2);
+    l.stale_below = 6.0 * sigma2 * static_cast<double>(window_) * low_quantile / (m * m);
+    l.noise_level = 2.0 * m * std::sqrt(6.0 * tested2);
+    l.spike_above = spike_z * m * std::sqrt(1.5 * tested2);
     l.min_reference_change =
         min_change[j] > 0.0 ? min_change[j]
                             : 10.0 * std::sqrt(sigma2 + reference_noise[j] * reference_noise[j]);
