@@ -77,10 +77,18 @@ TEST(ChangeGuard, ASmallChangeWithinToleranceIsNone) {
   }
 }
 
+TEST(ChangeGuard, AHoldOfUnderHalfATickIsAConfigError) {
+  ChangeGuard::Params p;
+  p.hold_s = 0.002;  // 0.4 ticks at 200 Hz: no tick would be guarded
+  EXPECT_THROW(ChangeGuard(p, StageContext(0.005, "g", {{"state", 1}})), ConfigError);
+  p.hold_s = 0.0025;  // half a tick rounds to one (round half away from zero)
+  EXPECT_NO_THROW(ChangeGuard(p, StageContext(0.005, "g", {{"state", 1}})));
+}
+
 TEST(ChangeGuard, ALandingsTransientIsNoSpikeButASpikeBetweenTransientsIs) {
   // A foot's load at 200 Hz (window 0.1 s: 20 ticks), noise sigma 0.5 N: in the air (0 N) until tick
-  // 40, then a landing whose impact peak is one sample (0, 80, 30, 32 ...: 80 is off both
-  // neighbours like a spike), a spike of 40 N at tick 100. The contact flag lands at tick 40 and
+  // 40, then a landing whose impact peak is one sample (30 at tick 40, 80 at 41, then 30.2, 30.3
+  // ...: 80 is off both neighbours like a spike), a spike of 40 N at tick 100. The contact flag lands at tick 40 and
   // change_guard (hold_s 0.05 s: 10 ticks) guards ticks 40-49: the peak is no spike; the spike at
   // tick 100 is flagged one tick late, for window_s. Without the guard the landing is a spike.
   constexpr unsigned kSeed = 31;

@@ -403,8 +403,9 @@ TEST(SignalValidator, AReadingStuckOnItsRestValueIsFrozenWhenItsReferenceMoves) 
 TEST(SignalValidator, NoiseMarginKeepsAHealthySensorNoisierOrQuieterThanStatedUnflagged) {
   // A slow load with white noise of 1.3 and of 1 / 1.3 times the stated sigma = 1, 100 s at 1 kHz
   // (seed 41). With the default margin (1.5) none of the tests flags anything; with no margin the
-  // noisier sensor raises the noise or spike test (the bound's false-alarm target assumes sigma
-  // exactly). A tenfold noise burst is still noise with the margin.
+  // noisier sensor raises the noise or spike test and the quieter one the frozen test (the bounds'
+  // false-alarm target assumes sigma exactly). A tenfold noise burst is still noise with the
+  // margin; a margin under 1 is a config error.
   constexpr unsigned kSeed = 41;
   std::printf("seed %u\n", kSeed);
   for (const double margin : {1.5, 1.0}) {
@@ -422,8 +423,8 @@ TEST(SignalValidator, NoiseMarginKeepsAHealthySensorNoisierOrQuieterThanStatedUn
       std::printf("margin %.1f, noise x%.2f: %d ticks flagged\n", margin, ratio, flagged);
       if (margin > 1.0) {
         EXPECT_EQ(flagged, 0) << "noise x" << ratio;
-      } else if (ratio > 1.0) {
-        EXPECT_GT(flagged, 0);
+      } else {
+        EXPECT_GT(flagged, 0) << "noise x" << ratio;  // noisier: noise or spikes; quieter: frozen
       }
     }
   }
@@ -435,6 +436,8 @@ TEST(SignalValidator, NoiseMarginKeepsAHealthySensorNoisierOrQuieterThanStatedUn
   FaultType last = FaultType::none;
   for (int k = 0; k < 300; ++k) last = c.step(300.0 + (k >= 100 ? 10.0 : 1.0) * noise(rng));
   EXPECT_EQ(last, FaultType::noise);
+  p.noise_margin = 0.5;
+  EXPECT_THROW(SignalValidator(p, StageContext(1e-3, "v", {{"signal", 1}})), ConfigError);
 }
 
 TEST(SignalValidator, AnUnknownOrRepeatedTestIsAConfigError) {

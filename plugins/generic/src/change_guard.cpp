@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 namespace ftsense::generic {
@@ -21,46 +20,49 @@ void ChangeGuard::Params::describe(ParamSchema<Params>& schema) {
 }
 
 ChangeGuard::ChangeGuard(const Params& params, const StageContext& context)
-    : hold_s_(params.hold_s),
-      tolerance_(params.tolerance),
-      sample_period_s_(context.sample_period_s()),
-      scope_(params.scope) {
+    : tolerance_(params.tolerance), scope_(params.scope) {
+  const double ticks = std::round(params.hold_s / context.sample_period_s());
+  if (!(ticks >= 1.0 && ticks <= 1e9)) {
+    throw ConfigError("/params/hold_s", " = " + format_number(params.hold_s) + " s is " + format_number(ticks) +
+                                            " ticks of " + format_number(context.sample_period_s()) +
+                                            " s; the guard needs at least one tick");
+  }
+  hold_ticks_ = static_cast<std::size_t>(ticks);
   const std::size_t dim = context.wired_dim("state", 1);
   ports_.add_input(PortSpec{"state", dim, std::string(kAnyUnit),
                             "the state other signals follow abruptly (contact flags, a gait phase)",
                             PortRole::virtual_estimate}
                        .sized_by("as wired"));
   ports_.add_output(PortSpec{"guard", dim, std::string(kDimensionless),
-                             "1 within hold_s after a change of the channels in scope, else 0"}
+                             "1 on the round(hold_s / T) ticks from a change of the channels in scope, else 0"}
                         .sized_by("as `state`"));
   previous_.assign(dim, 0.0);
-  since_change_s_.assign(dim, std::numeric_limits<double>::infinity());
+  since_change_.assign(dim, hold_ticks_);
 }
 
 void ChangeGuard::reset() noexcept {
   std::fill(previous_.begin(), previous_.end(), 0.0);
-  std::fill(since_change_s_.begin(), since_change_s_.end(), std::numeric_limits<double>::infinity());
+  std::fill(since_change_.begin(), since_change_.end(), hold_ticks_);
   started_ = false;
 }
 
 void ChangeGuard::step(const StepIO& io) noexcept {
   const auto state = io.in(kState);
   const auto guard = io.out(kGuard);
-  double latest_change_s = std::numeric_limits<double>::infinity();
+  std::size_t latest_change = hold_ticks_;
   for (std::size_t j = 0; j < previous_.size(); ++j) {
     const bool known = std::isfinite(state[j]);
     const bool changed =
         !known || (started_ && (!std::isfinite(previous_[j]) || std::abs(state[j] - previous_[j]) > tolerance_));
-    since_change_s_[j] = changed ? 0.0 : since_change_s_[j] + sample_period_s_;
+    // 0 on the changing tick; the guard holds while under hold_ticks_.
+    since_change_[j] = changed ? 0 : std::min(since_change_[j] + 1, hold_ticks_);
     previous_[j] = state[j];
-    latest_change_s = std::min(latest_change_s, since_change_s_[j]);
+    latest_change = std::min(latest_change, since_change_[j]);
   }
   started_ = true;
-  // Half a tick of slack: hold_s of k ticks guards the changing tick and the k - 1 after it.
-  const double hold = hold_s_ - 0.5 * sample_period_s_;
   for (std::size_t j = 0; j < previous_.size(); ++j) {
-    const double since = scope_ == Scope::any ? latest_change_s : since_change_s_[j];
-    guard[j] = since < hold ? 1.0 : 0.0;
+    const std::size_t since = scope_ == Scope::any ? latest_change : since_change_[j];
+    guard[j] = since < hold_ticks_ ? 1.0 : 0.0;
   }
 }
 

@@ -120,6 +120,10 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
                                               " s; the variance tests need 10 to 1e6 ticks");
   }
   window_ = static_cast<std::size_t>(ticks);
+  if (!(params.noise_margin >= 1.0 && std::isfinite(params.noise_margin))) {
+    throw ConfigError("/params/noise_margin",
+                      " = " + format_number(params.noise_margin) + " is not a factor of at least 1");
+  }
   const double alpha = sample_period_s_ / params.false_alarm_interval_s;
   if (!(alpha < 0.5)) {
     throw ConfigError("/params/false_alarm_interval_s",
@@ -252,8 +256,10 @@ void SignalValidator::step(const StepIO& io) noexcept {
     FaultType found = FaultType::none;
 
     if (!std::isfinite(x[j])) {
-      // Nothing of this tick enters a window; the differences restart after the gap.
+      // Nothing of this tick enters a window; the differences restart after the gap (and the d2
+      // window then spans more than n + 2 readings: judge it as if one of them were at rest).
       s.x_history = s.y_history = 0;
+      s.since_rest = 0;
       s.lp_started = false;
       clear(s.lp_signal);
       clear(s.lp_reference);
@@ -271,7 +277,8 @@ void SignalValidator::step(const StepIO& io) noexcept {
     s.x2 = s.x1;
     s.x1 = x[j];
     s.x_history = std::min(s.x_history + 1, 2);
-    // The d2 window spans the last n + 2 readings; one of them at rest makes it no evidence.
+    // Without gaps the d2 window spans the last n + 2 readings; one of them at rest makes it no
+    // evidence (a gap restarts the count, so a window across it waits n + 2 readings too).
     s.since_rest = l.has_rest && std::abs(x[j] - l.rest) <= l.half_step ? 0 : std::min(s.since_rest + 1, n + 2);
     const bool stuck = found == FaultType::none && frozen_test_ && l.stale_test && s.reading_d2.filled == n &&
                        s.since_rest >= n + 2 && s.reading_d2.sum < l.stale_below;

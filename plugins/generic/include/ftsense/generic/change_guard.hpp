@@ -1,10 +1,11 @@
 #pragma once
 // Guard after a change of state: 1 for hold_s after an input channel changes, else 0.
 //
-//   g_j(t) = 1  if some channel i in scope(j) changed at a tick t_c with t - t_c < hold_s
-//               (|s_i(t_c) - s_i(t_c - T)| > tolerance, or s_i(t_c) not finite: unknown counts
-//               as a change, so nothing is judged on a guess)
-//   g_j(t) = 0  otherwise
+//   g_j = 1  on the h = round(hold_s / T) ticks from a tick t_c on which some channel i in
+//            scope(j) changed (|s_i(t_c) - s_i(t_c - T)| > tolerance, or s_i(t_c) not finite:
+//            unknown counts as a change, so nothing is judged on a guess); h >= 1 (a hold of
+//            under half a tick is a config error)
+//   g_j = 0  otherwise
 //   scope(j) = every channel (`scope` any) or j alone (`scope` own).
 //
 // The input is a state that other signals follow abruptly: contact flags from kinematics, a gait
@@ -45,11 +46,10 @@ class ChangeGuard {
  private:
   Ports ports_;
   std::vector<double> previous_;
-  std::vector<double> since_change_s_;  // per channel; +inf: no change seen
+  std::vector<std::size_t> since_change_;  // ticks since the channel last changed, up to hold_ticks_
   bool started_ = false;
-  double hold_s_;
+  std::size_t hold_ticks_ = 1;
   double tolerance_;
-  double sample_period_s_;
   Scope scope_;
 };
 

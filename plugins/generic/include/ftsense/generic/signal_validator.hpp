@@ -12,8 +12,8 @@
 // with the load on many sensors, and a calibration log is not the log judged. So every test keeps
 // its false-alarm rate for any healthy noise between sigma / m and m sigma, m = `noise_margin`
 // (default 1.5): the noise and spike levels below are taken at m sigma, the frozen bound at
-// sigma / m. (At m = 1 a healthy noise 20 % above sigma raised the noise test about once in
-// 100 s at 1 kHz, 30 % above it 32 times.)
+// sigma / m. (At m = 1, on 100 s at 1 kHz, a healthy noise 30 % above sigma was flagged on 461
+// ticks, one 30 % below it on 13: `SignalValidator.NoiseMargin*` prints them.)
 //
 //   invalid     x is NaN or Inf: flagged on that tick.
 //   saturation  x >= upper_limit - q / 2 or x <= lower_limit + q / 2: flagged on that tick. And,
@@ -21,7 +21,9 @@
 //               of its previous stuck episode (within q / 2), after moving in between: a clipped
 //               signal returns to the same ceiling whenever its input exceeds it, while a frozen
 //               sensor does not leave its value and come back (the first episode is frozen: one
-//               stuck value alone cannot tell a clip from a freeze).
+//               stuck value alone cannot tell a clip from a freeze). The value is remembered
+//               until reset: a sensor that freezes twice on the same value (within q / 2) is
+//               typed saturation the second time, which is how it behaves.
 //   frozen      (a) the reading has less tick-to-tick variation than its own noise allows: with
 //               d2 = x_t - 2 x_{t-1} + x_{t-2} (6 sigma^2 in variance, slow motion removed),
 //               sum(d2^2 over n) < 6 sigma^2 chi2_nu(alpha) / nu, nu = 36 n / 70 (Satterthwaite:
