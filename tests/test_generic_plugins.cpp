@@ -369,6 +369,61 @@ TEST(FaultRecovery, ACodeOutsideTheTableCountsAsInvalid) {
   EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 42.0), 90.0);  // an integer, but no fault type's code
 }
 
+TEST(FaultRecovery, ABlendedChannelTakesTheVirtualValuePlusALowPassOfTheDifference) {
+  // d_k = measured - virtual = 10 + 40 (-1)^k from k = 1, the low-pass started at d_0 = 10:
+  // y_k = 10 + 40 a (-1)^k (1 - (a - 1)^k) / (2 - a), a = 1 - exp(-2 pi 10 Hz 1 ms) (closed form
+  // of the recursion y_k = y_{k-1} + a (d_k - y_{k-1}) for an alternating input).
+  generic::FaultRecovery::Params p;
+  p.blend_types = {"noise"};
+  RecoveryRig rig(p);
+  const double a = 1.0 - std::exp(-2.0 * std::numbers::pi * 10.0 * 1e-3);
+  EXPECT_EQ(rig.step(110.0, 0.0, 100.0, 0.0, 0.0), 110.0);  // healthy: passes through
+  for (int k = 1; k <= 50; ++k) {
+    const double sign = k % 2 == 0 ? 1.0 : -1.0;
+    const double expected = 110.0 + 40.0 * a * sign * (1.0 - std::pow(a - 1.0, k)) / (2.0 - a);
+    ASSERT_NEAR(rig.step(110.0 + 40.0 * sign, 0.0, 100.0, 1.0, 6.0), expected, 1e-9) << "tick " << k;
+  }
+  // Spikes are not in blend_types: the estimate is subtracted as before.
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 7.0), 100.0);
+}
+
+TEST(FaultRecovery, ABlendedChannelFollowsARampThatItsLowPassWouldLag) {
+  // A 3 N-per-tick load read by a noise-burst channel whose virtual value is 5 N high: the
+  // difference is -5 N on every tick, so the recovered value is the load itself, where a 10 Hz
+  // low-pass of the reading would lag it by 3 N x 15.9 ticks (48 N).
+  generic::FaultRecovery::Params p;
+  p.blend_types = {"noise"};
+  RecoveryRig rig(p);
+  for (int k = 0; k < 200; ++k) {
+    const double load = 3.0 * k;
+    ASSERT_NEAR(rig.step(load, 0.0, load + 5.0, 1.0, 6.0), load, 1e-9) << "tick " << k;
+  }
+  // A reading that is not a number is substituted, whatever its type.
+  EXPECT_EQ(rig.step(std::nan(""), 0.0, 605.0, 1.0, 6.0), 605.0);
+}
+
+TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {
+  Diagnostics d;
+  (void)load_params<generic::FaultRecovery::Params>(
+      Json::parse(R"({"substitute_types": ["frozen", "noise"], "blend_types": ["noise", "nois"]})"),
+      "/stages/4/params", "fault_recovery", d);
+  ASSERT_EQ(d.errors().size(), 2u);
+  EXPECT_EQ(d.errors()[0].path, "/stages/4/params/blend_types/1");
+  EXPECT_NE(d.errors()[0].message.find("did you mean 'noise'?"), std::string::npos);
+  EXPECT_EQ(d.errors()[1].path, "/stages/4/params/blend_types/0");
+  EXPECT_NE(d.errors()[1].message.find("also in substitute_types"), std::string::npos);
+
+  generic::FaultRecovery::Params p;
+  p.blend_cutoff_hz = 150.0;  // Nyquist at 200 Hz is 100 Hz
+  try {
+    generic::FaultRecovery recovery(p, StageContext(0.005, "rec", {{"measured", 1}}));
+    FAIL() << "a cut-off above the Nyquist frequency was accepted";
+  } catch (const ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].path, "/params/blend_cutoff_hz");
+  }
+}
+
 TEST(FaultRecovery, UnknownSubstituteTypeIsAConfigError) {
   Diagnostics d;
   (void)load_params<generic::FaultRecovery::Params>(Json::parse(R"({"substitute_types": ["frozn"]})"),

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ftsense/low_pass_gain.hpp"
+#include "ftsense/plausible_ranges.hpp"
+
 namespace ftsense::generic {
 
 void FaultRecovery::Params::describe(ParamSchema<Params>& schema) {
@@ -11,15 +14,35 @@ void FaultRecovery::Params::describe(ParamSchema<Params>& schema) {
                     {{"always", Correction::always}, {"when_flagged", Correction::when_flagged}});
   schema.add("substitute_types", &Params::substitute_types,
              "fault type names whose channel takes the virtual value instead");
+  schema.add("blend_types", &Params::blend_types,
+             "fault type names whose channel takes the virtual value plus a low-pass of measured - "
+             "virtual (a noise burst: the reading still carries the load)");
+  schema.add("blend_cutoff_hz", &Params::blend_cutoff_hz,
+             "cut-off f_c of that low-pass, below 1 / (2 T): the band where the virtual value's own "
+             "error lies")
+      .unit("Hz")
+      .greater_than(0.0).plausible(plausible::cutoff_hz());
 }
 
 void FaultRecovery::Params::validate(Diagnostics& diag, std::string_view path) const {
   std::vector<std::string> names;
   for (FaultType t : all_fault_types()) names.emplace_back(to_string(t));
-  for (std::size_t i = 0; i < substitute_types.size(); ++i) {
-    if (!fault_type_from_string(substitute_types[i])) {
-      diag.error(json_pointer_append(std::string(path) + "/substitute_types", i),
-                 "unknown fault type '" + substitute_types[i] + "'; " + suggest(substitute_types[i], names));
+  const auto check = [&](const std::vector<std::string>& types, std::string_view key) {
+    for (std::size_t i = 0; i < types.size(); ++i) {
+      if (!fault_type_from_string(types[i])) {
+        diag.error(json_pointer_append(std::string(path) + "/" + std::string(key), i),
+                   "unknown fault type '" + types[i] + "'; " + suggest(types[i], names));
+      }
+    }
+  };
+  check(substitute_types, "substitute_types");
+  check(blend_types, "blend_types");
+  for (std::size_t i = 0; i < blend_types.size(); ++i) {
+    if (std::find(substitute_types.begin(), substitute_types.end(), blend_types[i]) != substitute_types.end()) {
+      diag.error(json_pointer_append(std::string(path) + "/blend_types", i),
+                 "'" + blend_types[i] +
+                     "' is also in substitute_types; a fault type is recovered one way: remove it from "
+                     "one of the two lists");
     }
   }
 }
@@ -27,6 +50,8 @@ void FaultRecovery::Params::validate(Diagnostics& diag, std::string_view path) c
 FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
     : correction_(params.correction) {
   for (const auto& t : params.substitute_types) substitute_types_.push_back(*fault_type_from_string(t));
+  for (const auto& t : params.blend_types) blend_types_.push_back(*fault_type_from_string(t));
+  blend_gain_ = low_pass_gain(params.blend_cutoff_hz, context.sample_period_s(), "blend_cutoff_hz");
   const std::size_t dim = context.wired_dim("measured", 1);
   ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the monitored sensor"}.sized_by("as wired"));
   ports_.add_input(PortSpec{"fault_estimate", dim, std::string(kAnyUnit), "the estimated fault eta_hat"}
@@ -40,9 +65,15 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
   ports_.add_output(PortSpec{"recovered", dim, std::string(kAnyUnit), "the signal to use downstream"}
                         .sized_by("as `measured`"));
   last_.assign(dim, 0.0);
+  difference_lp_.assign(dim, 0.0);
+  difference_seen_.assign(dim, 0);
 }
 
-void FaultRecovery::reset() noexcept { std::fill(last_.begin(), last_.end(), 0.0); }
+void FaultRecovery::reset() noexcept {
+  std::fill(last_.begin(), last_.end(), 0.0);
+  std::fill(difference_lp_.begin(), difference_lp_.end(), 0.0);
+  std::fill(difference_seen_.begin(), difference_seen_.end(), static_cast<unsigned char>(0));
+}
 
 void FaultRecovery::step(const StepIO& io) noexcept {
   const auto measured = io.in(kMeasured);
@@ -54,12 +85,20 @@ void FaultRecovery::step(const StepIO& io) noexcept {
   for (std::size_t j = 0; j < out.size(); ++j) {
     // A code that is not one of the table's is itself invalid data.
     const FaultType t = fault_type_from_code(type[j]).value_or(FaultType::invalid);
+    const double difference = measured[j] - estimate[j];
+    if (std::isfinite(difference)) {
+      difference_lp_[j] = difference_seen_[j] ? difference_lp_[j] + blend_gain_ * (difference - difference_lp_[j])
+                                              : difference;
+      difference_seen_[j] = 1;
+    }
     const bool substitute = !std::isfinite(measured[j]) ||
                             std::find(substitute_types_.begin(), substitute_types_.end(), t) !=
                                 substitute_types_.end();
     const bool correct = correction_ == Correction::always || fault[j] != 0.0;
     const double corrected = correct ? measured[j] - fault_estimate[j] : measured[j];
-    double value = substitute ? estimate[j] : corrected;
+    const bool blend = !substitute && std::isfinite(estimate[j]) &&
+                       std::find(blend_types_.begin(), blend_types_.end(), t) != blend_types_.end();
+    double value = substitute ? estimate[j] : blend ? estimate[j] + difference_lp_[j] : corrected;
     if (!std::isfinite(value)) value = substitute ? corrected : estimate[j];
     if (!std::isfinite(value)) value = last_[j];
     out[j] = value;
