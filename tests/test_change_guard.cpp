@@ -90,13 +90,15 @@ TEST(ChangeGuard, ALandingsTransientIsNoSpikeButASpikeBetweenTransientsIs) {
   // 40, then a landing whose impact peak is one sample (30 at tick 40, 80 at 41, then 30.2, 30.3
   // ...: 80 is off both neighbours like a spike), a spike of 40 N at tick 100. The contact flag lands at tick 40 and
   // change_guard (hold_s 0.05 s: 10 ticks) guards ticks 40-49: the peak is no spike; the spike at
-  // tick 100 is flagged one tick late, for window_s. Without the guard the landing is a spike.
+  // tick 100 is flagged one tick late, for spike_hold_s (0.1 s). Without the guard the landing is a
+  // spike.
   constexpr unsigned kSeed = 31;
   std::printf("seed %u\n", kSeed);
   for (const bool with_guard : {true, false}) {
     generic::SignalValidator::Params vp;
     vp.noise_std = {0.5};
     vp.tests = {"spikes", "noise"};
+    vp.spike_hold_s = 0.1;  // a lone spike's hold: one window
     vp.guard = with_guard;
     const double period = 0.005;
     generic::SignalValidator validator(

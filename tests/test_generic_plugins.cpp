@@ -402,16 +402,35 @@ TEST(FaultRecovery, ABlendedChannelFollowsARampThatItsLowPassWouldLag) {
   EXPECT_EQ(rig.step(std::nan(""), 0.0, 605.0, 1.0, 6.0), 605.0);
 }
 
+TEST(FaultRecovery, ASpikyChannelTakesTheMedianOfItsLastThreeReadings) {
+  generic::FaultRecovery::Params p;
+  p.median_types = {"spikes"};
+  RecoveryRig rig(p);
+  // A ramp of 1 per tick with a +100 spike on tick 3 and a -100 one on tick 6, typed spikes from
+  // tick 2 on: the median drops each spike on its own tick and lags the ramp by at most two
+  // ticks (its neighbours stand in for the spike).
+  const double readings[] = {0.0, 1.0, 2.0, 103.0, 4.0, 5.0, -94.0, 7.0, 8.0};
+  const double expected[] = {0.0, 1.0, 1.0, 2.0, 4.0, 5.0, 4.0, 5.0, 7.0};
+  for (int k = 0; k < 9; ++k) {
+    EXPECT_EQ(rig.step(readings[k], 0.0, -1.0, k >= 2 ? 1.0 : 0.0, k >= 2 ? 7.0 : 0.0), expected[k]) << "tick " << k;
+  }
+  // A NaN reading is substituted and left out of the last three.
+  EXPECT_EQ(rig.step(std::nan(""), 0.0, 9.0, 1.0, 7.0), 9.0);
+  EXPECT_EQ(rig.step(10.0, 0.0, -1.0, 1.0, 7.0), 8.0);
+}
+
 TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {
   Diagnostics d;
   (void)load_params<generic::FaultRecovery::Params>(
-      Json::parse(R"({"substitute_types": ["frozen", "noise"], "blend_types": ["noise", "nois"]})"),
+      Json::parse(R"({"substitute_types": ["frozen", "noise"], "blend_types": ["noise", "nois"],
+                      "median_types": ["frozen"]})"),
       "/stages/4/params", "fault_recovery", d);
-  ASSERT_EQ(d.errors().size(), 2u);
+  ASSERT_EQ(d.errors().size(), 3u);
   EXPECT_EQ(d.errors()[0].path, "/stages/4/params/blend_types/1");
   EXPECT_NE(d.errors()[0].message.find("did you mean 'noise'?"), std::string::npos);
   EXPECT_EQ(d.errors()[1].path, "/stages/4/params/blend_types/0");
   EXPECT_NE(d.errors()[1].message.find("also in substitute_types"), std::string::npos);
+  EXPECT_EQ(d.errors()[2].path, "/stages/4/params/median_types/0");
 
   generic::FaultRecovery::Params p;
   p.blend_cutoff_hz = 150.0;  // Nyquist at 200 Hz is 100 Hz

@@ -194,20 +194,55 @@ TEST(SignalValidator, AFrozenOutputThatStillCarriesNoiseIsCaughtAgainstTheRefere
   EXPECT_LE(first_flag, 3.2);
 }
 
-TEST(SignalValidator, ASpikeIsFlaggedOneTickLateAndHeldForAWindow) {
+TEST(SignalValidator, ASpikeIsFlaggedOneTickLateAndHeldForSpikeHold) {
   SignalValidator::Params p;
   p.noise_std = {1.0};
-  p.window_s = 0.02;  // 20 ticks
+  p.window_s = 0.02;      // 20 ticks
+  p.spike_hold_s = 0.04;  // 40 ticks: a first spike's rate is unknown
   OneChannel c(p, 1e-3);
   constexpr unsigned kSeed = 16;
   std::printf("seed %u\n", kSeed);
   std::mt19937_64 rng(kSeed);
   std::normal_distribution<double> noise(0.0, 1.0);
   // A ramp with unit noise, one reading 100 off at tick 50.
-  for (int k = 0; k < 100; ++k) {
+  for (int k = 0; k < 150; ++k) {
     const FaultType found = c.step(0.5 * k + noise(rng) + (k == 50 ? 100.0 : 0.0));
-    EXPECT_EQ(found, k >= 51 && k < 71 ? FaultType::spikes : FaultType::none) << "tick " << k;
+    EXPECT_EQ(found, k >= 51 && k < 91 ? FaultType::spikes : FaultType::none) << "tick " << k;
   }
+}
+
+TEST(SignalValidator, ASpikeTrainIsHeldThroughItsGapsAndClearsAfterTheGapItsRateMakesUnlikely) {
+  // Spikes of 50 sigma every 50 ticks (20 per second at 1 kHz) from tick 1000 to 2000, on a
+  // reading alternating +-1 (d2 = +-4: no spike, no noise, not frozen). Each is seen one tick
+  // late. From the second on the rate is measured exactly: 20 Hz, so the flag holds
+  // ln(1 / 0.01) / 20 Hz = 0.2303 s, 230.3 ticks, after the last: flagged from 1001 to 2231.
+  // The first alone would hold spike_hold_s (0.8 s), longer than its gap: the flag never drops.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.1;
+  OneChannel c(p, 1e-3);
+  int first = -1, last = -1, flagged = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const bool spike = k >= 1000 && k <= 2000 && (k - 1000) % 50 == 0;
+    const FaultType found = c.step(100.0 + (k % 2 == 0 ? 1.0 : -1.0) + (spike ? 50.0 : 0.0));
+    if (found == FaultType::none) continue;
+    EXPECT_EQ(found, FaultType::spikes) << "tick " << k;
+    if (first < 0) first = k;
+    last = k;
+    ++flagged;
+  }
+  EXPECT_EQ(first, 1001);
+  EXPECT_EQ(last, 2231);
+  EXPECT_EQ(flagged, 2231 - 1001 + 1);  // no gap in between
+}
+
+TEST(SignalValidator, ASpikeHoldShorterThanTheWindowIsAConfigError) {
+  Diagnostics d;
+  (void)load_params<SignalValidator::Params>(Json::parse(R"({"window_s": 0.2, "spike_hold_s": 0.1})"),
+                                             "/stages/2/params", "signal_validator", d);
+  ASSERT_EQ(d.errors().size(), 1u);
+  EXPECT_EQ(d.errors()[0].path, "/stages/2/params/spike_hold_s");
+  EXPECT_NE(d.errors()[0].message.find("shorter than window_s"), std::string::npos);
 }
 
 TEST(SignalValidator, AStepIsNeitherASpikeNorNoise) {

@@ -17,6 +17,9 @@ void FaultRecovery::Params::describe(ParamSchema<Params>& schema) {
   schema.add("blend_types", &Params::blend_types,
              "fault type names whose channel takes the virtual value plus a low-pass of measured - "
              "virtual (a noise burst: the reading still carries the load)");
+  schema.add("median_types", &Params::median_types,
+             "fault type names whose channel takes the median of its last three readings (spikes: one "
+             "reading off both neighbours)");
   schema.add("blend_cutoff_hz", &Params::blend_cutoff_hz,
              "cut-off f_c of that low-pass, below 1 / (2 T): the band where the virtual value's own "
              "error lies")
@@ -37,12 +40,20 @@ void FaultRecovery::Params::validate(Diagnostics& diag, std::string_view path) c
   };
   check(substitute_types, "substitute_types");
   check(blend_types, "blend_types");
-  for (std::size_t i = 0; i < blend_types.size(); ++i) {
-    if (std::find(substitute_types.begin(), substitute_types.end(), blend_types[i]) != substitute_types.end()) {
-      diag.error(json_pointer_append(std::string(path) + "/blend_types", i),
-                 "'" + blend_types[i] +
-                     "' is also in substitute_types; a fault type is recovered one way: remove it from "
-                     "one of the two lists");
+  check(median_types, "median_types");
+  // A fault type is recovered one way: a later list may not repeat an earlier one's name.
+  const std::vector<std::pair<std::string_view, const std::vector<std::string>*>> lists{
+      {"substitute_types", &substitute_types}, {"blend_types", &blend_types}, {"median_types", &median_types}};
+  for (std::size_t later = 1; later < lists.size(); ++later) {
+    for (std::size_t i = 0; i < lists[later].second->size(); ++i) {
+      const std::string& type = (*lists[later].second)[i];
+      for (std::size_t earlier = 0; earlier < later; ++earlier) {
+        const auto& other = *lists[earlier].second;
+        if (std::find(other.begin(), other.end(), type) == other.end()) continue;
+        diag.error(json_pointer_append(std::string(path) + "/" + std::string(lists[later].first), i),
+                   "'" + type + "' is also in " + std::string(lists[earlier].first) +
+                       "; a fault type is recovered one way: remove it from one of the two lists");
+      }
     }
   }
 }
@@ -51,6 +62,7 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
     : correction_(params.correction) {
   for (const auto& t : params.substitute_types) substitute_types_.push_back(*fault_type_from_string(t));
   for (const auto& t : params.blend_types) blend_types_.push_back(*fault_type_from_string(t));
+  for (const auto& t : params.median_types) median_types_.push_back(*fault_type_from_string(t));
   blend_gain_ = low_pass_gain(params.blend_cutoff_hz, context.sample_period_s(), "blend_cutoff_hz");
   const std::size_t dim = context.wired_dim("measured", 1);
   ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the monitored sensor"}.sized_by("as wired"));
@@ -67,13 +79,23 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
   last_.assign(dim, 0.0);
   difference_lp_.assign(dim, 0.0);
   difference_seen_.assign(dim, 0);
+  previous_readings_.assign(dim, {0.0, 0.0});
+  previous_count_.assign(dim, 0);
 }
 
 void FaultRecovery::reset() noexcept {
   std::fill(last_.begin(), last_.end(), 0.0);
   std::fill(difference_lp_.begin(), difference_lp_.end(), 0.0);
   std::fill(difference_seen_.begin(), difference_seen_.end(), static_cast<unsigned char>(0));
+  std::fill(previous_readings_.begin(), previous_readings_.end(), std::array<double, 2>{0.0, 0.0});
+  std::fill(previous_count_.begin(), previous_count_.end(), static_cast<unsigned char>(0));
 }
+
+namespace {
+double median_of_three(double a, double b, double c) noexcept {
+  return std::max(std::min(a, b), std::min(std::max(a, b), c));
+}
+}  // namespace
 
 void FaultRecovery::step(const StepIO& io) noexcept {
   const auto measured = io.in(kMeasured);
@@ -98,7 +120,18 @@ void FaultRecovery::step(const StepIO& io) noexcept {
     const double corrected = correct ? measured[j] - fault_estimate[j] : measured[j];
     const bool blend = !substitute && std::isfinite(estimate[j]) &&
                        std::find(blend_types_.begin(), blend_types_.end(), t) != blend_types_.end();
-    double value = substitute ? estimate[j] : blend ? estimate[j] + difference_lp_[j] : corrected;
+    const bool median = !substitute && previous_count_[j] == 2 &&
+                        std::find(median_types_.begin(), median_types_.end(), t) != median_types_.end();
+    auto& previous = previous_readings_[j];
+    double value = substitute ? estimate[j]
+                   : blend    ? estimate[j] + difference_lp_[j]
+                   : median   ? median_of_three(measured[j], previous[0], previous[1])
+                              : corrected;
+    if (std::isfinite(measured[j])) {
+      previous[1] = previous[0];
+      previous[0] = measured[j];
+      previous_count_[j] = static_cast<unsigned char>(std::min(previous_count_[j] + 1, 2));
+    }
     if (!std::isfinite(value)) value = substitute ? corrected : estimate[j];
     if (!std::isfinite(value)) value = last_[j];
     out[j] = value;

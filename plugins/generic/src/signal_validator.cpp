@@ -69,6 +69,17 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
              "calibration on another log): the tests keep their false-alarm rate over that range")
       .at_least(1.0)
       .plausible(1.0, 4.0, "noise specifications hold within a factor of 1 to 2");
+  schema.add("spike_hold_s", &Params::spike_hold_s,
+             "the spikes flag holds this long after an episode's first spike (its rate is not known yet), "
+             "and at most this long after any spike; at least window_s")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(0.01, 10.0, "tenths of a second: a few gaps of a spike train");
+  schema.add("spike_gap_probability", &Params::spike_gap_probability,
+             "a spike episode ends after a gap that its measured rate leaves with this probability "
+             "(h = ln(1 / p) / rate)")
+      .greater_than(0.0)
+      .less_than(1.0);
   schema.add("tests", &Params::tests,
              "the tests that run besides invalid and saturation: any of frozen, spikes, noise (without a "
              "reference, spikes and noise need a signal whose own motion the sample rate resolves)");
@@ -79,6 +90,11 @@ constexpr std::array<std::string_view, 3> kOptionalTests{"frozen", "spikes", "no
 }  // namespace
 
 void SignalValidator::Params::validate(Diagnostics& diag, std::string_view path) const {
+  if (spike_hold_s < window_s) {
+    diag.error(std::string(path) + "/spike_hold_s",
+               "= " + format_number(spike_hold_s) + " s is shorter than window_s (" + format_number(window_s) +
+                   " s): the spikes flag holds at least a window; raise spike_hold_s or shorten window_s");
+  }
   const std::vector<std::string> names(kOptionalTests.begin(), kOptionalTests.end());
   for (std::size_t i = 0; i < tests.size(); ++i) {
     if (std::find(names.begin(), names.end(), tests[i]) == names.end()) {
@@ -95,6 +111,7 @@ void SignalValidator::Params::validate(Diagnostics& diag, std::string_view path)
 SignalValidator::SignalValidator(const Params& params, const StageContext& context)
     : sample_period_s_(context.sample_period_s()),
       window_s_(params.window_s),
+      spike_gap_log_(-std::log(params.spike_gap_probability)),
       follow_ratio_(params.follow_ratio),
       reference_(params.reference),
       guard_(params.guard) {
@@ -120,6 +137,7 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
                                               " s; the variance tests need 10 to 1e6 ticks");
   }
   window_ = static_cast<std::size_t>(ticks);
+  spike_hold_max_ticks_ = std::max(std::round(params.spike_hold_s / sample_period_s_), ticks);
   if (!(params.noise_margin >= 1.0 && std::isfinite(params.noise_margin))) {
     throw ConfigError("/params/noise_margin",
                       " = " + format_number(params.noise_margin) + " is not a factor of at least 1");
@@ -244,6 +262,22 @@ void SignalValidator::reset() noexcept {
   std::fill(lp_storage_.begin(), lp_storage_.end(), 0.0);
 }
 
+void SignalValidator::start_or_extend_spike_episode(State& s) const noexcept {
+  s.spike_quiet_ticks = 0;
+  if (s.spike_count == 0) {
+    s.spike_count = 1;
+    s.spike_seen_ticks = 0;
+    s.spike_hold_ticks = spike_hold_max_ticks_;
+    return;
+  }
+  ++s.spike_count;
+  // h / T = ln(1 / p_gap) / (lambda^ T), lambda^ T = (n - 1) / seen ticks; seen >= 1: it grew on
+  // this tick before the spike was seen.
+  const double gap_ticks = spike_gap_log_ * static_cast<double>(s.spike_seen_ticks) /
+                           static_cast<double>(s.spike_count - 1);
+  s.spike_hold_ticks = std::clamp(gap_ticks, static_cast<double>(window_), spike_hold_max_ticks_);
+}
+
 void SignalValidator::step(const StepIO& io) noexcept {
   const auto x = io.in(kSignal);
   const auto fault = io.out(kFault);
@@ -324,8 +358,14 @@ void SignalValidator::step(const StepIO& io) noexcept {
         const double d2 = y - 2.0 * s.y1 + s.y2;
         push(s.tested_d2, sums_storage_, n, !guarded && std::abs(d2) > l.noise_level ? 1.0 : 0.0);
         const double off_neighbours = s.y1 - 0.5 * (s.y2 + y);
-        if (!guarded && std::abs(off_neighbours) > l.spike_above && std::abs(y - s.y2) < std::abs(off_neighbours)) {
-          s.spike_hold_s = window_s_;
+        if (!guarded) {
+          if (s.spike_count > 0) {
+            ++s.spike_seen_ticks;
+            ++s.spike_quiet_ticks;
+          }
+          if (std::abs(off_neighbours) > l.spike_above && std::abs(y - s.y2) < std::abs(off_neighbours)) {
+            start_or_extend_spike_episode(s);
+          }
         }
       }
       s.y2 = s.y1;
@@ -339,8 +379,10 @@ void SignalValidator::step(const StepIO& io) noexcept {
         s.tested_d2.sum > noise_count_above_) {
       found = FaultType::noise;
     }
-    if (found == FaultType::none && spike_test_ && s.spike_hold_s > 0.0) found = FaultType::spikes;
-    s.spike_hold_s -= sample_period_s_;
+    if (found == FaultType::noise || static_cast<double>(s.spike_quiet_ticks) >= s.spike_hold_ticks) {
+      s.spike_count = 0;
+    }
+    if (found == FaultType::none && spike_test_ && s.spike_count > 0) found = FaultType::spikes;
 
     fault[j] = found == FaultType::none ? 0.0 : 1.0;
     type[j] = fault_code(found);

@@ -9,7 +9,15 @@
 //                                                     fault_type.hpp's codes counts as invalid)
 //   recovered_j = virtual_j + LP(measured_j - virtual_j)   when the type is one of `blend_types`
 //                                                     (default: none; a noise burst)
+//   recovered_j = median(x_t, x_{t-1}, x_{t-2})       when the type is one of `median_types`
+//                                                     (default: none; spikes), the last three
+//                                                     finite readings
 //
+// Why the median for spikes: between its spikes the reading is the sensor's own, better than any
+// virtual value; a spike is one reading off both neighbours, and the median of three drops it on
+// its own tick (while the detector, which needs the next reading, sees it one tick late, so the
+// channel must already be flagged: signal_validator holds the flag through a spike episode). On a
+// ramp the median lags by one tick, two next to a spike.
 // LP is a first-order low-pass at blend_cutoff_hz [Hz] (low_pass.hpp's recursion), run on every
 // tick where both values are finite, so at a fault's onset it holds the fault-free difference.
 // Why: a noise burst's reading still carries the load, but a low-pass of it lags a walking load
@@ -21,6 +29,7 @@
 // The output is never NaN: if the chosen value is not finite, the other one is used, and if
 // neither is, the last recovered value is held.
 
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -35,7 +44,8 @@ class FaultRecovery {
   static constexpr std::string_view name = "fault_recovery";
   static constexpr std::string_view summary =
       "recovered = measured - fault estimate, the virtual value (frozen, invalid), or the virtual "
-      "value plus a low-pass of measured - virtual (blend_types)";
+      "value plus a low-pass of measured - virtual (blend_types), or the median of the last three "
+      "readings (median_types)";
 
   enum class Correction { always, when_flagged };
 
@@ -44,6 +54,7 @@ class FaultRecovery {
     std::vector<std::string> substitute_types{std::string(to_string(FaultType::frozen)),
                                               std::string(to_string(FaultType::invalid))};
     std::vector<std::string> blend_types;
+    std::vector<std::string> median_types;
     double blend_cutoff_hz = 10.0;
     static void describe(ParamSchema<Params>& schema);
     void validate(Diagnostics& diag, std::string_view path) const;
@@ -65,6 +76,9 @@ class FaultRecovery {
   double blend_gain_ = 0.0;                   // a = 1 - exp(-2 pi f_c T)
   std::vector<double> difference_lp_;         // LP(measured - virtual), per channel
   std::vector<unsigned char> difference_seen_;  // a finite difference has initialised the LP
+  std::vector<FaultType> median_types_;
+  std::vector<std::array<double, 2>> previous_readings_;  // x_{t-1}, x_{t-2} (finite ones)
+  std::vector<unsigned char> previous_count_;             // how many of them are set, up to 2
   std::vector<double> last_;
 };
 

@@ -12,7 +12,7 @@
 // with the load on many sensors, and a calibration log is not the log judged. So every test keeps
 // its false-alarm rate for any healthy noise between sigma / m and m sigma, m = `noise_margin`
 // (default 1.5): the noise and spike levels below are taken at m sigma, the frozen bound at
-// sigma / m. (At m = 1, on 100 s at 1 kHz, a healthy noise 30 % above sigma was flagged on 461
+// sigma / m. (At m = 1, on 100 s at 1 kHz, a healthy noise 30 % above sigma was flagged on 1091
 // ticks, one 30 % below it on 13: `SignalValidator.NoiseMargin*` prints them.)
 //
 //   invalid     x is NaN or Inf: flagged on that tick.
@@ -48,7 +48,17 @@
 //               motion at the tick rate must be small against its noise.
 //   spikes      one reading off both neighbours and back: D = x_{t-1} - (x_{t-2} + x_t) / 2 with
 //               |D| > z sqrt(1.5 s^2) (z: the two-sided normal quantile of alpha) and
-//               |x_t - x_{t-2}| < |D|. Seen one tick late; the flag holds for window_s.
+//               |x_t - x_{t-2}| < |D|. Seen one tick late. A faulty sensor's spikes come at
+//               random (rate lambda, exponential gaps), and between them the reading looks
+//               healthy: the flag holds through an episode, so that a recovery substitutes each
+//               spike on its tick instead of letting it through before the test sees it. The
+//               first spike of an episode (rate unknown) holds `spike_hold_s`; once it has n >= 2
+//               spikes over D seconds (lambda^ = (n - 1) / D), the flag holds h =
+//               ln(1 / p_gap) / lambda^ after the last, within [window_s, spike_hold_s]: a
+//               running process leaves so long a gap with probability p_gap
+//               (`spike_gap_probability`). D and the gap count only the ticks the test could see
+//               (not guarded, finite), so blind stretches bias neither. A noise burst ends the
+//               episode (its spikes are the noise's tails; the noise test alone clears it).
 // Invalid and saturation always run; `tests` chooses among frozen, spikes and noise. Without a
 // reference, spikes and noise judge the reading's own second differences, so they hold only for a
 // signal whose own motion the sample rate resolves: a foot's landing logged at 200 Hz is one
@@ -58,8 +68,8 @@
 // transients.
 // The type reported is the first that fires in the order above (noise before spikes: a burst is
 // many spikes, and isolated ones stay under the noise count's bound). A flag clears as soon as its
-// test passes again (frozen and noise: the window no longer shows it; spikes: window_s after the
-// last spike). Non-finite readings are left out of the windows.
+// test passes again (frozen and noise: the window no longer shows it; spikes: h after the last
+// spike). Non-finite readings are left out of the windows.
 
 #include <array>
 #include <string>
@@ -97,6 +107,8 @@ class SignalValidator {
     std::vector<double> min_reference_change{0.0};
     double follow_ratio = 0.25;
     double noise_margin = 1.5;
+    double spike_hold_s = 0.8;
+    double spike_gap_probability = 0.01;
     std::vector<std::string> tests{"frozen", "spikes", "noise"};
     static void describe(ParamSchema<Params>& schema);
     void validate(Diagnostics& diag, std::string_view path) const;
@@ -147,9 +159,15 @@ class SignalValidator {
     Window lp_reference;
     double lp_x = 0.0, lp_r = 0.0;
     bool lp_started = false;
-    double spike_hold_s = 0.0;  // > 0: the spikes flag holds this much longer
+    // The present spike episode, timed in the ticks the spike test could see.
+    long spike_count = 0;          // spikes in it (0: none running)
+    long spike_seen_ticks = 0;     // seen ticks since its first spike
+    long spike_quiet_ticks = 0;    // seen ticks since its last spike
+    double spike_hold_ticks = 0.0; // h / T: the flag holds until spike_quiet_ticks reaches it
   };
 
+  // A spike seen on this tick: starts an episode, or counts in the running one and sets its hold.
+  void start_or_extend_spike_episode(State& s) const noexcept;
   static void push(Window& w, std::vector<double>& storage, std::size_t size, double value) noexcept;
   static double oldest(const Window& w, const std::vector<double>& storage, std::size_t size) noexcept;
   static void clear(Window& w) noexcept;
@@ -162,6 +180,8 @@ class SignalValidator {
   std::size_t window_ = 10;
   double sample_period_s_;
   double window_s_;
+  double spike_hold_max_ticks_ = 800.0;  // round(spike_hold_s / T): the first spike's hold, the longest h
+  double spike_gap_log_ = 0.0;     // ln(1 / spike_gap_probability)
   double lp_gain_ = 0.0;
   double noise_count_above_ = 0.0;  // more such |d2| in a window: noise
   double follow_ratio_ = 0.25;
