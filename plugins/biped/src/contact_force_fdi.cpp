@@ -74,13 +74,13 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
       .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
   schema.add("airborne_settle_s", &Params::airborne_settle_s, "time a pad must be airborne before it is tested")
       .unit("s").at_least(0.0).plausible(0.0, 5.0, "a part of a swing phase (0.2 to 1 s)");
-  schema.add("airborne_threshold_N", &Params::airborne_threshold_N, "|mean reading| of an airborne pad that is a fault; 0: 4 noise_std_N")
+  schema.add("airborne_threshold_N", &Params::airborne_threshold_N, "|mean reading| of an airborne pad that is a fault; 0: 4 s, s = sqrt(noise_std_N^2 + resolution_N^2 / 12)")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
-  schema.add("airborne_clear_N", &Params::airborne_clear_N, "|mean reading| of an airborne pad that re-admits it; 0: 2 noise_std_N")
+  schema.add("airborne_clear_N", &Params::airborne_clear_N, "|mean reading| of an airborne pad that re-admits it; 0: 2 s")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
-  schema.add("jump_threshold_N", &Params::jump_threshold_N, "one-tick change of a single channel that is a jump candidate; 0: 10 noise_std_N")
+  schema.add("jump_threshold_N", &Params::jump_threshold_N, "one-tick change of a single channel that is a jump candidate; 0: 10 s")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
-  schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump; 0: 12.5 noise_std_N")
+  schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump; 0: 12.5 s")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("jump_window_s", &Params::jump_window_s, "window of the sum-residual step test")
       .unit("s").greater_than(0.0).at_most(1.0).plausible(1e-4, 1.0, "one tick at 10 kHz to a second");
@@ -109,7 +109,7 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("false_alarm_interval_s", &Params::false_alarm_interval_s,
              "mean time between false alarms of the frozen test on one healthy channel (sets its run length)")
       .unit("s").greater_than(0.0).plausible(1.0, 1e9, "from a second (tests) to decades");
-  schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike; 0: 30 noise_std_N")
+  schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike; 0: 30 s")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("spike_hold_s", &Params::spike_hold_s,
              "the spikes flag stays at most this long after the last spike (this long after an episode's first)")
@@ -208,7 +208,8 @@ int window_ticks(double window_s, double period_s, int minimum, const char* key)
 // the settling time: one waits out the lift-off, the other averages the noise.
 constexpr double kAirborneMeanWindow_s = 0.02;
 
-// The thresholds a config leaves at 0, in the sensors' noise sigma (noise_std_N): an airborne
+// The thresholds a config leaves at 0, in the readings' error sigma (noise_std_N and the
+// quantisation resolution_N: sqrt(noise^2 + q^2 / 12)): an airborne
 // mean of 20 readings has sigma / 4.5, so 4 sigma is 18 of its sigmas; a healthy reading's
 // one-tick change has sqrt(2) sigma plus the load's own change, a jump needs 10 sigma; a spike
 // 30 sigma. They are the values the SURALP walk (sigma = 2 N) was run with.
@@ -239,22 +240,26 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
     const double alpha = std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s);
     const double run = stay > 0.0 ? std::log(alpha) / std::log(std::min(stay, 1.0 - 1e-15)) : 0.0;
     const double ticks = std::max(params.frozen_min_s / context.sample_period_s(), run);
-    if (!(ticks <= kMaxWindowTicks)) {
-      throw ConfigError("/params/resolution_N",
-                        " = " + format_number(params.resolution_N) + " N against noise_std_N = " +
-                            format_number(params.noise_std_N) + " N: a healthy reading would stay on one level for " +
-                            format_number(ticks) + " ticks, so the frozen test cannot tell a frozen sensor (more "
-                            "than 100000 ticks); give the sensors' real noise or a shorter false_alarm_interval_s");
-    }
-    frozen_ticks_ = std::max(2, static_cast<int>(std::ceil(ticks - 1e-9)));
+    // Beyond kMaxWindowTicks a healthy reading may sit on one level longer than any window: its
+    // quantiser is coarser than its noise can dither (10 N steps under 0.7 N of noise: p = 1 -
+    // 1e-12). A reading alone then cannot tell a stuck sensor from a steady load, so the repeat
+    // test is off (its counter never reaches the cap) and a stuck sensor is left to the sum
+    // residual and the follow test, which judge it against the load it should read.
+    frozen_ticks_ = ticks <= kMaxWindowTicks ? std::max(2, static_cast<int>(std::ceil(ticks - 1e-9)))
+                                             : std::numeric_limits<int>::max();
   }
   smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * kSmoothingHz * period_s_);
   // Five time constants of that low-pass: a step has settled to within e^-5 (under 1 %).
   smoother_settle_s_ = 5.0 / (2.0 * 3.141592653589793 * kSmoothingHz);
   spike_gap_log_ = std::log(1.0 / params_.spike_gap_probability);
   min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
-  // Thresholds left at 0 follow from the sensors' noise sigma and the robot's weight W (header).
-  const double sigma = params.noise_std_N;
+  // Thresholds left at 0 follow from the readings' error and the robot's weight W (header). The
+  // error is the noise and the quantisation, sigma^2 + q^2 / 12: where the noise cannot dither a
+  // coarse quantiser, a healthy reading on a steady load still steps by q between levels, and
+  // thresholds of noise alone (10 N steps under 0.7 N of noise: a 7 N jump threshold) would take
+  // every level change for a jump.
+  const double sigma =
+      std::sqrt(params.noise_std_N * params.noise_std_N + params.resolution_N * params.resolution_N / 12.0);
   const auto derive = [](double& value, double derived) {
     if (value == 0.0) value = derived;
   };
@@ -272,7 +277,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   zero_evidence_above_N_ = std::max(params_.airborne_threshold_N, params_.zero_clamp_N + params_.sum_threshold_N);
   if (params_.airborne_clear_N >= params_.airborne_threshold_N) {
     const auto shown = [](double given, double used) {
-      return format_number(used) + (given == 0.0 ? " (derived from noise_std_N)" : "");
+      return format_number(used) + (given == 0.0 ? " (derived from noise_std_N and resolution_N)" : "");
     };
     throw ConfigError("/params/airborne_clear_N", " = " + shown(params.airborne_clear_N, params_.airborne_clear_N) +
                                                       " violates < " +

@@ -111,16 +111,33 @@ TEST(ContactForceFdi, FrozenRunLengthFollowsResolutionNoiseRateAndFalseAlarmTarg
   expect_frozen_after(1.0, 1e-3, 20);
 }
 
-TEST(ContactForceFdi, NoiseTooSmallForItsResolutionIsAConfigError) {
-  // 50 N steps under 1 mN of noise: a healthy reading would sit on one level for ever.
-  auto p = suralp(50.0);
-  p.noise_std_N = 1e-3;
-  try {
-    const ContactForceFdi fdi(p, StageContext(1e-3, "fdi"));
-    FAIL() << "the frozen test cannot work";
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(e.problems()[0].path, "/params/resolution_N");
-    EXPECT_NE(e.problems()[0].message.find("give the sensors' real noise"), std::string::npos) << e.what();
+TEST(ContactForceFdi, ANoiseTooSmallToDitherItsQuantiserTurnsTheRepeatTestOff) {
+  // 10 N steps under 0.7 N of noise (a true statement of a coarse ADC): a healthy reading under
+  // a steady load stays on one level with p = erf(10 / (2 sqrt(2) 0.7)) = 1 - 1e-12 per tick,
+  // so no run length tells it from a stuck one. The config loads, and a reading that sits on one
+  // level for 20 s while its load stays is not flagged (before: a config error).
+  // The same steady loads under a stated 2 N of noise, which would dither the levels, are flagged
+  // once they have sat still for n_f ticks (p = erf(1.768) = 0.9876: 1463 ticks).
+  for (const double sigma : {0.7, 2.0}) {
+    auto p = suralp(10.0);
+    p.noise_std_N = sigma;
+    Feet feet(p, 1e-3);
+    const int n_f = sigma < 1.0 ? -1 : expected_frozen_ticks(10.0, sigma, 1e-3, 86400.0, 0.02);
+    int first_flag = -1;
+    for (int k = 0; k < 20000 && first_flag < 0; ++k) {
+      for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = 200.0 + 10.0 * static_cast<double>(j);
+      feet.step();
+      for (std::size_t j = 0; j < kChannels; ++j) {
+        if (feet.type(j) != FaultType::none) first_flag = k;
+      }
+    }
+    std::printf("sigma %.1f N: n_f %d ticks, first flag at tick %d\n", sigma, n_f, first_flag);
+    if (sigma < 1.0) {
+      EXPECT_EQ(first_flag, -1);
+    } else {
+      EXPECT_EQ(n_f, 1463);
+      EXPECT_EQ(first_flag, n_f);
+    }
   }
 }
 

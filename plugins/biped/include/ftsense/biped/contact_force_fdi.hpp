@@ -14,8 +14,10 @@
 //   3. A healthy pad's force is continuous: it does not jump by tens of newtons in one tick while
 //      the total force stays put, and a noisy sensor never repeats a value exactly.
 //
-// Thresholds in newtons follow from what a user knows, unless given: the sensors' noise sigma
-// (noise_std_N): airborne 4 sigma, its clearing 2 sigma, jump 10 sigma, jump confirmation
+// Thresholds in newtons follow from what a user knows, unless given: the readings' error sigma,
+// sqrt(noise_std_N^2 + resolution_N^2 / 12) (noise and quantisation: a coarse quantiser that the
+// noise cannot dither still steps by q between levels under a steady load): airborne 4 sigma,
+// its clearing 2 sigma, jump 10 sigma, jump confirmation
 // 12.5 sigma, spike 30 sigma; and the robot's weight W = m g (weight_N): sum_threshold_N 7 % of W
 // (the bound of the virtual total force's low-passed error), gain_min_load_N 2.5 % of W. The
 // same config then holds for a 13 kg or a 114 kg robot.
@@ -27,7 +29,10 @@
 //             below alpha = T / false_alarm_interval_s: noise of std sigma (noise_std_N) keeps a
 //             reading on its level with probability at most p = erf(q / (2 sqrt(2) sigma)) per
 //             tick (a load at the level's centre), so n_f = max(frozen_min_s / T, ln alpha / ln p)
-//             (5 N steps and 2 N noise: p = 0.79, 77 ticks at 1 kHz). An unloaded pad (airborne,
+//             (5 N steps and 2 N noise: p = 0.79, 77 ticks at 1 kHz). Where n_f would exceed
+//             1e5 ticks (a quantiser coarser than its noise dithers: a steady load sits on one
+//             level for ever), a reading alone cannot tell a stuck sensor, and this test is off:
+//             the sum residual and the follow test judge it against its load. An unloaded pad (airborne,
 //             or left no load by the others: leave-one-out force below airborne_threshold_N) that
 //             reads its zero level (|N_j| <= q / 2) is not evidence (a sensor may clip at 0).
 //             Nor is a zero reading where the load may be within the clamp of such a driver: a
