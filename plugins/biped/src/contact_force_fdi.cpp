@@ -324,6 +324,11 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_raw_rr_.assign(n, 0.0);
   gain_held_ticks_.assign(n, 0);
   gain_held_rr_.assign(n, 0.0);
+  stance_held_ticks_.assign(n, 0);
+  stance_min_ticks_ = std::max(2, static_cast<int>(std::min(std::round(params.clear_s / period_s_), 1e9)));
+  stance_raw_rr_.assign(n, 0.0);
+  stance_held_rr_.assign(n, 0.0);
+  stance_correction_cc_.assign(n, 0.0);
   channels_.resize(n);
   for (auto& c : channels_) {
     c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
@@ -1210,7 +1215,14 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   // What the residual would be if a channel held as a gain fault were read as it is, against what
   // it is with the correction, both over the ticks since the correction was last set.
+  const double stance_bound = params_.gain_min_load_N * params_.gain_min_load_N;
+  bool readmitted_in_stance = false;
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
+    const bool on_ground = height[j] <= params_.airborne_height_m;
+    if (channels_[j].type != FaultType::gain || !on_ground) {
+      stance_raw_rr_[j] = stance_held_rr_[j] = stance_correction_cc_[j] = 0.0;
+      stance_held_ticks_[j] = 0;
+    }
     if (channels_[j].type != FaultType::gain) {
       gain_raw_rr_[j] = gain_held_rr_[j] = 0.0;
       gain_held_ticks_[j] = 0;
@@ -1220,6 +1232,26 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     gain_raw_rr_[j] = f * gain_raw_rr_[j] + raw * raw;
     gain_held_rr_[j] = f * gain_held_rr_[j] + residual * residual;
     gain_held_ticks_[j] = std::min(gain_held_ticks_[j] + 1, kCountCap);
+    if (!on_ground) continue;
+    stance_raw_rr_[j] += raw * raw;
+    stance_held_rr_[j] += residual * residual;
+    stance_held_ticks_[j] = std::min(stance_held_ticks_[j] + 1, kCountCap);
+    // Two explanations of the stance so far, the gain and the reading as it is: the reading wins
+    // when the correction leaves 4 times its residual power (twice its RMS), over clear_s of
+    // usable ticks in which the correction itself moved the reading by gain_min_load_N RMS or
+    // more (a smaller correction is within what the residual's own error can mimic: as a pad
+    // unloads, the sum residual's error is as large as a gain's effect on its few newtons).
+    const double correction = measured[j] - recovered[j];
+    stance_correction_cc_[j] += correction * correction;
+    if (stance_held_ticks_[j] >= stance_min_ticks_ && stance_held_rr_[j] > 4.0 * stance_raw_rr_[j] &&
+        stance_correction_cc_[j] >= static_cast<double>(stance_held_ticks_[j]) * stance_bound) {
+      clear(channels_[j]);
+      readmitted_in_stance = true;
+    }
+  }
+  if (readmitted_in_stance) {
+    restart_gain_window();
+    return;
   }
   gain_weight_ = f * gain_weight_ + 1.0;
   // Saturates by whole windows of 10, so the judging cadence and a full window both hold.
@@ -1320,6 +1352,10 @@ void ContactForceFdi::restart_gain_window() noexcept {
   std::fill(gain_raw_rr_.begin(), gain_raw_rr_.end(), 0.0);
   std::fill(gain_held_rr_.begin(), gain_held_rr_.end(), 0.0);
   std::fill(gain_held_ticks_.begin(), gain_held_ticks_.end(), 0);
+  std::fill(stance_held_ticks_.begin(), stance_held_ticks_.end(), 0);
+  std::fill(stance_raw_rr_.begin(), stance_raw_rr_.end(), 0.0);
+  std::fill(stance_held_rr_.begin(), stance_held_rr_.end(), 0.0);
+  std::fill(stance_correction_cc_.begin(), stance_correction_cc_.end(), 0.0);
   gain_rr_ = gain_weight_ = 0.0;
   gain_ticks_ = 0;
 }

@@ -117,7 +117,13 @@
 //             and re-admits the channel when k comes back within gain_threshold / 2 of 1, or, by
 //             model comparison (no isolation needed), when it carried load (RMS above
 //             gain_min_load_N) and its reading taken as it is leaves no more residual power than
-//             its correction does over the gain window since the correction was set. The window
+//             its correction does over the gain window since the correction was set; and
+//             within one stance, once it has clear_s of usable ticks, when the correction leaves
+//             4 times the residual power the reading leaves as it is, and moved the reading by
+//             gain_min_load_N RMS or more: the two explanations of that stance, compared. A
+//             gain that ended in the air, or a gain inferred in the air from an offset that ended
+//             there (both read 0 in the air), would otherwise scale a healthy reading by 1 / k
+//             through the next stances until the window decides. The window
 //             restarts after every decision, and when the offset-or-gain test or the air test
 //             below re-types an offset as a gain (its residuals took that channel as x - b: k
 //             refined on them would fit the change of correction), and takes no tick while a loaded channel is
@@ -413,6 +419,13 @@ class ContactForceFdi {
   std::vector<int> gain_held_ticks_;
   std::vector<double> gain_raw_rr_;
   std::vector<double> gain_held_rr_;
+  // The same two powers summed (not weighted) over the present stance of the channel's point, for
+  // a correction gone wrong in it: usable ticks on the ground while held as a gain fault.
+  std::vector<int> stance_held_ticks_;
+  int stance_min_ticks_ = 50;  // round(clear_s / T), at least 2
+  std::vector<double> stance_raw_rr_;
+  std::vector<double> stance_held_rr_;
+  std::vector<double> stance_correction_cc_;  // sum of (N_j - N^_j)^2: the correction's own power
   double gain_weight_ = 0.0;
   double gain_forgetting_ = 1.0;
   int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
