@@ -414,9 +414,12 @@ TEST(FaultRecovery, ASpikyChannelTakesTheMedianOfItsLastThreeReadings) {
   for (int k = 0; k < 9; ++k) {
     EXPECT_EQ(rig.step(readings[k], 0.0, -1.0, k >= 2 ? 1.0 : 0.0, k >= 2 ? 7.0 : 0.0), expected[k]) << "tick " << k;
   }
-  // A NaN reading is substituted and left out of the last three.
+  // A NaN reading is substituted, and the readings before it are no neighbours of those after
+  // it: the reading itself until two more have come.
   EXPECT_EQ(rig.step(std::nan(""), 0.0, 9.0, 1.0, 7.0), 9.0);
-  EXPECT_EQ(rig.step(10.0, 0.0, -1.0, 1.0, 7.0), 8.0);
+  EXPECT_EQ(rig.step(10.0, 0.0, -1.0, 1.0, 7.0), 10.0);
+  EXPECT_EQ(rig.step(11.0, 0.0, -1.0, 1.0, 7.0), 11.0);
+  EXPECT_EQ(rig.step(12.0, 0.0, -1.0, 1.0, 7.0), 11.0);
 }
 
 TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {

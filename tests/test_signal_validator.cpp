@@ -236,13 +236,34 @@ TEST(SignalValidator, ASpikeTrainIsHeldThroughItsGapsAndClearsAfterTheGapItsRate
   EXPECT_EQ(flagged, 2231 - 1001 + 1);  // no gap in between
 }
 
-TEST(SignalValidator, ASpikeHoldShorterThanTheWindowIsAConfigError) {
-  Diagnostics d;
-  (void)load_params<SignalValidator::Params>(Json::parse(R"({"window_s": 0.2, "spike_hold_s": 0.1})"),
-                                             "/stages/2/params", "signal_validator", d);
-  ASSERT_EQ(d.errors().size(), 1u);
-  EXPECT_EQ(d.errors()[0].path, "/stages/2/params/spike_hold_s");
-  EXPECT_NE(d.errors()[0].message.find("shorter than window_s"), std::string::npos);
+TEST(SignalValidator, ASpikeHoldShorterThanTheWindowIsTheWindowAndABlindChannelEndsItsEpisode) {
+  // spike_hold_s 0.01 s under window_s 0.02 s: a lone spike holds the window, 20 ticks.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.02;
+  p.spike_hold_s = 0.01;
+  p.guard = true;
+  SignalValidator validator(p, StageContext(1e-3, "v", {{"signal", 1}, {"guard", 1}}));
+  validator.reset();
+  std::vector<double> x{0.0}, g{0.0}, fault{0.0}, type{0.0};
+  const auto step = [&](double reading, double guard) {
+    x[0] = reading;
+    g[0] = guard;
+    const std::span<const double> ins[] = {x, g};
+    const std::span<double> outs[] = {fault, type};
+    validator.step(StepIO{0.0, ins, outs});
+    return static_cast<FaultType>(static_cast<int>(type[0]));
+  };
+  for (int k = 0; k < 100; ++k) {
+    const FaultType found = step(100.0 + (k % 2 == 0 ? 1.0 : -1.0) + (k == 50 ? 50.0 : 0.0), 0.0);
+    EXPECT_EQ(found, k >= 51 && k < 71 ? FaultType::spikes : FaultType::none) << "tick " << k;
+  }
+  // A spike, then a guard that stays on: no tick is seen, so the hold does not run out; the
+  // episode ends after 2 spike_hold_s (here the window, 20 ticks: 40) of ticks without a spike.
+  for (int k = 100; k < 200; ++k) {
+    const FaultType found = step(100.0 + (k % 2 == 0 ? 1.0 : -1.0) + (k == 150 ? 50.0 : 0.0), k > 151 ? 1.0 : 0.0);
+    EXPECT_EQ(found, k >= 151 && k < 191 ? FaultType::spikes : FaultType::none) << "tick " << k;
+  }
 }
 
 TEST(SignalValidator, AStepIsNeitherASpikeNorNoise) {

@@ -74,13 +74,13 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
       .unit("m").greater_than(0.0).plausible(plausible::foot_height_m());
   schema.add("airborne_settle_s", &Params::airborne_settle_s, "time a pad must be airborne before it is tested")
       .unit("s").at_least(0.0).plausible(0.0, 5.0, "a part of a swing phase (0.2 to 1 s)");
-  schema.add("airborne_threshold_N", &Params::airborne_threshold_N, "|mean reading| of an airborne pad that is a fault; 0: 4 s, s = sqrt(noise_std_N^2 + resolution_N^2 / 12)")
+  schema.add("airborne_threshold_N", &Params::airborne_threshold_N, "|mean reading| of an airborne pad that is a fault; 0: 4 sigma_x, the readings' error sigma_x = sqrt(noise_std_N^2 + resolution_N^2 / 12)")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
-  schema.add("airborne_clear_N", &Params::airborne_clear_N, "|mean reading| of an airborne pad that re-admits it; 0: 2 s")
+  schema.add("airborne_clear_N", &Params::airborne_clear_N, "|mean reading| of an airborne pad that re-admits it; 0: 2 sigma_x")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
-  schema.add("jump_threshold_N", &Params::jump_threshold_N, "one-tick change of a single channel that is a jump candidate; 0: 10 s")
+  schema.add("jump_threshold_N", &Params::jump_threshold_N, "one-tick change of a single channel that is a jump candidate; 0: 10 sigma_x")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
-  schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump; 0: 12.5 s")
+  schema.add("jump_confirm_N", &Params::jump_confirm_N, "smallest sum-residual step that confirms a jump; 0: 12.5 sigma_x")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("jump_window_s", &Params::jump_window_s, "window of the sum-residual step test")
       .unit("s").greater_than(0.0).at_most(1.0).plausible(1e-4, 1.0, "one tick at 10 kHz to a second");
@@ -109,7 +109,7 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
   schema.add("false_alarm_interval_s", &Params::false_alarm_interval_s,
              "mean time between false alarms of the frozen test on one healthy channel (sets its run length)")
       .unit("s").greater_than(0.0).plausible(1.0, 1e9, "from a second (tests) to decades");
-  schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike; 0: 30 s")
+  schema.add("spike_threshold_N", &Params::spike_threshold_N, "deviation from both neighbours that is a spike; 0: 30 sigma_x")
       .unit("N").at_least(0.0).plausible(plausible::force_threshold_N());
   schema.add("spike_hold_s", &Params::spike_hold_s,
              "the spikes flag stays at most this long after the last spike (this long after an episode's first)")
@@ -715,7 +715,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (relation_verdict_[foot] != 0) decide(c.relation_jump_size, c.relation_load_before);
     }
     // Frozen / saturation.
-    if (c.stale_count >= frozen_ticks_) {
+    const bool repeat_test_off = frozen_ticks_ == std::numeric_limits<int>::max();
+    if (repeat_test_off && params_.upper_limit_N > 0.0 && x >= params_.upper_limit_N - repeat_band_N_) {
+      // Without the repeat test, a reading at the top of the stated range is saturation on its tick.
+      raise(c, FaultType::saturation, t);
+    } else if (c.stale_count >= frozen_ticks_) {
       // Saturation: stuck at the top of the range, or at the largest load the channel has shown,
       // or stuck again at the value of its previous stuck episode after moving in between (a
       // clipped load comes back to the same ceiling; a frozen sensor does not leave and return).

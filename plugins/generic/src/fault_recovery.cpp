@@ -131,6 +131,8 @@ void FaultRecovery::step(const StepIO& io) noexcept {
       previous[1] = previous[0];
       previous[0] = measured[j];
       previous_count_[j] = static_cast<unsigned char>(std::min(previous_count_[j] + 1, 2));
+    } else {
+      previous_count_[j] = 0;  // readings from before a gap are no neighbours of those after it
     }
     if (!std::isfinite(value)) value = substitute ? corrected : estimate[j];
     if (!std::isfinite(value)) value = last_[j];

@@ -71,7 +71,7 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
       .plausible(1.0, 4.0, "noise specifications hold within a factor of 1 to 2");
   schema.add("spike_hold_s", &Params::spike_hold_s,
              "the spikes flag holds this long after an episode's first spike (its rate is not known yet), "
-             "and at most this long after any spike; at least window_s")
+             "and at most this long after any spike; taken as window_s when shorter")
       .unit("s")
       .greater_than(0.0)
       .plausible(0.01, 10.0, "tenths of a second: a few gaps of a spike train");
@@ -90,11 +90,6 @@ constexpr std::array<std::string_view, 3> kOptionalTests{"frozen", "spikes", "no
 }  // namespace
 
 void SignalValidator::Params::validate(Diagnostics& diag, std::string_view path) const {
-  if (spike_hold_s < window_s) {
-    diag.error(std::string(path) + "/spike_hold_s",
-               "= " + format_number(spike_hold_s) + " s is shorter than window_s (" + format_number(window_s) +
-                   " s): the spikes flag holds at least a window; raise spike_hold_s or shorten window_s");
-  }
   const std::vector<std::string> names(kOptionalTests.begin(), kOptionalTests.end());
   for (std::size_t i = 0; i < tests.size(); ++i) {
     if (std::find(names.begin(), names.end(), tests[i]) == names.end()) {
@@ -264,13 +259,14 @@ void SignalValidator::reset() noexcept {
 
 void SignalValidator::start_or_extend_spike_episode(State& s) const noexcept {
   s.spike_quiet_ticks = 0;
+  s.spike_idle_ticks = 0;
   if (s.spike_count == 0) {
     s.spike_count = 1;
     s.spike_seen_ticks = 0;
     s.spike_hold_ticks = spike_hold_max_ticks_;
     return;
   }
-  ++s.spike_count;
+  s.spike_count = std::min(s.spike_count + 1, kTickCap);
   // h / T = ln(1 / p_gap) / (lambda^ T), lambda^ T = (n - 1) / seen ticks; seen >= 1: it grew on
   // this tick before the spike was seen.
   const double gap_ticks = spike_gap_log_ * static_cast<double>(s.spike_seen_ticks) /
@@ -297,6 +293,7 @@ void SignalValidator::step(const StepIO& io) noexcept {
       s.lp_started = false;
       clear(s.lp_signal);
       clear(s.lp_reference);
+      if (s.spike_count > 0) s.spike_idle_ticks = std::min(s.spike_idle_ticks + 1, kTickCap);
       fault[j] = 1.0;
       type[j] = fault_code(FaultType::invalid);
       continue;
@@ -360,8 +357,8 @@ void SignalValidator::step(const StepIO& io) noexcept {
         const double off_neighbours = s.y1 - 0.5 * (s.y2 + y);
         if (!guarded) {
           if (s.spike_count > 0) {
-            ++s.spike_seen_ticks;
-            ++s.spike_quiet_ticks;
+            s.spike_seen_ticks = std::min(s.spike_seen_ticks + 1, kTickCap);
+            s.spike_quiet_ticks = std::min(s.spike_quiet_ticks + 1, kTickCap);
           }
           if (std::abs(off_neighbours) > l.spike_above && std::abs(y - s.y2) < std::abs(off_neighbours)) {
             start_or_extend_spike_episode(s);
@@ -379,10 +376,14 @@ void SignalValidator::step(const StepIO& io) noexcept {
         s.tested_d2.sum > noise_count_above_) {
       found = FaultType::noise;
     }
-    if (found == FaultType::noise || static_cast<double>(s.spike_quiet_ticks) >= s.spike_hold_ticks) {
+    // The hold counts seen ticks; a channel blind for twice the longest hold (a guard or a
+    // reference that stays on, NaN readings) ends the episode all the same.
+    if (found == FaultType::noise || static_cast<double>(s.spike_quiet_ticks) >= s.spike_hold_ticks ||
+        static_cast<double>(s.spike_idle_ticks) >= 2.0 * spike_hold_max_ticks_) {
       s.spike_count = 0;
     }
     if (found == FaultType::none && spike_test_ && s.spike_count > 0) found = FaultType::spikes;
+    if (s.spike_count > 0) s.spike_idle_ticks = std::min(s.spike_idle_ticks + 1, kTickCap);
 
     fault[j] = found == FaultType::none ? 0.0 : 1.0;
     type[j] = fault_code(found);

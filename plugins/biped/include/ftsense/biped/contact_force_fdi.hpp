@@ -32,7 +32,10 @@
 //             (5 N steps and 2 N noise: p = 0.79, 77 ticks at 1 kHz). Where n_f would exceed
 //             1e5 ticks (a quantiser coarser than its noise dithers: a steady load sits on one
 //             level for ever), a reading alone cannot tell a stuck sensor, and this test is off:
-//             the sum residual and the follow test judge it against its load. An unloaded pad (airborne,
+//             the sum residual and the follow test judge it against its load, and a reading at
+//             the top of a stated range (upper_limit_N - q/2) is saturation on its tick. (A noise
+//             stated far too small, millinewtons written as newtons, turns the test off too.)
+//             An unloaded pad (airborne,
 //             or left no load by the others: leave-one-out force below airborne_threshold_N) that
 //             reads its zero level (|N_j| <= q / 2) is not evidence (a sensor may clip at 0).
 //             Nor is a zero reading where the load may be within the clamp of such a driver: a

@@ -11,7 +11,8 @@
 //                                                     (default: none; a noise burst)
 //   recovered_j = median(x_t, x_{t-1}, x_{t-2})       when the type is one of `median_types`
 //                                                     (default: none; spikes), the last three
-//                                                     finite readings
+//                                                     finite readings in a row (a gap restarts
+//                                                     them: until two more, the reading itself)
 //
 // Why the median for spikes: between its spikes the reading is the sensor's own, better than any
 // virtual value; a spike is one reading off both neighbours, and the median of three drops it on
@@ -24,7 +25,9 @@
 // (at 10 Hz, 15.9 ms of a 3 N-per-tick ramp is 48 N), and the virtual value alone carries its own
 // error. The virtual value carries the load's fast moves; the low-pass of the difference keeps what
 // the virtual value misses (its error below f_c) and passes the noise reduced to
-// sqrt(a / (2 - a)) of its RMS (white noise, a the smoothing factor: 0.24 at 10 Hz and 1 kHz).
+// sqrt(a / (2 - a)) of its RMS (white noise, a the smoothing factor: a = 0.061 and the factor
+// 0.18 at 10 Hz and 1 kHz; 0.27 and 0.39 at 200 Hz). Neither mode uses fault_estimate: a blended
+// or median channel's recovery is its own reading's, not the classifier's estimate.
 // With correction = "when_flagged", measured_j passes through unchanged while fault_j = 0.
 // The output is never NaN: if the chosen value is not finite, the other one is used, and if
 // neither is, the last recovered value is held.

@@ -57,7 +57,9 @@
 //               ln(1 / p_gap) / lambda^ after the last, within [window_s, spike_hold_s]: a
 //               running process leaves so long a gap with probability p_gap
 //               (`spike_gap_probability`). D and the gap count only the ticks the test could see
-//               (not guarded, finite), so blind stretches bias neither. A noise burst ends the
+//               (not guarded, finite), so blind stretches bias neither; a channel blind for
+//               2 spike_hold_s after its last spike ends the episode all the same. spike_hold_s
+//               under window_s is taken as window_s. A noise burst ends the
 //               episode (its spikes are the noise's tails; the noise test alone clears it).
 // Invalid and saturation always run; `tests` chooses among frozen, spikes and noise. Without a
 // reference, spikes and noise judge the reading's own second differences, so they hold only for a
@@ -72,6 +74,7 @@
 // spike). Non-finite readings are left out of the windows.
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -160,12 +163,14 @@ class SignalValidator {
     double lp_x = 0.0, lp_r = 0.0;
     bool lp_started = false;
     // The present spike episode, timed in the ticks the spike test could see.
-    long spike_count = 0;          // spikes in it (0: none running)
-    long spike_seen_ticks = 0;     // seen ticks since its first spike
-    long spike_quiet_ticks = 0;    // seen ticks since its last spike
+    std::int64_t spike_count = 0;        // spikes in it (0: none running)
+    std::int64_t spike_seen_ticks = 0;   // seen ticks since its first spike
+    std::int64_t spike_quiet_ticks = 0;  // seen ticks since its last spike
+    std::int64_t spike_idle_ticks = 0;   // all ticks since its last spike
     double spike_hold_ticks = 0.0; // h / T: the flag holds until spike_quiet_ticks reaches it
   };
 
+  static constexpr std::int64_t kTickCap = 1'000'000'000'000;  // tick counters saturate here
   // A spike seen on this tick: starts an episode, or counts in the running one and sets its hold.
   void start_or_extend_spike_episode(State& s) const noexcept;
   static void push(Window& w, std::vector<double>& storage, std::size_t size, double value) noexcept;
