@@ -1,8 +1,13 @@
 // TickNoise: sigma = median(|d2|) / (0.67449 sqrt(6)) from the second differences of a reading,
 // exact on small sequences; a step in the load barely moves it; exact repeats are left out; NaN
-// breaks the sequence.
+// breaks the sequence. Quantised readings: the step found, the noise from the share of changes
+// (below half a step) or from the binned second differences less q^2 / 12 (above), on synthetic
+// quantised noise with fixed seeds.
 
 #include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -49,6 +54,65 @@ TEST(TickNoise, EvenCountsTakeTheMiddlePairAndNaNBreaksTheSequence) {
   for (double x : {0.0, 0.0, 1.0, std::nan(""), 0.0, 0.0, 3.0}) q.add(x);
   EXPECT_EQ(q.count(), 2u);
   EXPECT_NEAR(q.standard_deviation(), 2.0 / kScale, 1e-15);
+}
+
+TEST(TickNoise, ChangeProbabilityOfAQuantisedReading) {
+  // Small r: only the step boundary nearest u matters, and C(r) -> 2 r / sqrt(pi) (the integral
+  // of 2 Phi(t) (1 - Phi(t)) over t is 2 / sqrt(pi)). Large r: 1 - C(r) -> 1 / (2 r sqrt(pi))
+  // (sum_l p_l^2 ~ q / (2 sigma sqrt(pi))).
+  EXPECT_NEAR(TickNoise::change_probability(0.01), 2.0 * 0.01 / std::sqrt(M_PI), 1e-5);
+  EXPECT_NEAR(TickNoise::change_probability(0.05), 2.0 * 0.05 / std::sqrt(M_PI), 1e-4);
+  EXPECT_NEAR(1.0 - TickNoise::change_probability(20.0), 1.0 / (2.0 * 20.0 * std::sqrt(M_PI)), 1e-5);
+  // Increasing, and the inverse returns r.
+  double before = 0.0;
+  for (double r : {0.02, 0.1, 0.3, 0.5, 1.0, 3.0, 10.0}) {
+    const double c = TickNoise::change_probability(r);
+    EXPECT_GT(c, before) << "r = " << r;
+    before = c;
+    EXPECT_NEAR(TickNoise::noise_over_step(c), r, 1e-6 * r) << "r = " << r;
+  }
+}
+
+// x = q round((s + n) / q), n ~ N(0, sigma^2), s a slow triangle sweep over 14.6 steps (so the
+// place u within a step is uniform), interrupted by 2000 readings clamped at 0 (an unloaded foot).
+std::vector<double> quantised_sweep(double sigma, double q, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  std::vector<double> x;
+  for (int k = 0; k < 40000; ++k) {
+    if (k >= 20000 && k < 22000) {
+      x.push_back(0.0);
+      continue;
+    }
+    const double phase = std::fmod(k / 20000.0, 1.0);
+    const double s = 100.0 + 14.6 * q * (phase < 0.5 ? 2.0 * phase : 2.0 - 2.0 * phase);
+    x.push_back(q * std::round((s + noise(rng)) / q));
+  }
+  return x;
+}
+
+TEST(TickNoise, QuantisedNoiseBelowAndAboveAStep) {
+  constexpr unsigned kSeed = 20261127;
+  std::printf("TickNoise quantised sweeps: seed %u\n", kSeed);
+  for (double r : {0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 2.0, 5.0}) {
+    for (double q : {1.0, 5.0}) {
+      TickNoise t;
+      for (double x : quantised_sweep(r * q, q, kSeed)) t.add(x);
+      EXPECT_NEAR(t.resolution(), q, 1e-12 * q) << "r = " << r;
+      std::printf("  q %g r %g: sigma %.4f (true %.4f)\n", q, r, t.standard_deviation(), r * q);
+      EXPECT_NEAR(t.standard_deviation() / (r * q), 1.0, 0.1) << "q = " << q << ", r = " << r;
+    }
+  }
+}
+
+TEST(TickNoise, AContinuousReadingHasNoStep) {
+  // The same sweep without quantisation: no lattice, and sigma from the plain median.
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.5);
+  TickNoise t;
+  for (int k = 0; k < 20000; ++k) t.add(100.0 + 30.0 * std::sin(2.0 * M_PI * k / 20000.0) + noise(rng));
+  EXPECT_EQ(t.resolution(), 0.0);
+  EXPECT_NEAR(t.standard_deviation(), 1.5, 0.05);
 }
 
 }  // namespace

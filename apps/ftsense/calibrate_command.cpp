@@ -111,7 +111,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     std::optional<SignalRef> minus;
     std::vector<generic::ResidualStatistics> statistics;  // per channel
     std::vector<generic::NoiseDensity> density;           // per channel (noise_density only)
-    std::vector<generic::TickNoise> tick_noise;           // per channel (tick_noise only)
+    std::vector<generic::TickNoise> tick_noise;           // per channel (tick_noise and resolution only)
   };
   std::vector<Measured> measured;
   double settle_s = 0.0;
@@ -149,7 +149,9 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       if (spec.statistic == FaultFreeStatistic::noise_density) {
         m.density.assign(m.input.dim, generic::NoiseDensity(pipeline.sample_period_s(), kNoiseDensityWindowS));
       }
-      if (spec.statistic == FaultFreeStatistic::tick_noise) m.tick_noise.resize(m.input.dim);
+      if (spec.statistic == FaultFreeStatistic::tick_noise || spec.statistic == FaultFreeStatistic::resolution) {
+        m.tick_noise.resize(m.input.dim);
+      }
       measured.push_back(std::move(m));
     }
   }
@@ -288,6 +290,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
         case FaultFreeStatistic::correlation_time: value = st.correlation_time_s(); break;
         case FaultFreeStatistic::noise_density: value = m.density[j].density(); break;
         case FaultFreeStatistic::tick_noise: value = m.tick_noise[j].standard_deviation(); break;
+        case FaultFreeStatistic::resolution: value = m.tick_noise[j].resolution(); break;
       }
       const bool spread = m.spec.statistic == FaultFreeStatistic::standard_deviation ||
                           m.spec.statistic == FaultFreeStatistic::rms ||
@@ -301,8 +304,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                            " s of fault-free log after the warm-up (several logs add up), or give it in the config");
       } else if (m.spec.statistic == FaultFreeStatistic::tick_noise && m.tick_noise[j].count() == 0) {
         refusals.push_back(what + "no three consecutive finite readings that are not all equal: the reading "
-                           "repeats itself (a sensor quantised coarser than its noise, or held?) or is never "
-                           "finite; give its noise in the config");
+                           "never changes (held?) or is never finite; give its noise in the config");
       } else if (!std::isfinite(value)) {
         refusals.push_back(what + "is not a finite number (" + format_number(value) +
                            "): the log holds absurd values; calibrate on a fault-free log");

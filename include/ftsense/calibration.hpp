@@ -21,13 +21,18 @@
 //                       whole): the mean of r over w seconds has standard deviation q / sqrt(w)
 //                       [unit sqrt(s)] (generic/noise_density.hpp)
 //   tick_noise          the white noise of a reading that moves: median(|d2|) / (0.67449 sqrt(6)),
-//                       d2 the second difference (generic/tick_noise.hpp)
+//                       d2 the second difference; for a quantised reading, from the share of
+//                       tick-to-tick changes below half a step, from the binned d2 less q^2 / 12
+//                       above (generic/tick_noise.hpp)
+//   resolution          the quantisation step q of a reading: the lattice its changes lie on, 0
+//                       when continuous (generic/tick_noise.hpp)
 
 #include <string_view>
 
 namespace ftsense {
 
-enum class FaultFreeStatistic { centre, standard_deviation, rms, correlation_time, noise_density, tick_noise };
+enum class FaultFreeStatistic { centre, standard_deviation, rms, correlation_time, noise_density, tick_noise,
+                                resolution };
 
 // The window of the noise-density statistic: long against a stride or a gait cycle (whose
 // periodic error averages out over it), short against the minutes of a calibration log.

@@ -312,7 +312,7 @@ printf '{"stages": {"cusum": {"params": {"noise_std": [-1.0]}}}}\n' > "$work/neg
 "$ftsense" run --config "$work/statistics.json" --thresholds "$work/negative_cal.json" --input "$work/stat_clean.csv" --output "$work/o.csv" > "$work/out" 2> "$work/err"
 check calibration_value_blamed_on_its_file 2 $? "statistics.json:/stages/2/params/noise_std/0 = -1\.0 violates > 0 .*\(the value comes from .*negative_cal.json; calibrate again or fix it there\)" "$work/err"
 # What the config gives is the user's: kept, not measured (the way out of a refusal).
-sed 's/"plugin": "signal_validator",/"plugin": "signal_validator", "params": {"noise_std": [2.0]},/' "$work/statistics.json" > "$work/given.json"
+sed 's/"plugin": "signal_validator",/"plugin": "signal_validator", "params": {"noise_std": [2.0], "resolution": [0.0]},/' "$work/statistics.json" > "$work/given.json"
 "$ftsense" calibrate --config "$work/given.json" --input "$work/stat_clean.csv" --output "$work/given_cal.json" > "$work/out" 2> "$work/err"
 check calibrate_keeps_what_the_config_gives 0 $? "^ftsense calibrate: validate: noise_std given in the config, kept$" "$work/out"
 grep -q '"validate"' "$work/given_cal.json" && { failures=$((failures + 1)); echo "FAIL calibrate_keeps_writes_no_entry"; } \

@@ -2,7 +2,8 @@
 # check_robust.sh FTSENSE CONFIG SCENARIO [CHANNEL:TYPE:MAX_DELAY_S ...]
 # Simulates SCENARIO, runs CONFIG over it, and checks with `ftsense report`'s metrics that each
 # listed channel is detected within MAX_DELAY_S with the named type (the type the flag shows
-# most while the fault is active), and that there is no false alarm on any channel.
+# most while the fault is active), and that there is no false alarm on any channel. With
+# THRESHOLDS set in the environment, the run applies that calibration file (--thresholds).
 set -u
 ftsense=$1
 config=$2
@@ -11,7 +12,8 @@ shift 3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$ftsense" simulate --scenario "$scenario" --out "$work/log.csv" --quiet > /dev/null || { echo "FAIL: simulate"; exit 1; }
-"$ftsense" run --config "$config" --input "$work/log.csv" --output "$work/run.csv" > /dev/null || { echo "FAIL: run"; exit 1; }
+"$ftsense" run --config "$config" --input "$work/log.csv" --output "$work/run.csv" \
+  ${THRESHOLDS:+--thresholds "$THRESHOLDS"} > /dev/null || { echo "FAIL: run"; exit 1; }
 "$ftsense" report --run "$work/run.csv" --truth "$work/log.csv" --out "$work/report" --no-figures > "$work/table" || { echo "FAIL: report"; exit 1; }
 cat "$work/table"
 "$ftsense" plugins --fault-types > "$work/fault_types" || { echo "FAIL: plugins --fault-types"; exit 1; }

@@ -172,7 +172,7 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     }
     l.upper = std::isfinite(upper[j]) ? upper[j] : std::numeric_limits<double>::infinity();
     l.lower = std::isfinite(lower[j]) ? lower[j] : -std::numeric_limits<double>::infinity();
-    l.stale_test = noise_std[j] >= 0.5 * q;
+    l.stale_test = noise_std[j] / m >= 0.5 * q;
     l.has_rest = std::isfinite(rest[j]);
     l.rest = l.has_rest ? rest[j] : 0.0;
     l.stale_below = 6.0 * sigma2 * static_cast<double>(window_) * low_quantile / (m * m);

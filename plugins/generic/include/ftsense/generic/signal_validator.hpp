@@ -26,9 +26,12 @@
 //               typed saturation the second time, which is how it behaves.
 //   frozen      (a) the reading has less tick-to-tick variation than its own noise allows: with
 //               d2 = x_t - 2 x_{t-1} + x_{t-2} (6 sigma^2 in variance, slow motion removed),
-//               sum(d2^2 over n) < 6 sigma^2 chi2_nu(alpha) / nu, nu = 36 n / 70 (Satterthwaite:
-//               overlapping d2 are correlated). Only when sigma >= q / 2: a sensor quantised
-//               coarser than its noise repeats itself when healthy (an unloaded foot reads 0).
+//               sum(d2^2 over n) < 6 (sigma / m)^2 chi2_nu(alpha) / nu, nu = 36 n / 70
+//               (Satterthwaite: overlapping d2 are correlated). Only when sigma / m >= q / 2: a
+//               sensor quantised coarser than its noise repeats itself when healthy (a steady load
+//               in the middle of a step reads one level for ever), and the noise may be as low as
+//               sigma / m (the bound's chi-square quantile assumes Gaussian d2, which a reading
+//               that takes two or three levels is not).
 //               Nor while the window holds a reading at the sensor's rest value (`rest_value`,
 //               within q / 2): a driver that clamps an unloaded sensor there (a foot force
 //               sensor reporting exactly 0 N in the air) repeats it exactly while healthy, so a
@@ -91,9 +94,10 @@ class SignalValidator {
   // For the config reference's port table and the schema (plugin.hpp): inputs reference and guard are optional.
   static constexpr std::string_view example_params = R"([{}, {"reference": true, "guard": true}])";
 
-  // `ftsense calibrate` measures each reading's white noise from its second differences.
+  // `ftsense calibrate` measures each reading's white noise and quantisation step (tick_noise.hpp).
   static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
       {"noise_std", "signal", FaultFreeStatistic::tick_noise},
+      {"resolution", "signal", FaultFreeStatistic::resolution},
   });
 
   struct Params {
@@ -132,7 +136,7 @@ class SignalValidator {
   struct Limits {
     double half_step = 0.0;          // q / 2
     double upper = 0.0, lower = 0.0;  // saturation limits (+-inf: none)
-    bool stale_test = true;           // sigma >= q / 2
+    bool stale_test = true;           // sigma / m >= q / 2
     double rest = 0.0;                // the value the driver clamps an unloaded sensor to
     bool has_rest = false;
     double stale_below = 0.0;         // sum(d2^2) of the reading below this: frozen (a)
