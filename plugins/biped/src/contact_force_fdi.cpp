@@ -382,6 +382,8 @@ void ContactForceFdi::reset() noexcept {
   std::fill(residual_ring_.begin(), residual_ring_.end(), 0.0);
   residual_next_ = 0;
   residual_count_ = 0;
+  residual_before_touchdown_ = 0.0;
+  residual_before_known_ = was_touching_down_ = false;
   sum_filtered_ = 0.0;
   started_ = false;
   group_pending_ = false;
@@ -414,6 +416,7 @@ void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
 
 void ContactForceFdi::clear(Channel& c) noexcept {
   c.type = FaultType::none;
+  c.end_pending = false;
   c.offset = c.slope = 0.0;
   c.gain = 1.0;
   c.fit_has_air = false;
@@ -421,6 +424,15 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.following = c.frozen_by_follow = false;
   c.sign_fault = false;
   c.negative_fit = SlopeFit{};
+}
+
+double ContactForceFdi::recent_residual_mean() const noexcept {
+  const std::size_t w = static_cast<std::size_t>(jump_window_ticks_);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < w; ++i) {
+    sum += residual_ring_[(residual_next_ + residual_ring_.size() - 1 - i) % residual_ring_.size()];
+  }
+  return sum / static_cast<double>(w);
 }
 
 bool ContactForceFdi::SlopeFit::negative_slope(double& k) const noexcept {
@@ -465,6 +477,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     last_touchdown_s = std::max(last_touchdown_s, last_touchdown_s_[f]);
   }
   const bool touching_down = t - last_touchdown_s < params_.touchdown_guard_s;
+  // The sum residual before a touchdown's guard began (a later touchdown inside it keeps it):
+  // what a fault's end seen inside the guard is judged against.
+  if (touching_down && !was_touching_down_) {
+    residual_before_known_ = residual_count_ >= static_cast<std::size_t>(jump_window_ticks_);
+    residual_before_touchdown_ = recent_residual_mean();
+  }
+  was_touching_down_ = touching_down;
   // The second difference of each foot's summed reading: load moving between the pads of a foot
   // (a rocking or chattering foot) leaves it small, a pad's own noise does not. Unknown (taken as
   // large) while a pad has no value.
@@ -585,6 +604,28 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.relation_pending = true;
         c.relation_jump = change;
         c.relation_candidate_load = c.previous;
+      } else if (steps && touching_down && !pad_landing && !c.end_pending && corrects(c.type) &&
+                 (c.type == FaultType::gain || c.fit_has_air) &&
+                 t - last_touchdown_s_[j / feet_points_] >= params_.touchdown_guard_s && fz_ok &&
+                 residual_before_known_) {
+        // A step back by the fault's size on a foot that is not landing, while another foot is:
+        // the fault may have ended. Only a fault whose model is settled (measured in the air, or
+        // a gain): an offset raised by a jump may yet be a gain, whose error shrinks as its foot
+        // hands load over at the landing, as an end would. The sum residual carries the other foot's impact now, so it
+        // judges the step once the guard is over (the loads have settled by then), against what
+        // it was before the guard (at 200 Hz a load shifting at a landing moves a pad by tens
+        // of newtons in a tick: the residual, not the step, tells a sensor's end).
+        const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * c.previous : fault_at(c, t);
+        if (std::abs(change + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
+          c.end_pending = true;
+          // Ended, the fault leaves the residual by its size (a gain's reading is taken as x / k:
+          // the load L = x_before / k then reads L / k): not by the step, which at a landing also
+          // carries the load the foot hands over.
+          c.end_jump = c.type == FaultType::gain ? -(1.0 - 1.0 / c.gain) * c.previous / c.gain : -estimate;
+          c.end_before = residual_before_touchdown_;
+          c.end_since_s = t;
+          c.end_clear_ticks = 0;
+        }
       }
     }
     if (airborne) {
@@ -673,6 +714,25 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // load jump in opposite directions and leave the residual alone: not a fault.
       group_confirmed = step * group_sum_ > 0.0 && std::abs(step) >= confirm_N && std::abs(group_sum_) >= confirm_N &&
                         std::abs(step - group_sum_) <= std::max(params_.jump_confirm_N, 0.5 * std::abs(group_sum_));
+    }
+  }
+
+  // A fault's end seen inside another foot's touchdown guard: once the guard is over and the
+  // residual has had a jump window to settle, it must have stepped by what the end implies, as a
+  // jump's group must (a healthy pad's move as the load shifts leaves the residual alone).
+  for (auto& c : channels_) {
+    if (!c.end_pending) continue;
+    if (!corrects(c.type) || t - c.end_since_s > 4.0 * params_.touchdown_guard_s) {
+      c.end_pending = false;  // re-typed, or the guards kept coming: left to the other tests
+      continue;
+    }
+    if (touching_down || !fz_ok) continue;
+    if (++c.end_clear_ticks < jump_window_ticks_) continue;
+    c.end_pending = false;
+    const double step = recent_residual_mean() - c.end_before;
+    if (step * c.end_jump > 0.0 && std::abs(step) >= confirm_N &&
+        std::abs(step - c.end_jump) <= std::max(params_.jump_confirm_N, 0.5 * std::abs(c.end_jump))) {
+      clear(c);
     }
   }
 

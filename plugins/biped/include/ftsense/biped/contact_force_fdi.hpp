@@ -99,6 +99,14 @@
 //             expectation both beyond z sigma in the relations' norm; sigma the window step's
 //             RMS measured on the log's healthy full-contact ticks (at least 100), z the
 //             two-sided normal quantile of alpha = T / false_alarm_interval_s.
+//             Inside another foot's touchdown guard, a pad not landing itself that steps back by
+//             its fault's size (|jump + b| < 0.4 |b| + jump_confirm_N, b the fault's size now),
+//             where that size is settled (measured in the air, or a gain), may be the fault's
+//             end: once the guard is over and a jump window has passed, the sum residual must have
+//             stepped from its mean over the jump window before the guard by what the end implies
+//             (-b; a gain: -(1 - 1/k) x_before / k), within max(jump_confirm_N, 50 %), beyond
+//             the confirmation step: then the channel is re-admitted. The step itself is not the
+//             measure: at a landing the pad also hands load over (tens of N in a tick at 200 Hz).
 //   gain      (stance regression) the corrected sum residual r = sum_i N^_i - F_z fitted, channel
 //             by channel, by r ~ b_j + beta_j N^_j over an exponential window of gain_window_s
 //             (beta_j = cov(r, N^_j) / var(N^_j), weighted alike). A channel reading k times its
@@ -322,6 +330,12 @@ class ContactForceFdi {
     double jump_size = 0.0;
     double candidate_load = 0.0;
     double jump_load_before = 0.0;
+    // A reverse jump of the fault's size inside another foot's touchdown guard: judged by the
+    // sum residual's step once the guard is over (end_jump: the step an end implies; end_before: the
+    // residual's mean over the jump window before the guard).
+    bool end_pending = false;
+    double end_jump = 0.0, end_before = 0.0, end_since_s = 0.0;
+    int end_clear_ticks = 0;  // ticks since the guard ended
     // state
     FaultType type = FaultType::none;
     double flagged_since = 0.0;
@@ -369,6 +383,8 @@ class ContactForceFdi {
   // The feet's plane relations this tick: their window steps, their fault-free statistics and the
   // groups of jumps inside a touchdown guard they confirm (after the channel tests).
   void relation_jumps(std::span<const double> measured, std::span<const double> height, double t) noexcept;
+  // The sum residual's mean over the last jump window (the ring's newest jump_window_ticks_).
+  [[nodiscard]] double recent_residual_mean() const noexcept;
   // A foot's decided group: its relations stepped by what its jumps imply, beyond their noise.
   [[nodiscard]] bool relation_confirmed(std::size_t foot, double t) const noexcept;
 
@@ -383,6 +399,9 @@ class ContactForceFdi {
   std::size_t residual_count_ = 0;
   double sum_filtered_ = 0.0;
   bool started_ = false;
+  double residual_before_touchdown_ = 0.0;  // its mean over the jump window before the guard
+  bool residual_before_known_ = false;     // the ring held a whole window then
+  bool was_touching_down_ = false;
   bool group_pending_ = false;  // jump candidates of one tick, awaiting confirmation
   int group_age_ = 0;
   double group_sum_ = 0.0;
