@@ -598,6 +598,20 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         ++jump_candidates;
         // In the terms of the sum residual, which takes a gain fault's reading corrected.
         jump_sum += c.type == FaultType::gain ? change / c.gain : change;
+      } else if (steps && may_jump && !c.jump_member && !c.end_pending && corrects(c.type)) {
+        // A step while another group awaits its confirmation (a landing foot's pads jumping as
+        // it rolls on): judged on its own window, as a group of its own would be, when it steps
+        // back by the fault's size (the fault may have ended; an onset on a healthy channel waits
+        // for the next free group, as before).
+        const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * c.previous : fault_at(c, t);
+        if (std::abs(change + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
+          c.end_pending = true;
+          c.end_after_guard = false;
+          c.end_jump = c.type == FaultType::gain ? change / c.gain : change;  // as the sum residual takes it
+          c.end_before = recent_residual_mean();
+          c.end_since_s = t;
+          c.end_clear_ticks = 0;
+        }
       } else if (steps && touching_down && !pad_landing && unmeasured_.relations_per_foot() > 0 &&
                  relation_group_[j / feet_points_] != 1) {  // 2: decided last tick, free again
         // Inside a touchdown guard the sum residual carries the impact; the foot's plane does not.
@@ -618,6 +632,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * c.previous : fault_at(c, t);
         if (std::abs(change + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
           c.end_pending = true;
+          c.end_after_guard = true;
           // Ended, the fault leaves the residual by its size (a gain's reading is taken as x / k:
           // the load L = x_before / k then reads L / k): not by the step, which at a landing also
           // carries the load the foot hands over.
@@ -719,14 +734,15 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
 
   // A fault's end seen inside another foot's touchdown guard: once the guard is over and the
   // residual has had a jump window to settle, it must have stepped by what the end implies, as a
-  // jump's group must (a healthy pad's move as the load shifts leaves the residual alone).
+  // jump's group must (a healthy pad's move as the load shifts leaves the residual alone). One
+  // seen while another group was pending: after its own jump window, by its step.
   for (auto& c : channels_) {
     if (!c.end_pending) continue;
     if (!corrects(c.type) || t - c.end_since_s > 4.0 * params_.touchdown_guard_s) {
       c.end_pending = false;  // re-typed, or the guards kept coming: left to the other tests
       continue;
     }
-    if (touching_down || !fz_ok) continue;
+    if ((c.end_after_guard && touching_down) || !fz_ok) continue;
     if (++c.end_clear_ticks < jump_window_ticks_) continue;
     c.end_pending = false;
     const double step = recent_residual_mean() - c.end_before;

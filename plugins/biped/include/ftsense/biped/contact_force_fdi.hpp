@@ -107,6 +107,10 @@
 //             (-b; a gain: -(1 - 1/k) x_before / k), within max(jump_confirm_N, 50 %), beyond
 //             the confirmation step: then the channel is re-admitted. The step itself is not the
 //             measure: at a landing the pad also hands load over (tens of N in a tick at 200 Hz).
+//             A group is confirmed one at a time, and steps while one is pending join none; but a
+//             flagged channel that steps back by its fault's size then (a landing foot's pads
+//             jumping as it rolls on, the fault ending in the same jump window) is judged on its
+//             own window, as a group of its own would be.
 //   gain      (stance regression) the corrected sum residual r = sum_i N^_i - F_z fitted, channel
 //             by channel, by r ~ b_j + beta_j N^_j over an exponential window of gain_window_s
 //             (beta_j = cov(r, N^_j) / var(N^_j), weighted alike). A channel reading k times its
@@ -332,8 +336,10 @@ class ContactForceFdi {
     double jump_load_before = 0.0;
     // A reverse jump of the fault's size inside another foot's touchdown guard: judged by the
     // sum residual's step once the guard is over (end_jump: the step an end implies; end_before: the
-    // residual's mean over the jump window before the guard).
+    // residual's mean over the jump window before the guard). Likewise a step back while
+    // another group is pending, judged a jump window after it by its own step.
     bool end_pending = false;
+    bool end_after_guard = false;  // judged after the guard (else: a jump window after the step)
     double end_jump = 0.0, end_before = 0.0, end_since_s = 0.0;
     int end_clear_ticks = 0;  // ticks since the guard ended
     // state
