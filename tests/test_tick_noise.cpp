@@ -2,7 +2,7 @@
 // exact on small sequences; a step in the load barely moves it; exact repeats are left out; NaN
 // breaks the sequence. Quantised readings: the step found, the noise from the share of changes
 // (below half a step) or from the binned second differences less q^2 / 12 (above), on synthetic
-// quantised noise with fixed seeds.
+// quantised noise with fixed seeds; C(r) against its definition.
 
 #include <cmath>
 #include <cstdio>
@@ -63,6 +63,20 @@ TEST(TickNoise, ChangeProbabilityOfAQuantisedReading) {
   EXPECT_NEAR(TickNoise::change_probability(0.01), 2.0 * 0.01 / std::sqrt(M_PI), 1e-5);
   EXPECT_NEAR(TickNoise::change_probability(0.05), 2.0 * 0.05 / std::sqrt(M_PI), 1e-4);
   EXPECT_NEAR(1.0 - TickNoise::change_probability(20.0), 1.0 / (2.0 * 20.0 * std::sqrt(M_PI)), 1e-5);
+  // The closed form against the definition 1 - E_u[sum_l p_l(u)^2], by midpoint quadrature over u.
+  for (double r : {0.05, 0.2, 0.5, 1.0, 3.0}) {
+    const auto cdf = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
+    double stay = 0.0;
+    constexpr int kPlaces = 4000;
+    for (int i = 0; i < kPlaces; ++i) {
+      const double u = (i + 0.5) / kPlaces;
+      for (int l = -40; l <= 40; ++l) {
+        const double p = cdf((l + 0.5 - u) / r) - cdf((l - 0.5 - u) / r);
+        stay += p * p / kPlaces;
+      }
+    }
+    EXPECT_NEAR(TickNoise::change_probability(r), 1.0 - stay, 1e-6) << "r = " << r;
+  }
   // Increasing, and the inverse returns r.
   double before = 0.0;
   for (double r : {0.02, 0.1, 0.3, 0.5, 1.0, 3.0, 10.0}) {
@@ -94,7 +108,7 @@ std::vector<double> quantised_sweep(double sigma, double q, unsigned seed) {
 TEST(TickNoise, QuantisedNoiseBelowAndAboveAStep) {
   constexpr unsigned kSeed = 20261127;
   std::printf("TickNoise quantised sweeps: seed %u\n", kSeed);
-  for (double r : {0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 2.0, 5.0}) {
+  for (double r : {0.01, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 2.0, 5.0}) {
     for (double q : {1.0, 5.0}) {
       TickNoise t;
       for (double x : quantised_sweep(r * q, q, kSeed)) t.add(x);
@@ -103,6 +117,20 @@ TEST(TickNoise, QuantisedNoiseBelowAndAboveAStep) {
       EXPECT_NEAR(t.standard_deviation() / (r * q), 1.0, 0.1) << "q = " << q << ", r = " << r;
     }
   }
+}
+
+TEST(TickNoise, ANoiselessRampOnALatticeWithAnOffsetAndAClamp) {
+  // Levels 0.3 + 2 k up and down a triangle, each held 50 readings (a slow load, no noise), with
+  // a clamp to 0 for 300 readings every 8000 (10 changes off the lattice among about 800): the
+  // step is 2, and the noise is found far below it (no change but the load's own), not refused.
+  TickNoise t;
+  for (int k = 0; k < 40000; ++k) {
+    const int level = (k / 50) % 40 < 20 ? (k / 50) % 40 : 40 - (k / 50) % 40;
+    t.add(k % 8000 < 300 ? 0.0 : 0.3 + 2.0 * level);
+  }
+  EXPECT_NEAR(t.resolution(), 2.0, 1e-12);
+  EXPECT_GT(t.count(), 0u);
+  EXPECT_LT(t.standard_deviation(), 0.05 * 2.0);
 }
 
 TEST(TickNoise, AContinuousReadingHasNoStep) {

@@ -384,6 +384,7 @@ void ContactForceFdi::reset() noexcept {
   residual_count_ = 0;
   residual_before_touchdown_ = 0.0;
   residual_before_known_ = was_touching_down_ = false;
+  group_before_ = 0.0;
   sum_filtered_ = 0.0;
   started_ = false;
   group_pending_ = false;
@@ -426,10 +427,10 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.negative_fit = SlopeFit{};
 }
 
-double ContactForceFdi::recent_residual_mean() const noexcept {
+double ContactForceFdi::recent_residual_mean(std::size_t skip) const noexcept {
   const std::size_t w = static_cast<std::size_t>(jump_window_ticks_);
   double sum = 0.0;
-  for (std::size_t i = 0; i < w; ++i) {
+  for (std::size_t i = skip; i < w + skip; ++i) {
     sum += residual_ring_[(residual_next_ + residual_ring_.size() - 1 - i) % residual_ring_.size()];
   }
   return sum / static_cast<double>(w);
@@ -598,7 +599,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         ++jump_candidates;
         // In the terms of the sum residual, which takes a gain fault's reading corrected.
         jump_sum += c.type == FaultType::gain ? change / c.gain : change;
-      } else if (steps && may_jump && !c.jump_member && !c.end_pending && corrects(c.type)) {
+      } else if (steps && may_jump && !c.jump_member && !c.end_pending && corrects(c.type) && fz_ok &&
+                 residual_count_ == residual_ring_.size()) {
         // A step while another group awaits its confirmation (a landing foot's pads jumping as
         // it rolls on): judged on its own window, as a group of its own would be, when it steps
         // back by the fault's size (the fault may have ended; an onset on a healthy channel waits
@@ -608,7 +610,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           c.end_pending = true;
           c.end_after_guard = false;
           c.end_jump = c.type == FaultType::gain ? change / c.gain : change;  // as the sum residual takes it
-          c.end_before = recent_residual_mean();
+          // Before the pending group's jump, which the group's own confirmation then accounts for
+          // (its step is added to what this end implies once the group is decided).
+          c.end_before = group_before_;
+          c.end_group = group_serial_;
           c.end_since_s = t;
           c.end_clear_ticks = 0;
         }
@@ -683,6 +688,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   residual_count_ = std::min(residual_count_ + 1, residual_ring_.size());
   if (jump_candidates > 0 && fz_ok) {
     group_pending_ = true;
+    ++group_serial_;
+    group_before_ = recent_residual_mean(1);  // the window before this tick's jump
     group_age_ = 0;
     group_sum_ = jump_sum;
     group_size_ = jump_candidates;
@@ -709,7 +716,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     unmeasured_in_residual = unmeasured_in_residual || substituted || noisy_loaded;
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
   }
-  if (substituting_rolling) group_pending_ = false;
+  bool group_dropped = false;
+  if (substituting_rolling && group_pending_) {
+    group_pending_ = false;
+    group_dropped = true;
+  }
   const double confirm_N = unmeasured_in_residual ? 3.0 * params_.jump_confirm_N : params_.jump_confirm_N;
   // Confirm (or drop) the pending group once the window after the jump is complete.
   bool group_confirmed = false;
@@ -729,6 +740,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // load jump in opposite directions and leave the residual alone: not a fault.
       group_confirmed = step * group_sum_ > 0.0 && std::abs(step) >= confirm_N && std::abs(group_sum_) >= confirm_N &&
                         std::abs(step - group_sum_) <= std::max(params_.jump_confirm_N, 0.5 * std::abs(group_sum_));
+    } else {
+      group_dropped = true;
+    }
+  }
+  // Ends seen while this group was pending: its step, if it was one, is in theirs too.
+  if (group_decided || group_dropped) {
+    for (auto& c : channels_) {
+      if (!c.end_pending || c.end_after_guard || c.end_group != group_serial_) continue;
+      if (group_dropped) {
+        c.end_pending = false;
+      } else if (group_confirmed) {
+        c.end_jump += group_sum_;
+      }
     }
   }
 
@@ -736,15 +760,26 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // residual has had a jump window to settle, it must have stepped by what the end implies, as a
   // jump's group must (a healthy pad's move as the load shifts leaves the residual alone). One
   // seen while another group was pending: after its own jump window, by its step.
+  // Two ends judged on one residual could each be matched by the step of one of them (a fault
+  // that ended and a flagged pad that handed its load over): with more than one pending, none is
+  // re-admitted this way.
+  int ends_pending = 0;
+  for (const auto& c : channels_) ends_pending += c.end_pending ? 1 : 0;
   for (auto& c : channels_) {
     if (!c.end_pending) continue;
-    if (!corrects(c.type) || t - c.end_since_s > 4.0 * params_.touchdown_guard_s) {
+    if (!corrects(c.type) ||
+        t - c.end_since_s > 4.0 * params_.touchdown_guard_s + 2.0 * jump_window_ticks_ * period_s_) {
       c.end_pending = false;  // re-typed, or the guards kept coming: left to the other tests
       continue;
     }
-    if ((c.end_after_guard && touching_down) || !fz_ok) continue;
+    if (c.end_after_guard && touching_down) {
+      c.end_clear_ticks = 0;  // a further landing: its impact must pass too
+      continue;
+    }
+    if (!fz_ok) continue;
     if (++c.end_clear_ticks < jump_window_ticks_) continue;
     c.end_pending = false;
+    if (ends_pending > 1) continue;
     const double step = recent_residual_mean() - c.end_before;
     if (step * c.end_jump > 0.0 && std::abs(step) >= confirm_N &&
         std::abs(step - c.end_jump) <= std::max(params_.jump_confirm_N, 0.5 * std::abs(c.end_jump))) {

@@ -14,8 +14,6 @@ constexpr double kMedianAbsNormal = 0.6744897501960817;
 // differences (header).
 constexpr double kSecondDifferencesFrom = 0.5;
 
-double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); }
-
 // The median of values v_i >= 0 that are whole multiples of a bin (v_i / bin = k_i), interpolated
 // within its bin [k - 1/2, k + 1/2) bin ([0, 1/2) bin for k = 0), in units of the bin.
 double binned_median(std::vector<long long> k) {
@@ -44,25 +42,21 @@ void TickNoise::add(double x) {
     return;
   }
   readings_.push_back(x);
+  analysis_.reset();
 }
 
 void TickNoise::break_sequence() {
   if (!readings_.empty() && !std::isnan(readings_.back())) readings_.push_back(std::nan(""));
+  analysis_.reset();
 }
 
 double TickNoise::change_probability(double r) {
-  // Midpoint rule over u in [0, 1) and the levels within 8 r + 2 of it.
-  constexpr int kPlaces = 256;
-  const int reach = static_cast<int>(std::ceil(8.0 * r)) + 2;
-  double stay = 0.0;
-  for (int i = 0; i < kPlaces; ++i) {
-    const double u = (i + 0.5) / kPlaces;
-    for (int l = -reach; l <= reach + 1; ++l) {
-      const double p = normal_cdf((l + 0.5 - u) / r) - normal_cdf((l - 0.5 - u) / r);
-      stay += p * p;
-    }
-  }
-  return 1.0 - stay / kPlaces;
+  // Two readings at the same place u differ by D = n_1 - n_2 ~ N(0, 2 r^2) (in steps); over u
+  // uniform they share a level with probability E[max(0, 1 - |D|)]. With s = sqrt(2) r:
+  // E = erf(1 / (s sqrt 2)) - s sqrt(2 / pi) (1 - exp(-1 / (2 s^2))).
+  const double stay =
+      std::erf(0.5 / r) - 2.0 * r / std::sqrt(std::numbers::pi) * -std::expm1(-0.25 / (r * r));
+  return 1.0 - stay;
 }
 
 double TickNoise::noise_over_step(double p) {
@@ -81,18 +75,34 @@ double TickNoise::lattice_step() const {
     if (d > 0.0 && std::isfinite(d)) steps.push_back(d);  // NaN (a break) fails d > 0
   }
   if (steps.size() < kMinLatticeSteps) return 0.0;
-  const double smallest = *std::min_element(steps.begin(), steps.end());
+  // The smallest step that recurs (on 1 % of the changes or more): a driver's clamp to 0 or a
+  // reset puts a few changes off the lattice, and a continuous reading has no recurring step
+  // (nor has a log printed with fixed decimals much finer than its noise: each multiple of the
+  // decimal is too rare).
+  std::sort(steps.begin(), steps.end());
+  const double recurring = std::max(2.0, 0.01 * static_cast<double>(steps.size()));
+  double smallest = 0.0;
+  for (std::size_t i = 0; i < steps.size();) {
+    std::size_t j = i;
+    while (j < steps.size() && steps[j] <= steps[i] * (1.0 + 1e-3)) ++j;
+    if (static_cast<double>(j - i) >= recurring) {
+      smallest = steps[i];
+      break;
+    }
+    i = j;
+  }
+  if (smallest == 0.0) return 0.0;
   double sum = 0.0, multiples = 0.0;
   std::size_t on_lattice = 0;
   for (double d : steps) {
     const double k = std::round(d / smallest);
-    if (std::abs(d - k * smallest) <= 0.01 * smallest) {
+    if (k >= 1.0 && std::abs(d - k * smallest) <= 0.01 * smallest) {
       ++on_lattice;
       sum += d;
       multiples += k;
     }
   }
-  if (static_cast<double>(on_lattice) < 0.99 * static_cast<double>(steps.size())) return 0.0;
+  if (static_cast<double>(on_lattice) < kOnLatticeShare * static_cast<double>(steps.size())) return 0.0;
   return sum / multiples;
 }
 
@@ -136,8 +146,8 @@ TickNoise::Analysis TickNoise::analyse() const {
       ++s.pairs;
       if (readings_[k] != readings_[k - 1]) ++s.changes;
       if (with_d2 && k >= 2 && kept[k - 2]) {
-        const double d2 = readings_[k] - 2.0 * readings_[k - 1] + readings_[k - 2];
-        s.d2_bins.push_back(std::llround(std::abs(d2) / q));
+        const double bins = std::abs(readings_[k] - 2.0 * readings_[k - 1] + readings_[k - 2]) / q;
+        if (bins < 1e15) s.d2_bins.push_back(std::llround(bins));  // (not an overflow)
       }
     }
     return s;
@@ -148,17 +158,20 @@ TickNoise::Analysis TickNoise::analyse() const {
     return share < 1.0 ? noise_over_step(share) : std::numeric_limits<double>::infinity();
   };
   // The long-run bound follows r: from none (all pairs), to the run a reading at the middle of its
-  // step stays in with probability kLongRunProbability. Each estimate of r is at least the
-  // previous one (fewer runs of repeats left in), so this converges upwards.
+  // step stays in with probability kLongRunProbability. Each step shortens the bound and is kept
+  // only while r rises (leaving a run out also leaves out the changes at its ends, so r need not
+  // rise): at most 30 steps, and the statistics below use the bound r was measured with.
   double long_run = std::numeric_limits<double>::infinity();
   double r = r_of(shares_without_runs_of(long_run, false));
   for (int i = 0; i < 30 && std::isfinite(r); ++i) {
-    const double stay_in_the_middle = std::erf(1.0 / (2.0 * std::numbers::sqrt2 * r));
-    const double next_bound = std::max(3.0, std::ceil(std::log(kLongRunProbability) / std::log(stay_in_the_middle)));
+    // ln P(stay) in the middle of a step, = ln(1 - erfc(...)): exact where erf rounds to 1.
+    const double log_stay = std::log1p(-std::erfc(1.0 / (2.0 * std::numbers::sqrt2 * r)));
+    if (!(log_stay < 0.0)) break;  // no run is unlikely: none is left out
+    const double next_bound = std::max(3.0, std::ceil(std::log(kLongRunProbability) / log_stay));
     if (!(next_bound < long_run)) break;
+    const double next = r_of(shares_without_runs_of(next_bound, false));
+    if (!(next > r)) break;  // the bound stays where r was measured
     long_run = next_bound;
-    const double next = r_of(shares_without_runs_of(long_run, false));
-    if (!(next > r)) break;
     r = next;
   }
   Shares s = shares_without_runs_of(long_run, true);
@@ -176,8 +189,13 @@ TickNoise::Analysis TickNoise::analyse() const {
   return a;
 }
 
-std::size_t TickNoise::count() const { return analyse().count; }
-double TickNoise::standard_deviation() const { return analyse().sigma; }
-double TickNoise::resolution() const { return analyse().resolution; }
+const TickNoise::Analysis& TickNoise::analysis() const {
+  if (!analysis_) analysis_ = analyse();
+  return *analysis_;
+}
+
+std::size_t TickNoise::count() const { return analysis().count; }
+double TickNoise::standard_deviation() const { return analysis().sigma; }
+double TickNoise::resolution() const { return analysis().resolution; }
 
 }  // namespace ftsense::generic

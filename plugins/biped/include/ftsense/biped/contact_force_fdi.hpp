@@ -110,7 +110,11 @@
 //             A group is confirmed one at a time, and steps while one is pending join none; but a
 //             flagged channel that steps back by its fault's size then (a landing foot's pads
 //             jumping as it rolls on, the fault ending in the same jump window) is judged on its
-//             own window, as a group of its own would be.
+//             own: a jump window after its step, the residual must have stepped from its mean
+//             before the group's jump by its step, plus the group's if that was confirmed (a
+//             dropped group drops it). With more than one such end pending, none is re-admitted
+//             this way (one residual step could match each of two). Inside the guard, the
+//             foot's plane relations (`points`) judge a landing foot's pads first.
 //   gain      (stance regression) the corrected sum residual r = sum_i N^_i - F_z fitted, channel
 //             by channel, by r ~ b_j + beta_j N^_j over an exponential window of gain_window_s
 //             (beta_j = cov(r, N^_j) / var(N^_j), weighted alike). A channel reading k times its
@@ -210,6 +214,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -341,7 +346,8 @@ class ContactForceFdi {
     bool end_pending = false;
     bool end_after_guard = false;  // judged after the guard (else: a jump window after the step)
     double end_jump = 0.0, end_before = 0.0, end_since_s = 0.0;
-    int end_clear_ticks = 0;  // ticks since the guard ended
+    int end_clear_ticks = 0;  // ticks judged since the guard ended (or since the step)
+    std::uint64_t end_group = 0;  // the pending group it was seen beside (not after a guard)
     // state
     FaultType type = FaultType::none;
     double flagged_since = 0.0;
@@ -389,8 +395,9 @@ class ContactForceFdi {
   // The feet's plane relations this tick: their window steps, their fault-free statistics and the
   // groups of jumps inside a touchdown guard they confirm (after the channel tests).
   void relation_jumps(std::span<const double> measured, std::span<const double> height, double t) noexcept;
-  // The sum residual's mean over the last jump window (the ring's newest jump_window_ticks_).
-  [[nodiscard]] double recent_residual_mean() const noexcept;
+  // The sum residual's mean over a jump window: the ring's newest jump_window_ticks_, after
+  // skipping the newest `skip` (at most jump_window_ticks_: the ring holds two windows).
+  [[nodiscard]] double recent_residual_mean(std::size_t skip = 0) const noexcept;
   // A foot's decided group: its relations stepped by what its jumps imply, beyond their noise.
   [[nodiscard]] bool relation_confirmed(std::size_t foot, double t) const noexcept;
 
@@ -408,7 +415,9 @@ class ContactForceFdi {
   double residual_before_touchdown_ = 0.0;  // its mean over the jump window before the guard
   bool residual_before_known_ = false;     // the ring held a whole window then
   bool was_touching_down_ = false;
-  bool group_pending_ = false;  // jump candidates of one tick, awaiting confirmation
+  bool group_pending_ = false;
+  std::uint64_t group_serial_ = 0;  // counts the groups formed
+  double group_before_ = 0.0;       // the residual's mean over the jump window before the group's jump  // jump candidates of one tick, awaiting confirmation
   int group_age_ = 0;
   double group_sum_ = 0.0;
   int group_size_ = 0;
