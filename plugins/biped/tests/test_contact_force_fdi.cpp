@@ -1016,7 +1016,11 @@ namespace {
 // residual steps by -20 N), or, when `load_shift`, the foot hands 20 N of load to its landed
 // neighbour in that tick (the reading was right to step: the residual stays). Returns the tick
 // the offset is dropped (-1: kept to tick 900).
-int quadruped_offset_dropped_at(bool load_shift) {
+// With `both`, the left hind foot swings too (ticks 120 to 240) reading +20 N from its lift, an
+// offset that stays; at tick 600 it hands 20 N of its load to the landed right front foot, so its
+// reading steps back by its offset's size while its fault goes on: `other_dropped_at` says when it
+// was dropped (-1: never).
+int quadruped_offset_dropped_at(bool load_shift, bool both = false, int* other_dropped_at = nullptr) {
   ContactForceFdi::Params p;
   p.points_per_foot = 1;
   p.noise_std_N = 0.5;
@@ -1027,34 +1031,48 @@ int quadruped_offset_dropped_at(bool load_shift) {
   fdi.reset();
   std::vector<double> measured(4), total{0.0, 0.0, 130.0};
   std::vector<double> height(4, 0.0);
-  const int lift0 = 100, land0 = 250, lift1 = 300, land1 = 550, end = 600;
+  const int lift[4] = {100, 300, both ? 120 : 100000, 100000}, land[4] = {250, 550, both ? 240 : 100000, 100000};
+  const int end = 600;
   int dropped_at = -1;
+  if (other_dropped_at != nullptr) *other_dropped_at = -1;
   for (int k = 0; k < 900; ++k) {
-    height[0] = k >= lift0 && k < land0 ? 0.03 : 0.0;
-    height[1] = k >= lift1 && k < land1 ? 0.03 : 0.0;
     const double wiggle = k % 2 == 0 ? 0.3 : -0.3;
-    // A swinging foot's 32.5 N leaves over the 50 ticks before it lifts and returns over the 50
-    // after it lands, shared by the other three.
-    const double share0 = std::clamp(std::max(lift0 - k, k - land0 + 1) / 50.0, 0.0, 1.0);
-    const double share1 = std::clamp(std::max(lift1 - k, k - land1 + 1) / 50.0, 0.0, 1.0);
-    const double away = 32.5 * ((1.0 - share0) + (1.0 - share1)) / 3.0;
-    double loads[4] = {32.5 * share0 + (1.0 - share1) * 32.5 / 3.0, 32.5 * share1 + (1.0 - share0) * 32.5 / 3.0,
-                       32.5 + away, 32.5 + away};
+    // A swinging foot's load leaves over the 50 ticks before it lifts and returns over the 50
+    // after it lands; the 130 N are shared in proportion by the feet that carry.
+    double share[4], carried = 0.0;
+    for (std::size_t j = 0; j < 4; ++j) {
+      height[j] = k >= lift[j] && k < land[j] ? 0.03 : 0.0;
+      share[j] = std::clamp(std::max(lift[j] - k, k - land[j] + 1) / 50.0, 0.0, 1.0);
+      carried += share[j];
+    }
+    double loads[4];
+    for (std::size_t j = 0; j < 4; ++j) loads[j] = 130.0 * share[j] / carried;
     if (load_shift && k >= end) {
       loads[0] -= 20.0;
       loads[1] += 20.0;
     }
+    if (both && k >= end) {
+      loads[2] -= 20.0;
+      loads[1] += 20.0;
+    }
     for (std::size_t j = 0; j < 4; ++j) measured[j] = loads[j] + wiggle * (j % 2 == 0 ? 1.0 : -1.0);
-    if (k >= lift0 && (load_shift || k < end)) measured[0] += 20.0;
+    if (k >= lift[0] && (load_shift || k < end)) measured[0] += 20.0;
+    if (both && k >= lift[2]) measured[2] += 20.0;
     const std::span<const double> ins[] = {measured, total, height};
     std::vector<std::span<double>> out_spans(outs.begin(), outs.end());
     fdi.step(StepIO{k * 1e-3, ins, out_spans});
-    const auto type = fault_type_from_code(outs[ContactForceFdi::kFaultType][0]).value_or(FaultType::unclassified);
+    const auto type = [&](std::size_t j) {
+      return fault_type_from_code(outs[ContactForceFdi::kFaultType][j]).value_or(FaultType::unclassified);
+    };
     if (k == end - 1) {
-      EXPECT_EQ(type, FaultType::offset) << "load_shift " << load_shift;
+      EXPECT_EQ(type(0), FaultType::offset) << "load_shift " << load_shift;
       EXPECT_NEAR(outs[ContactForceFdi::kFaultEstimate][0], 20.0, 0.1);
+      if (both) {
+        EXPECT_EQ(type(2), FaultType::offset);
+      }
     }
-    if (k >= end && dropped_at < 0 && type == FaultType::none) dropped_at = k;
+    if (k >= end && dropped_at < 0 && type(0) == FaultType::none) dropped_at = k;
+    if (both && k >= end && *other_dropped_at < 0 && type(2) == FaultType::none) *other_dropped_at = k;
   }
   return dropped_at;
 }
@@ -1066,6 +1084,12 @@ TEST(ContactForceFdi, AnOffsetThatEndsInsideAnotherFootsTouchdownGuardIsDroppedO
   EXPECT_EQ(quadruped_offset_dropped_at(false), 550 + 150 + 9);
   // The same step with the load handed to the neighbour leaves the residual alone: kept.
   EXPECT_EQ(quadruped_offset_dropped_at(true), -1);
+  // An end and, on the same tick, a flagged foot handing over load by its offset's size: the
+  // residual steps by one offset, which matches each alone. Judged one by one, the foot whose
+  // fault goes on would be dropped; with two pending, neither is (left to the air test).
+  int other = 0;
+  EXPECT_EQ(quadruped_offset_dropped_at(false, true, &other), -1);
+  EXPECT_EQ(other, -1);
 }
 
 }  // namespace
