@@ -58,11 +58,19 @@ void FaultRecovery::Params::validate(Diagnostics& diag, std::string_view path) c
   }
 }
 
+namespace {
+std::size_t fault_code_index(const std::string& name) {
+  return static_cast<std::size_t>(*fault_type_from_string(name));  // the enumerator is its code
+}
+}  // namespace
+
 FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
     : correction_(params.correction) {
-  for (const auto& t : params.substitute_types) substitute_types_.push_back(*fault_type_from_string(t));
-  for (const auto& t : params.blend_types) blend_types_.push_back(*fault_type_from_string(t));
-  for (const auto& t : params.median_types) median_types_.push_back(*fault_type_from_string(t));
+  mode_by_type_.fill(Mode::correct);
+  // validate() refused unknown names and a type in two lists.
+  for (const auto& t : params.substitute_types) mode_by_type_[fault_code_index(t)] = Mode::substitute;
+  for (const auto& t : params.blend_types) mode_by_type_[fault_code_index(t)] = Mode::blend;
+  for (const auto& t : params.median_types) mode_by_type_[fault_code_index(t)] = Mode::median;
   blend_gain_ = low_pass_gain(params.blend_cutoff_hz, context.sample_period_s(), "blend_cutoff_hz");
   const std::size_t dim = context.wired_dim("measured", 1);
   ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the monitored sensor"}.sized_by("as wired"));
@@ -113,15 +121,12 @@ void FaultRecovery::step(const StepIO& io) noexcept {
                                               : difference;
       difference_seen_[j] = 1;
     }
-    const bool substitute = !std::isfinite(measured[j]) ||
-                            std::find(substitute_types_.begin(), substitute_types_.end(), t) !=
-                                substitute_types_.end();
+    const Mode mode = mode_by_type_[static_cast<std::size_t>(t)];
+    const bool substitute = !std::isfinite(measured[j]) || mode == Mode::substitute;
     const bool correct = correction_ == Correction::always || fault[j] != 0.0;
     const double corrected = correct ? measured[j] - fault_estimate[j] : measured[j];
-    const bool blend = !substitute && std::isfinite(estimate[j]) &&
-                       std::find(blend_types_.begin(), blend_types_.end(), t) != blend_types_.end();
-    const bool median = !substitute && previous_count_[j] == 2 &&
-                        std::find(median_types_.begin(), median_types_.end(), t) != median_types_.end();
+    const bool blend = !substitute && std::isfinite(estimate[j]) && mode == Mode::blend;
+    const bool median = !substitute && previous_count_[j] == 2 && mode == Mode::median;
     auto& previous = previous_readings_[j];
     double value = substitute ? estimate[j]
                    : blend    ? estimate[j] + difference_lp_[j]

@@ -72,14 +72,15 @@ class FaultRecovery {
   void step(const StepIO& io) noexcept;
 
  private:
+  // How a channel flagged with a type is recovered (the type lists, one mode per type).
+  enum class Mode : unsigned char { correct, substitute, blend, median };
+
   Ports ports_;
   Correction correction_;
-  std::vector<FaultType> substitute_types_;
-  std::vector<FaultType> blend_types_;
+  std::array<Mode, kFaultTypes.size()> mode_by_type_{};  // indexed by the type's code
   double blend_gain_ = 0.0;                   // a = 1 - exp(-2 pi f_c T)
   std::vector<double> difference_lp_;         // LP(measured - virtual), per channel
   std::vector<unsigned char> difference_seen_;  // a finite difference has initialised the LP
-  std::vector<FaultType> median_types_;
   std::vector<std::array<double, 2>> previous_readings_;  // x_{t-1}, x_{t-2} (finite ones)
   std::vector<unsigned char> previous_count_;             // how many of them are set, up to 2
   std::vector<double> last_;
