@@ -245,8 +245,9 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
     // 1e-12). A reading alone then cannot tell a stuck sensor from a steady load, so the repeat
     // test is off (its counter never reaches the cap) and a stuck sensor is left to the sum
     // residual and the follow test, which judge it against the load it should read.
-    frozen_ticks_ = ticks <= kMaxWindowTicks ? std::max(2, static_cast<int>(std::ceil(ticks - 1e-9)))
-                                             : std::numeric_limits<int>::max();
+    repeat_test_off_ = !(ticks <= kMaxWindowTicks);
+    frozen_ticks_ = repeat_test_off_ ? std::numeric_limits<int>::max()
+                                     : std::max(2, static_cast<int>(std::ceil(ticks - 1e-9)));
   }
   smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * kSmoothingHz * period_s_);
   // Five time constants of that low-pass: a step has settled to within e^-5 (under 1 %).
@@ -826,8 +827,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (relation_verdict_[foot] != 0) decide(c.relation_jump_size, c.relation_load_before);
     }
     // Frozen / saturation.
-    const bool repeat_test_off = frozen_ticks_ == std::numeric_limits<int>::max();
-    if (repeat_test_off && params_.upper_limit_N > 0.0 && x >= params_.upper_limit_N - repeat_band_N_) {
+    if (repeat_test_off_ && params_.upper_limit_N > 0.0 && x >= params_.upper_limit_N - repeat_band_N_) {
       // Without the repeat test, a reading at the top of the stated range is saturation on its tick.
       raise(c, FaultType::saturation, t);
     } else if (c.stale_count >= frozen_ticks_) {

@@ -429,7 +429,8 @@ class ContactForceFdi {
   std::vector<double> foot_d2_;                  // second difference of the summed reading, this tick
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
-  int frozen_ticks_ = 2;        // n_f, the frozen test's run length
+  int frozen_ticks_ = 2;        // n_f, the frozen test's run length (INT_MAX: never reached)
+  bool repeat_test_off_ = false;  // no bounded n_f: the quantiser is coarser than the noise dithers
   double repeat_band_N_ = 0.0;  // q / 2
   double zero_evidence_above_N_ = 0.0;  // a zero reading is frozen evidence above this load
   int jump_window_ticks_;
