@@ -428,6 +428,21 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.negative_fit = SlopeFit{};
 }
 
+double ContactForceFdi::fault_size(const Channel& c, double t, double load_before) noexcept {
+  // A gain fault's size on a reading x = k N: (k - 1) N = (1 - 1/k) x.
+  return c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * load_before : fault_at(c, t);
+}
+
+bool ContactForceFdi::steps_back(double jump, double size) const noexcept {
+  return std::abs(jump + size) < 0.4 * std::abs(size) + params_.jump_confirm_N;
+}
+
+bool ContactForceFdi::residual_steps_by(double step, double expected, double confirm_N) const noexcept {
+  // About the expected step: not much less, not much more, and beyond the confirmation step.
+  return step * expected > 0.0 && std::abs(step) >= confirm_N &&
+         std::abs(step - expected) <= std::max(params_.jump_confirm_N, 0.5 * std::abs(expected));
+}
+
 double ContactForceFdi::recent_residual_mean(std::size_t skip) const noexcept {
   const std::size_t w = static_cast<std::size_t>(jump_window_ticks_);
   double sum = 0.0;
@@ -606,8 +621,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         // it rolls on): judged on its own window, as a group of its own would be, when it steps
         // back by the fault's size (the fault may have ended; an onset on a healthy channel waits
         // for the next free group, as before).
-        const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * c.previous : fault_at(c, t);
-        if (std::abs(change + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
+        if (steps_back(change, fault_size(c, t, c.previous))) {
           c.end_pending = true;
           c.end_after_guard = false;
           c.end_jump = c.type == FaultType::gain ? change / c.gain : change;  // as the sum residual takes it
@@ -631,12 +645,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         // A step back by the fault's size on a foot that is not landing, while another foot is:
         // the fault may have ended. Only a fault whose model is settled (measured in the air, or
         // a gain): an offset raised by a jump may yet be a gain, whose error shrinks as its foot
-        // hands load over at the landing, as an end would. The sum residual carries the other foot's impact now, so it
-        // judges the step once the guard is over (the loads have settled by then), against what
-        // it was before the guard (at 200 Hz a load shifting at a landing moves a pad by tens
-        // of newtons in a tick: the residual, not the step, tells a sensor's end).
-        const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * c.previous : fault_at(c, t);
-        if (std::abs(change + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
+        // hands load over at the landing, as an end would. The sum residual carries the other
+        // foot's impact now, so it judges the step once the guard is over (the loads have
+        // settled by then), against what it was before the guard (at 200 Hz a load shifting at
+        // a landing moves a pad by tens of newtons in a tick: the residual, not the step, tells
+        // a sensor's end).
+        const double estimate = fault_size(c, t, c.previous);
+        if (steps_back(change, estimate)) {
           c.end_pending = true;
           c.end_after_guard = true;
           // Ended, the fault leaves the residual by its size (a gain's reading is taken as x / k:
@@ -730,17 +745,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     group_pending_ = false;
     group_decided = true;
     if (residual_count_ == residual_ring_.size()) {
-      const std::size_t w = static_cast<std::size_t>(jump_window_ticks_);
-      double before = 0.0, after = 0.0;
-      for (std::size_t i = 0; i < w; ++i) {
-        after += residual_ring_[(residual_next_ + residual_ring_.size() - 1 - i) % residual_ring_.size()];
-        before += residual_ring_[(residual_next_ + residual_ring_.size() - 1 - w - i) % residual_ring_.size()];
-      }
-      const double step = (after - before) / static_cast<double>(w);
-      // The residual steps by about the net jump: not much less, not much more. Pads trading
-      // load jump in opposite directions and leave the residual alone: not a fault.
-      group_confirmed = step * group_sum_ > 0.0 && std::abs(step) >= confirm_N && std::abs(group_sum_) >= confirm_N &&
-                        std::abs(step - group_sum_) <= std::max(params_.jump_confirm_N, 0.5 * std::abs(group_sum_));
+      const double step =
+          recent_residual_mean() - recent_residual_mean(static_cast<std::size_t>(jump_window_ticks_));
+      // Pads trading load jump in opposite directions and leave the residual alone: not a fault.
+      group_confirmed = std::abs(group_sum_) >= confirm_N && residual_steps_by(step, group_sum_, confirm_N);
     } else {
       group_dropped = true;
     }
@@ -781,11 +789,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (++c.end_clear_ticks < jump_window_ticks_) continue;
     c.end_pending = false;
     if (ends_pending > 1) continue;
-    const double step = recent_residual_mean() - c.end_before;
-    if (step * c.end_jump > 0.0 && std::abs(step) >= confirm_N &&
-        std::abs(step - c.end_jump) <= std::max(params_.jump_confirm_N, 0.5 * std::abs(c.end_jump))) {
-      clear(c);
-    }
+    if (residual_steps_by(recent_residual_mean() - c.end_before, c.end_jump, confirm_N)) clear(c);
   }
 
   // The feet's plane verdicts, taken before any member is raised (a raise sets the offset the
@@ -802,11 +806,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     // The channel's jump, when its group is decided: the sum residual's group, then (inside a
     // touchdown guard) its foot's plane group; each with its own jump and load before it.
     const auto decide = [&](double jump, double load_before) {
-      // The size of the fault now: for a gain fault (k - 1) N = (1 - 1/k) x, x the reading
-      // before this jump.
-      const double estimate = c.type == FaultType::gain ? (1.0 - 1.0 / c.gain) * load_before
-                                                         : fault_at(c, t);
-      if (corrects(c.type) && std::abs(jump + estimate) < 0.4 * std::abs(estimate) + params_.jump_confirm_N) {
+      if (corrects(c.type) && steps_back(jump, fault_size(c, t, load_before))) {
         clear(c);  // the fault ended with a jump back
       } else if (c.type == FaultType::none) {
         c.jump_load_before = load_before;  // the load the onset jump left (onset_gain)

@@ -395,6 +395,13 @@ class ContactForceFdi {
   // The feet's plane relations this tick: their window steps, their fault-free statistics and the
   // groups of jumps inside a touchdown guard they confirm (after the channel tests).
   void relation_jumps(std::span<const double> measured, std::span<const double> height, double t) noexcept;
+  // The fault's size now (a gain's from the reading before the step, `load_before`).
+  [[nodiscard]] static double fault_size(const Channel& c, double t, double load_before) noexcept;
+  // A one-tick change that takes a fault of that size back: |jump + size| < 0.4 |size| + jump_confirm_N.
+  [[nodiscard]] bool steps_back(double jump, double size) const noexcept;
+  // The sum residual stepped by about `expected` over a jump window (within max(jump_confirm_N,
+  // 50 %), same sign), and by confirm_N or more: how a group or a fault's end is confirmed.
+  [[nodiscard]] bool residual_steps_by(double step, double expected, double confirm_N) const noexcept;
   // The sum residual's mean over a jump window: the ring's newest jump_window_ticks_, after
   // skipping the newest `skip` (at most jump_window_ticks_: the ring holds two windows).
   [[nodiscard]] double recent_residual_mean(std::size_t skip = 0) const noexcept;

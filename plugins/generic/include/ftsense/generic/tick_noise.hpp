@@ -31,8 +31,8 @@
 //     u, so P(change) = C(r) = 1 - erf(1 / (2 r)) + (2 r / sqrt(pi)) (1 - exp(-1 / (4 r^2))),
 //     increasing from 0 (C ~ 2 r / sqrt(pi)) to 1 (1 - C ~ 1 / (2 r sqrt(pi))). r = C^-1(share of
 //     changes). A load that moves adds changes (about |ds| / q per tick) and a steady load that
-//     sits on a step boundary adds chatter: both make this estimate high, up to twice sigma on a
-//     simulated walk at r = 0.1, never low.
+//     sits on a step boundary adds chatter: both make this estimate high (a clamped foot counted
+//     at small r, below, makes it low).
 //   - Noise of a step or more (that estimate >= 1/2): the second differences resolve it, and
 //     quantisation adds its q^2 / 12 (Sheppard): sigma^2 = sigma_d2^2 - q^2 / 12, sigma_d2 from
 //     the median of |d2| taken within its lattice bin (|d2| / q is a whole number: the median is
