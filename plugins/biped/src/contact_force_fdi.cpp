@@ -387,6 +387,10 @@ void ContactForceFdi::reset() noexcept {
   residual_before_known_ = was_touching_down_ = false;
   group_before_ = 0.0;
   sum_filtered_ = 0.0;
+  residual_smoothed_ = 0.0;
+  residual_smoothed_started_ = false;
+  still_window_active_ = false;
+  still_window_settle_until_s_ = -1e300;
   started_ = false;
   group_pending_ = false;
   std::fill(last_touchdown_s_.begin(), last_touchdown_s_.end(), -1e9);
@@ -520,6 +524,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   const double foot_noise = tick_noise * std::sqrt(static_cast<double>(feet_points_));
   int jump_candidates = 0;
+  bool any_step = false;  // a channel stepped this tick (the still-reading test's window restarts)
   double jump_sum = 0.0;
   double raw_sum = 0.0;
   bool all_finite_readings = true;  // the gain test takes only ticks where every channel has a value
@@ -608,6 +613,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // A noise burst's swings are the fault the channel is flagged for, not steps.
       const bool steps = std::abs(change) > params_.jump_threshold_N &&
                          std::abs(innovation) > params_.jump_threshold_N && c.type != FaultType::noise;
+      any_step = any_step || steps;
       if (steps && may_jump && !group_pending_) {
         c.jump_pending = true;
         c.jump_size = change;
@@ -1075,6 +1081,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       offset_or_gain_test(channels_[j], measured[j], height[j] > params_.airborne_height_m, residual);
     }
   }
+  still_reading_test(measured, virtual_force, height, residual, fz_ok && all_finite_readings, any_step, t);
   gain_regression(measured, recovered, height, residual,
                   fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
@@ -1215,6 +1222,78 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, double t) const noexc
   }
   const double z2 = relation_z_ * relation_z_;
   return observed >= z2 && expected >= z2 && agreement > 0.0;
+}
+
+void ContactForceFdi::still_reading_test(std::span<const double> measured, std::span<const double> virtual_force,
+                                         std::span<const double> height, double residual, bool usable,
+                                         bool stepped, double t) noexcept {
+  if (usable) {
+    residual_smoothed_ = residual_smoothed_started_ ? residual_smoothed_ + smoothing_ * (residual - residual_smoothed_)
+                                                    : residual;
+    residual_smoothed_started_ = true;
+  }
+  // The window restarts, once the smoothers have settled, when the residual is unknown, a channel
+  // steps (a jump is the jump test's), a flag changes (the corrected residual changes meaning), or
+  // a loaded channel's correction follows its load (gain) or replaces it (substituted, noise): a
+  // wrong k or share moves the residual as that load moves, which a still neighbour would take.
+  bool restart = !usable || stepped;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const bool airborne = height[j] > params_.airborne_height_m;
+    restart = restart || c.type != c.still_window_type;
+    c.still_window_type = c.type;
+    const bool additive = c.type == FaultType::offset || c.type == FaultType::drift || c.type == FaultType::spikes;
+    restart = restart || (c.type != FaultType::none && !additive && !airborne);
+  }
+  if (restart) {
+    still_window_active_ = false;
+    still_window_settle_until_s_ = t + smoother_settle_s_;
+    return;
+  }
+  if (t < still_window_settle_until_s_) return;
+  if (!still_window_active_) {
+    still_window_active_ = true;
+    still_window_start_s_ = t;
+    still_residual_lo_ = still_residual_hi_ = residual_smoothed_;
+    for (std::size_t j = 0; j < channels_.size(); ++j) {
+      Channel& c = channels_[j];
+      c.still_lo = c.still_hi = c.smoothed;
+      c.still_grounded = c.type == FaultType::none && !(height[j] > params_.airborne_height_m);
+    }
+    return;
+  }
+  still_residual_lo_ = std::min(still_residual_lo_, residual_smoothed_);
+  still_residual_hi_ = std::max(still_residual_hi_, residual_smoothed_);
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    c.still_lo = std::min(c.still_lo, c.smoothed);
+    c.still_hi = std::max(c.still_hi, c.smoothed);
+    c.still_grounded = c.still_grounded && c.type == FaultType::none && !(height[j] > params_.airborne_height_m) &&
+                       std::isfinite(measured[j]);
+  }
+  const double residual_span = still_residual_hi_ - still_residual_lo_;
+  // A window shorter than the smoother's settling measures the smoother, not the signals.
+  if (residual_span < params_.sum_threshold_N || t - still_window_start_s_ < smoother_settle_s_) return;
+  // The residual has moved beyond the total force's error: one still reading explains it (its
+  // load moved by that much unread); two or more cannot be told apart (cannot judge), none: some
+  // other fault or the reference, left to the other tests.
+  std::size_t candidates = 0, culprit = 0;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    const Channel& c = channels_[j];
+    // Under "j is stuck" its load is its leave-one-out force: it must carry one.
+    if (c.still_grounded && c.still_hi - c.still_lo < params_.follow_ratio * residual_span &&
+        virtual_force[j] > params_.airborne_threshold_N) {
+      ++candidates;
+      culprit = j;
+    }
+  }
+  if (candidates == 1) {
+    Channel& c = channels_[culprit];
+    raise(c, FaultType::frozen, t);
+    c.frozen_by_follow = true;  // re-admitted when its reading follows the load again
+    c.following = false;
+  }
+  still_window_active_ = false;  // a fresh window (a raise restarts it with a settle, too)
 }
 
 void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_force, double t) noexcept {

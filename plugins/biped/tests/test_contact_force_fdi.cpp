@@ -1128,5 +1128,104 @@ TEST(ContactForceFdi, AnOffsetThatEndsWhileAnotherGroupIsPendingIsJudgedOnItsOwn
   EXPECT_EQ(offset_end_during_a_pending_group_dropped_at(), 405 + 9);
 }
 
+// The still-reading test: eight loaded pads at 1 kHz, each healthy load 200 + 10 j + 40 sin(2 pi t +
+// j) N (its 10 Hz low-pass spans more than a quarter of 80 N within the window), read with a +-1 N
+// alternation (a live sensor's noise, never a step). `still` pads carry a steady 150 N instead;
+// from tick 500 the first of them is stuck at that reading while its load falls at 400 N/s
+// (`load_falls`), and the total force is their true sum plus `reference_error` N/s from then on.
+struct StillReadingTrace {
+  std::vector<std::size_t> still;
+  bool load_falls = true;
+  double reference_error_N_s = 0.0;
+};
+constexpr int kStillFrom = 500;
+
+double true_load(const StillReadingTrace& trace, std::size_t j, int k) {
+  const double t = k * 1e-3;
+  const bool is_still = std::find(trace.still.begin(), trace.still.end(), j) != trace.still.end();
+  if (!is_still) return 200.0 + 10.0 * static_cast<double>(j) + 40.0 * std::sin(2.0 * std::numbers::pi * t + static_cast<double>(j));
+  if (trace.load_falls && j == trace.still.front() && k >= kStillFrom) return 150.0 - 400.0 * (k - kStillFrom) * 1e-3;
+  return 150.0;
+}
+
+// Runs the trace for `ticks`; returns the tick each channel was first flagged (-1: never).
+std::vector<int> first_flags(const StillReadingTrace& trace, int ticks, std::vector<double>* cannot_judge_at_end = nullptr) {
+  Feet feet(suralp(), 1e-3);
+  std::vector<int> first(kChannels, -1);
+  for (int k = 0; k < ticks; ++k) {
+    double fz = std::max(0, k - kStillFrom) * 1e-3 * trace.reference_error_N_s;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const bool is_still = std::find(trace.still.begin(), trace.still.end(), j) != trace.still.end();
+      const double load = true_load(trace, j, k);
+      fz += load;
+      feet.measured[j] = (is_still ? 150.0 : load) + (k % 2 == 0 ? 1.0 : -1.0);
+    }
+    feet.step(fz);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (first[j] < 0 && feet.outs[ContactForceFdi::kFault][j] != 0.0) first[j] = k;
+    }
+  }
+  if (cannot_judge_at_end != nullptr) *cannot_judge_at_end = feet.outs[ContactForceFdi::kCannotJudge];
+  return first;
+}
+
+// The oracle of the header: the residual sum(N) - F_z low-passed at 10 Hz (a = 1 - e^(-2 pi 10 T))
+// from tick 0, where the window starts; the first tick its range reaches sum_threshold_N (80 N)
+// once the window is as long as the smoother's settling (five time constants, 0.0796 s). The flag
+// shows from the next tick: that tick's residual is known once its outputs are.
+int residual_moves_beyond_its_bound_at(const StillReadingTrace& trace, int ticks) {
+  const double a = -std::expm1(-2.0 * std::numbers::pi * 10.0 * 1e-3);
+  double smoothed = 0.0, lo = 0.0, hi = 0.0;
+  for (int k = 0; k < ticks; ++k) {
+    const double residual =
+        (150.0 - true_load(trace, trace.still.front(), k)) - std::max(0, k - kStillFrom) * 1e-3 * trace.reference_error_N_s;
+    smoothed = k == 0 ? residual : smoothed + a * (residual - smoothed);
+    lo = k == 0 ? smoothed : std::min(lo, smoothed);
+    hi = k == 0 ? smoothed : std::max(hi, smoothed);
+    if (hi - lo >= 80.0 && k * 1e-3 >= 5.0 / (2.0 * std::numbers::pi * 10.0)) return k + 1;
+  }
+  return -1;
+}
+
+TEST(ContactForceFdi, AStillReadingWhoseLoadMovesIsFrozenOnceTheResidualHasMovedBeyondItsBound) {
+  // Pad 2 stuck at 150 N (still noisy, so the repeat test never counts) while its load falls: the
+  // residual rises 400 N/s; the only still reading among the loaded pads is blamed frozen on the
+  // tick the low-passed residual has moved by 80 N, and substituted from the total force.
+  const StillReadingTrace trace{{2}, true, 0.0};
+  const int expected = residual_moves_beyond_its_bound_at(trace, 900);
+  ASSERT_GT(expected, kStillFrom);
+  const auto first = first_flags(trace, 900);
+  EXPECT_EQ(first[2], expected);
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 2) {
+      EXPECT_EQ(first[j], -1) << "channel " << j;
+    }
+  }
+}
+
+TEST(ContactForceFdi, TwoStillReadingsAreNotToldApartAndNeitherIsBlamed) {
+  // Pad 6 carries a steady load too: either still reading explains the residual, so neither is
+  // blamed; the sum residual says it cannot judge the others.
+  std::vector<double> cannot_judge;
+  const auto first = first_flags({{2, 6}, true, 0.0}, 900, &cannot_judge);
+  for (std::size_t j = 0; j < kChannels; ++j) EXPECT_EQ(first[j], -1) << "channel " << j;
+  EXPECT_EQ(cannot_judge[0], 1.0);
+}
+
+TEST(ContactForceFdi, AReferenceThatDriftsBlamesNoReadingThatFollowsItsLoad) {
+  // Every load moves and is read right, but from tick 500 the total force drifts by -400 N/s: the
+  // residual moves as it did above, and no reading that moves is blamed.
+  const auto first = first_flags({{2}, false, -400.0}, 900);
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 2) {
+      EXPECT_EQ(first[j], -1) << "channel " << j;
+    }
+  }
+  // Pad 2 (steady 150 N, read right) is still: the residual's move is the reference's, and
+  // blaming it is the test's known limit (one still reading is taken as stuck): it is flagged on
+  // the same tick as a stuck one would be.
+  EXPECT_EQ(first[2], residual_moves_beyond_its_bound_at({{2}, false, -400.0}, 900));
+}
+
 }  // namespace
 }  // namespace ftsense::biped

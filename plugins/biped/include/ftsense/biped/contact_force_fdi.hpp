@@ -159,6 +159,25 @@
 //             need not match the moves it missed while frozen), or at once when the reading itself
 //             spans sum_threshold_N and at least half the force's move so far (no stuck sensor's
 //             noise spans that; the force need not first move twice its error).
+//   still     (no flag yet) a reading that stays still while the load it should carry moves: a
+//             frozen output that keeps its noise, found in stance. One window for all channels:
+//             while the corrected sum residual r, low-passed at 10 Hz as the readings are, moves
+//             by sum_threshold_N (the bound of the total force's error; its 10 Hz low-pass spans
+//             at most 39 N over the simulated SURALP's fault-free walks at every rate, 3.5 N of
+//             the 13 kg quadruped's 8.9 N bound), a channel stuck at c makes r = c - N_j + e, so
+//             its load moved by that much unread. The channels on the ground and not flagged
+//             throughout the window whose smoothed reading spans under follow_ratio of r's move,
+//             and whose leave-one-out force (its load, were it stuck) is above
+//             airborne_threshold_N, are the candidates: exactly one is raised frozen (and
+//             re-admitted by the follow test); two or more cannot be told apart (a steadily
+//             loaded pad reads still too), and none is blamed. The window is at least the
+//             smoother's settling (five time constants) long, and restarts, a settling later,
+//             when F_z or a reading is unknown, a channel steps (the jump test's), a flag changes,
+//             or a loaded channel is flagged as anything but offset, drift or spikes (a gain's
+//             wrong k or a substituted share moves r with its load, as a stuck neighbour would).
+//             The decision needs the tick's residual, known with its outputs: the flag shows
+//             from the next tick. Its known limit: with the reference itself moving and one
+//             reading still (steadily loaded), that reading is taken as stuck.
 //   offset or gain  a jump on a loaded pad (load L0 > gain_min_load_N before it) is an offset
 //             b or a gain k = 1 + b / L0 alike at its onset; as the load moves they part. Over the
 //             follow test's span, the corrected sum residual r (the channel taken as x - b) and
@@ -365,6 +384,11 @@ class ContactForceFdi {
     bool frozen_by_follow = false;
     double reading_lo = 0.0, reading_hi = 0.0, virtual_lo = 0.0, virtual_hi = 0.0;
     double virtual_smoothed = 0.0;  // the same 10 Hz low-pass as `smoothed`: both lag alike
+    // The still-reading test's window: the smoothed reading's range, on the ground and not
+    // flagged throughout; the type the window last saw.
+    double still_lo = 0.0, still_hi = 0.0;
+    bool still_grounded = false;
+    FaultType still_window_type = FaultType::none;
     // Offset or gain? Over the same span, the corrected sum residual's power with the offset's
     // correction and with the gain k = 1 + jump / load that the same onset jump implies.
     double offset_power = 0.0, gain_power = 0.0;
@@ -382,6 +406,10 @@ class ContactForceFdi {
                        bool usable, double t) noexcept;
   void restart_gain_window() noexcept;
   void clear(Channel& c) noexcept;
+  // The still-reading test (header comment), once the corrected sum residual of this tick is known.
+  void still_reading_test(std::span<const double> measured, std::span<const double> virtual_force,
+                          std::span<const double> height, double residual, bool usable, bool stepped,
+                          double t) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
   void follow_test(Channel& c, double reading, double virtual_force, double t) noexcept;
   // The offset-or-gain test (header comment), once the corrected sum residual of this tick is known.
@@ -418,6 +446,14 @@ class ContactForceFdi {
   std::size_t residual_next_ = 0;
   std::size_t residual_count_ = 0;
   double sum_filtered_ = 0.0;
+  // The still-reading test: the corrected sum residual low-passed as the readings' `smoothed`, and
+  // its window (shared by every channel: one residual move, judged against every still reading).
+  double residual_smoothed_ = 0.0;
+  bool residual_smoothed_started_ = false;
+  bool still_window_active_ = false;
+  double still_window_start_s_ = 0.0;
+  double still_window_settle_until_s_ = -1e300;
+  double still_residual_lo_ = 0.0, still_residual_hi_ = 0.0;
   bool started_ = false;
   double residual_before_touchdown_ = 0.0;  // its mean over the jump window before the guard
   bool residual_before_known_ = false;     // the ring held a whole window then
