@@ -516,7 +516,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       known = known && std::isfinite(x);
       sum += x;
     }
-    foot_d2_[f] = known && foot_sum_ticks_[f] >= 2 ? std::abs(sum - 2.0 * foot_sum_[f][0] + foot_sum_[f][1])
+    foot_d2_[f] = known && foot_sum_ticks_[f] >= 2 ? sum - 2.0 * foot_sum_[f][0] + foot_sum_[f][1]
                                                    : std::numeric_limits<double>::infinity();
     foot_sum_[f][1] = foot_sum_[f][0];
     foot_sum_[f][0] = sum;
@@ -581,8 +581,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.spike_seen_s += period_s_;
         c.spike_quiet_s += period_s_;
       }
+      // A sensor's spike is in its foot's summed reading too (the sum's own spike, -d2 / 2, at
+      // least half the pad's, same sign); load that rocks between the pads of a foot for a tick
+      // (a pad chattering on and off the ground) is not. Unknown (a pad without a value): counted.
+      const double foot_spike = -0.5 * foot_d2_[j / feet_points_];
+      const bool in_foot_sum = !std::isfinite(foot_spike) || foot_spike * spike >= 0.5 * spike * spike;
       if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
-          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N) {
+          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum) {
         if (c.spike_count == 0 || c.spike_quiet_s >= c.spike_hold) {  // the previous episode had ended
           c.spike_count = 1;
           c.spike_seen_s = 0.0;
@@ -601,7 +606,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
       c.second_diff[c.second_diff_next] = std::abs(innovation);
       c.noisy_tick[c.second_diff_next] =
-          std::abs(innovation) > tick_noise && foot_d2_[j / feet_points_] > foot_noise ? 1 : 0;
+          std::abs(innovation) > tick_noise && std::abs(foot_d2_[j / feet_points_]) > foot_noise ? 1 : 0;
       c.noisy_count += c.noisy_tick[c.second_diff_next];
       c.first_diff[c.second_diff_next] = std::abs(change);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
@@ -874,10 +879,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       rough = d2_power > d1_power;
     }
-    // Not raised while its foot's landing rings in the window (the foot bounces on its pads for
-    // tens of milliseconds: a few ticks of a slow log).
-    const bool own_foot_landing = t - last_touchdown_s_[j / feet_points_] < params_.touchdown_guard_s;
-    if (noisy * 2 > noise_window_ticks_ && rough && !own_foot_landing) {
+    // Not raised while a landing rings in the window: the foot bounces on its pads for tens of
+    // milliseconds (a few ticks of a slow log), and the other foot's pads ring with the impact.
+    if (noisy * 2 > noise_window_ticks_ && rough && !touching_down) {
       raise(c, FaultType::noise, t);
     } else if (c.type == FaultType::noise && noisy * 4 < noise_window_ticks_) {
       if (c.clear_since < 0) c.clear_since = t;

@@ -1227,5 +1227,50 @@ TEST(ContactForceFdi, AReferenceThatDriftsBlamesNoReadingThatFollowsItsLoad) {
   EXPECT_EQ(first[2], residual_moves_beyond_its_bound_at({{2}, false, -400.0}, 900));
 }
 
+TEST(ContactForceFdi, LoadRockingBetweenTwoPadsForATickIsNoSpikeWhereItsFootsSumStaysSmooth) {
+  // 1 kHz, 1 N of noise: the spike threshold is 30 N. Every 50 ticks from tick 100, 38 N moves from
+  // pad 0 to pad 3 of the left foot for one tick and back (a sole rocking on its heel pad, as the
+  // simulated SURALP's does at 1 N of noise): a 38 N spike on pad 3 and on pad 0, but the foot's
+  // summed reading does not move. The same 38 N on pad 3 alone (tick 300) moves the sum by 38 N:
+  // a spike, flagged on the tick after it (the tick that tells it from a step).
+  ContactForceFdi::Params p = suralp();
+  p.noise_std_N = 1.0;
+  Feet rocking(p, 1e-3), spike(p, 1e-3);
+  for (int k = 0; k < 400; ++k) {
+    const bool rock = k >= 100 && k % 50 == 0;
+    for (std::size_t j = 0; j < kChannels; ++j) rocking.measured[j] = spike.measured[j] = moving(j, k, 0.0);
+    rocking.measured[3] += rock ? 38.0 : 0.0;
+    rocking.measured[0] -= rock ? 38.0 : 0.0;
+    spike.measured[3] += k == 300 ? 38.0 : 0.0;
+    rocking.step();
+    spike.step();
+    ASSERT_EQ(rocking.type(3), FaultType::none) << "tick " << k;
+    ASSERT_EQ(rocking.type(0), FaultType::none) << "tick " << k;
+    ASSERT_EQ(spike.type(3), k >= 301 ? FaultType::spikes : FaultType::none) << "tick " << k;
+  }
+}
+
+TEST(ContactForceFdi, ThePadsOfAFootThatIsNotLandingRingWithTheOtherFootsImpactAndAreNoNoiseBurst) {
+  // 200 Hz. The left foot lands at tick 50 (its pads come down from 0.1 m); from tick 52 the right
+  // foot's pad 5 rings with the impact, +-16 N (the +-16 N jitter the noise test above calls a
+  // burst; the right foot's sum rings with it), for 20 ticks (0.1 s, within the 0.15 s guard):
+  // no noise burst. The same ringing 0.2 s after the landing is one, once 6 large second
+  // differences are in: its first tick's is large already (the step from 250 N to 316 N), so on
+  // the sixth ringing tick.
+  for (const int ring_from : {52, 90}) {
+    SCOPED_TRACE("ringing from tick " + std::to_string(ring_from));
+    Feet feet(suralp(), 5e-3);
+    feet.left_foot_at(0.1);
+    for (int k = 0; k < ring_from + 20; ++k) {
+      if (k == 50) feet.left_foot_at(0.0);
+      for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = j < 4 && k < 50 ? 0.0 : moving(j, k, 0.0);
+      if (k >= ring_from) feet.measured[5] = 300.0 + (k % 2 == 0 ? 16.0 : -16.0);
+      feet.step();
+      const bool burst = ring_from == 90 && k >= ring_from + 5;
+      ASSERT_EQ(feet.type(5), burst ? FaultType::noise : FaultType::none) << "tick " << k;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ftsense::biped

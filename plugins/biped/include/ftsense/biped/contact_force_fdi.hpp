@@ -49,7 +49,10 @@
 //             when given), or a load (> airborne_threshold_N) that is the largest the channel has
 //             shown, or when the channel sticks again at the value of its previous stuck episode
 //             (a clipped load returns to the same ceiling).
-//   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree (not
+//   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree, and
+//             its foot's summed reading spikes the same way by at least half as much (load that
+//             rocks between two pads of a sole for a tick, a heel pad chattering on and off the
+//             ground, leaves the sum smooth; a sensor's spike is in it) (not
 //             within touchdown_guard_s of a touchdown, nor while the pad rings after its own
 //             landing, as for jumps below: a landing heel rings like a spike); the flag stays h after the last spike. Spikes of a faulty
 //             sensor come at random (rate lambda, exponential gaps), so once an episode has n >= 2
@@ -67,7 +70,8 @@
 //             pad's own noise does not), and the window is rough like white noise rather
 //             than smooth like a load: sum d2^2 > sum d1^2 (white noise: 6 sigma^2 against
 //             2 sigma^2; a load moving at the tick rate, as at 200 Hz: d2 << d1); not raised
-//             within touchdown_guard_s of its foot's touchdown (a landing foot bounces on its pads).
+//             within touchdown_guard_s of any foot's touchdown (a landing foot bounces on its
+//             pads, and at a fast gait logged at 200 Hz the other foot's pads ring with it).
 //   airborne  |mean N_j| > airborne_threshold_N, the mean of the readings taken once the pad has
 //             been airborne for airborne_settle_s, over at least 0.02 s and 10 readings:
 //             offset, drift or frozen-at-load; the mean measures the fault directly.
