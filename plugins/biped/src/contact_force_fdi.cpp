@@ -342,6 +342,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_.assign(feet_, {0.0, 0.0});
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
+  foot_substituted_.assign(feet_, 0);
   if (!params.points.empty() && params.points.size() != feet_points_) {
     throw ConfigError("/params/points", "has " + std::to_string(params.points.size()) +
                                             " points, not points_per_foot = " + std::to_string(feet_points_) +
@@ -521,6 +522,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     foot_sum_[f][1] = foot_sum_[f][0];
     foot_sum_[f][0] = sum;
     foot_sum_ticks_[f] = known ? std::min(foot_sum_ticks_[f] + 1, 2) : 0;
+    // Its loaded pads substituted from the total force (as flagged until this tick): their
+    // readings miss their loads, so the summed reading does not cancel load moving to them.
+    foot_substituted_[f] = 0;
+    for (std::size_t l = 0; l < feet_points_; ++l) {
+      const std::size_t j = f * feet_points_ + l;
+      const FaultType type = channels_[j].type;
+      if (type != FaultType::none && !own_estimate(type) && !(height[j] > params_.airborne_height_m)) ++foot_substituted_[f];
+    }
   }
   const double foot_noise = tick_noise * std::sqrt(static_cast<double>(feet_points_));
   int jump_candidates = 0;
@@ -575,6 +584,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const bool in_landing_guard = t - c.last_pad_landing_s < params_.touchdown_guard_s;
       const bool pad_landing = in_landing_guard && t - c.last_landing_ring_s < params_.jump_window_s;
       if (pad_landing && std::abs(change) > params_.jump_threshold_N) c.last_landing_ring_s = t;
+      // A neighbour of this pad substituted under load: its reading misses the load that moves
+      // between it and this pad (a heel chattering on and off), so this pad's roughness is no
+      // verdict of noise, nor its one-tick excursion one of a spike: not judged then.
+      const bool own_substituted = c.type != FaultType::none && !own_estimate(c.type) && !airborne;
+      const bool neighbour_substituted = foot_substituted_[j / feet_points_] > (own_substituted ? 1 : 0);
       const double spike = c.previous - 0.5 * (x + c.previous2);
       const bool spikes_seen = !touching_down && !pad_landing;
       if (spikes_seen) {
@@ -587,7 +601,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const double foot_spike = -0.5 * foot_d2_[j / feet_points_];
       const bool in_foot_sum = !std::isfinite(foot_spike) || foot_spike * spike >= 0.5 * spike * spike;
       if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
-          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum) {
+          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum && !neighbour_substituted) {
         if (c.spike_count == 0 || c.spike_quiet_s >= c.spike_hold) {  // the previous episode had ended
           c.spike_count = 1;
           c.spike_seen_s = 0.0;
@@ -605,8 +619,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const double innovation = x - 2.0 * c.previous + c.previous2;
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
       c.second_diff[c.second_diff_next] = std::abs(innovation);
-      c.noisy_tick[c.second_diff_next] =
-          std::abs(innovation) > tick_noise && std::abs(foot_d2_[j / feet_points_]) > foot_noise ? 1 : 0;
+      c.noisy_tick[c.second_diff_next] = std::abs(innovation) > tick_noise &&
+                                         std::abs(foot_d2_[j / feet_points_]) > foot_noise && !neighbour_substituted
+                                             ? 1
+                                             : 0;
       c.noisy_count += c.noisy_tick[c.second_diff_next];
       c.first_diff[c.second_diff_next] = std::abs(change);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
@@ -728,10 +744,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // While a loaded channel is substituted from the total force, the sum residual carries that
   // channel's unmeasured changes, and while one reads a noise burst, its swings (a 10 ms mean of
   // 40 N noise moves by 13 N; spikes come too seldom to matter): confirming a jump then takes
-  // three times the step.
+  // three times the step, and while one is substituted at least sum_threshold_N, the bound of the
+  // total force's error that its share carries (a substituted heel pad chattering on and off
+  // the ground hands 40-55 N to its neighbours and back within a tick, which at 1 N of noise
+  // would confirm their moves as a group of offsets).
   // When such a channel's foot is rolling on or off (some pads up), its load changes fast and
   // unmeasured, and no jump is confirmed at all.
   bool unmeasured_in_residual = false;  // a loaded channel substituted, or reading a noise burst
+  bool substituted_loaded = false;
   bool substituting_rolling = false;
   bool uncorrected_loaded = false;  // a loaded channel flagged as anything but a corrected fault
   for (std::size_t j = 0; j < channels_.size(); ++j) {
@@ -741,6 +761,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     uncorrected_loaded = uncorrected_loaded || (type != FaultType::none && !corrects(type) && !airborne);
     const bool noisy_loaded = type == FaultType::noise && !airborne;
     unmeasured_in_residual = unmeasured_in_residual || substituted || noisy_loaded;
+    substituted_loaded = substituted_loaded || substituted;
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
   }
   bool group_dropped = false;
@@ -748,7 +769,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     group_pending_ = false;
     group_dropped = true;
   }
-  const double confirm_N = unmeasured_in_residual ? 3.0 * params_.jump_confirm_N : params_.jump_confirm_N;
+  const double confirm_N = substituted_loaded    ? std::max(3.0 * params_.jump_confirm_N, params_.sum_threshold_N)
+                           : unmeasured_in_residual ? 3.0 * params_.jump_confirm_N
+                                                    : params_.jump_confirm_N;
   // Confirm (or drop) the pending group once the window after the jump is complete.
   bool group_confirmed = false;
   bool group_decided = false;

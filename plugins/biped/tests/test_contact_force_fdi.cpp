@@ -1272,5 +1272,62 @@ TEST(ContactForceFdi, ThePadsOfAFootThatIsNotLandingRingWithTheOtherFootsImpactA
   }
 }
 
+// Pad 3 stuck at 50 N from the start (raised on tick 20, substituted from the total force while
+// loaded), the other pads healthy; 1 kHz, 1 N of noise (jump confirmation 12.5 N, three times
+// that with a substituted channel: 37.5 N; sum_threshold_N 80 N). From tick 200 its true load
+// goes elsewhere, unread: `moved` hands its 50 N to pads 1 and 2 for good (25 N each, one tick),
+// otherwise it chatters: pad 0 takes the 50 N on odd ticks and hands it back on even ones.
+std::vector<FaultType> neighbours_of_a_substituted_pad(bool moved) {
+  ContactForceFdi::Params p = suralp();
+  p.noise_std_N = 1.0;
+  Feet feet(p, 1e-3);
+  std::vector<FaultType> worst(kChannels, FaultType::none);
+  for (int k = 0; k < 500; ++k) {
+    double fz = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) fz += feet.measured[j] = moving(j, k, 0.0);
+    feet.measured[3] = 50.0;
+    fz += 50.0 - moving(3, k, 0.0);
+    if (k >= 200 && moved) {
+      feet.measured[1] += 25.0;
+      feet.measured[2] += 25.0;
+    } else if (k >= 200 && k % 2 == 1) {
+      feet.measured[0] += 50.0;
+    }
+    feet.step(fz);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (k >= 21 && j == 3) {
+        EXPECT_NE(feet.type(3), FaultType::none) << "tick " << k;
+      } else if (feet.type(j) != FaultType::none) {
+        worst[j] = feet.type(j);
+      }
+    }
+  }
+  return worst;
+}
+
+TEST(ContactForceFdi, ASubstitutedPadsLoadMovingToItsNeighboursConfirmsNoGroupOfTheirSteps) {
+  // The residual, which takes pad 3 as read, steps by +50 N with the two neighbours' +25 N steps:
+  // beyond 37.5 N, it would confirm them as two offsets; within the 80 N bound of what the total
+  // force leaves pad 3, it confirms nothing.
+  const auto worst = neighbours_of_a_substituted_pad(true);
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 3) {
+      EXPECT_EQ(worst[j], FaultType::none) << "channel " << j;
+    }
+  }
+}
+
+TEST(ContactForceFdi, ANeighbourOfASubstitutedPadIsNotJudgedNoisyOrSpikyByTheLoadTheyTrade) {
+  // Pad 0 swings by 50 N every tick (a 50 N spike on each, |d2| = 100 N, far above 4 sqrt(6) =
+  // 9.8 N), and its foot's summed reading swings with it (pad 3's share is not in it): neither a
+  // noise burst nor spikes on pad 0 while pad 3 is substituted.
+  const auto worst = neighbours_of_a_substituted_pad(false);
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 3) {
+      EXPECT_EQ(worst[j], FaultType::none) << "channel " << j;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ftsense::biped

@@ -52,7 +52,9 @@
 //   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree, and
 //             its foot's summed reading spikes the same way by at least half as much (load that
 //             rocks between two pads of a sole for a tick, a heel pad chattering on and off the
-//             ground, leaves the sum smooth; a sensor's spike is in it) (not
+//             ground, leaves the sum smooth; a sensor's spike is in it), and no other pad of its
+//             foot is substituted under load (its reading misses the load it trades with this
+//             pad, so neither the sum nor this pad tells a spike then; the noise test alike) (not
 //             within touchdown_guard_s of a touchdown, nor while the pad rings after its own
 //             landing, as for jumps below: a landing heel rings like a spike); the flag stays h after the last spike. Spikes of a faulty
 //             sensor come at random (rate lambda, exponential gaps), so once an episode has n >= 2
@@ -92,8 +94,10 @@
 //             substituted from the total force (frozen, saturated, invalid; not a noise burst or spikes,
 //             which are recovered from their own readings), the sum carries its
 //             unmeasured changes, and while a loaded channel reads a noise burst, its swings: so
-//             confirmation then takes 3 x jump_confirm_N, and none is confirmed while a
-//             substituted channel's foot rolls on or off.
+//             confirmation then takes 3 x jump_confirm_N (with a channel substituted, at least
+//             sum_threshold_N, the bound of the total force's error its share carries: a
+//             substituted heel chattering on and off hands 40-55 N to its neighbours within a
+//             tick), and none is confirmed while a substituted channel's foot rolls on or off.
 //             Inside a touchdown guard, with the soles' layout given (`points`), a jump is
 //             confirmed by its foot's plane relations instead (unmeasured_contact_loads.hpp: a
 //             rigid sole's loads are affine in the pads' positions, through an impact too, which
@@ -474,6 +478,7 @@ class ContactForceFdi {
   std::vector<std::array<double, 2>> foot_sum_;  // summed reading one and two ticks ago
   std::vector<int> foot_sum_ticks_;              // consecutive ticks with every pad's value, up to 2
   std::vector<double> foot_d2_;                  // second difference of the summed reading, this tick
+  std::vector<int> foot_substituted_;            // its loaded pads substituted from the total force
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
   int frozen_ticks_ = 2;        // n_f, the frozen test's run length (INT_MAX: never reached)
