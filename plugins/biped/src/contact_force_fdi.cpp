@@ -342,7 +342,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_.assign(feet_, {0.0, 0.0});
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
-  foot_substituted_.assign(feet_, 0);
+  foot_unread_.assign(feet_, 0);
   if (!params.points.empty() && params.points.size() != feet_points_) {
     throw ConfigError("/params/points", "has " + std::to_string(params.points.size()) +
                                             " points, not points_per_foot = " + std::to_string(feet_points_) +
@@ -431,6 +431,12 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.following = c.frozen_by_follow = false;
   c.sign_fault = false;
   c.negative_fit = SlopeFit{};
+}
+
+bool ContactForceFdi::unread(std::size_t j, std::span<const double> height) const noexcept {
+  const FaultType type = channels_[j].type;
+  if (type == FaultType::noise) return true;
+  return type != FaultType::none && !own_estimate(type) && !(height[j] > params_.airborne_height_m);
 }
 
 double ContactForceFdi::fault_size(const Channel& c, double t, double load_before) noexcept {
@@ -522,17 +528,15 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     foot_sum_[f][1] = foot_sum_[f][0];
     foot_sum_[f][0] = sum;
     foot_sum_ticks_[f] = known ? std::min(foot_sum_ticks_[f] + 1, 2) : 0;
-    // Its loaded pads substituted from the total force (as flagged until this tick): their
-    // readings miss their loads, so the summed reading does not cancel load moving to them.
-    foot_substituted_[f] = 0;
-    for (std::size_t l = 0; l < feet_points_; ++l) {
-      const std::size_t j = f * feet_points_ + l;
-      const FaultType type = channels_[j].type;
-      if (type != FaultType::none && !own_estimate(type) && !(height[j] > params_.airborne_height_m)) ++foot_substituted_[f];
-    }
+    // Its pads whose readings are not their loads (as flagged until this tick): substituted
+    // from the total force under load, or reading a noise burst. The summed reading then does not
+    // cancel load moving between them and the others.
+    foot_unread_[f] = 0;
+    for (std::size_t l = 0; l < feet_points_; ++l) foot_unread_[f] += unread(f * feet_points_ + l, height) ? 1 : 0;
   }
   const double foot_noise = tick_noise * std::sqrt(static_cast<double>(feet_points_));
   int jump_candidates = 0;
+  bool group_emptied = false;  // every member of the pending group was a one-tick spike
   bool any_step = false;  // a channel stepped this tick (the still-reading test's window restarts)
   double jump_sum = 0.0;
   double raw_sum = 0.0;
@@ -552,8 +556,16 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
     // The sum residual of the jump test takes a gain fault's reading with its correction (a sign
     // flip's load changes, read twice over, must not make its neighbours' changes look like
-    // steps). Offsets stay as read: their correction ends with the jump that ends them.
-    raw_sum += c.type == FaultType::gain ? (airborne ? 0.0 : x / c.gain) : x;
+    // steps), and a spiking channel's as the median of its last three readings (a 250 N spike
+    // moves a 10 ms window's mean by 50 N at 500 Hz). Offsets stay as read: their correction
+    // ends with the jump that ends them.
+    if (c.type == FaultType::gain) {
+      raw_sum += airborne ? 0.0 : x / c.gain;
+    } else if (c.type == FaultType::spikes && ticks_since_start > 0) {
+      raw_sum += std::max(std::min(x, c.previous), std::min(std::max(x, c.previous), c.previous2));
+    } else {
+      raw_sum += x;
+    }
     if (c.type == FaultType::invalid) clear(c);  // a finite value re-admits at once
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
@@ -584,11 +596,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const bool in_landing_guard = t - c.last_pad_landing_s < params_.touchdown_guard_s;
       const bool pad_landing = in_landing_guard && t - c.last_landing_ring_s < params_.jump_window_s;
       if (pad_landing && std::abs(change) > params_.jump_threshold_N) c.last_landing_ring_s = t;
-      // A neighbour of this pad substituted under load: its reading misses the load that moves
-      // between it and this pad (a heel chattering on and off), so this pad's roughness is no
-      // verdict of noise, nor its one-tick excursion one of a spike: not judged then.
-      const bool own_substituted = c.type != FaultType::none && !own_estimate(c.type) && !airborne;
-      const bool neighbour_substituted = foot_substituted_[j / feet_points_] > (own_substituted ? 1 : 0);
+      // A neighbour of this pad whose reading is not its load (substituted under load, or a
+      // noise burst): the foot's sum then misses the load that moves between it and this pad (a
+      // heel chattering on and off), so this pad's roughness is no verdict of noise, nor its
+      // one-tick excursion one of a spike: not judged then.
+      // (A channel flagged already keeps being judged, so that it can be cleared.)
+      const bool neighbour_unread = foot_unread_[j / feet_points_] > (unread(j, height) ? 1 : 0);
       const double spike = c.previous - 0.5 * (x + c.previous2);
       const bool spikes_seen = !touching_down && !pad_landing;
       if (spikes_seen) {
@@ -601,7 +614,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const double foot_spike = -0.5 * foot_d2_[j / feet_points_];
       const bool in_foot_sum = !std::isfinite(foot_spike) || foot_spike * spike >= 0.5 * spike * spike;
       if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
-          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum && !neighbour_substituted) {
+          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum &&
+          (!neighbour_unread || c.type == FaultType::spikes)) {
         if (c.spike_count == 0 || c.spike_quiet_s >= c.spike_hold) {  // the previous episode had ended
           c.spike_count = 1;
           c.spike_seen_s = 0.0;
@@ -620,7 +634,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
       c.second_diff[c.second_diff_next] = std::abs(innovation);
       c.noisy_tick[c.second_diff_next] = std::abs(innovation) > tick_noise &&
-                                         std::abs(foot_d2_[j / feet_points_]) > foot_noise && !neighbour_substituted
+                                         std::abs(foot_d2_[j / feet_points_]) > foot_noise &&
+                                                 (!neighbour_unread || c.type == FaultType::noise)
                                              ? 1
                                              : 0;
       c.noisy_count += c.noisy_tick[c.second_diff_next];
@@ -628,6 +643,29 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
       c.jump_pending = false;
       c.relation_pending = false;
+      // A member of the pending group whose reading is back within half its jump on the next
+      // tick jumped for one tick: a spike (the spike test's, seen on this tick), not a step. At
+      // 200 Hz the jump window is two ticks, and a 100 N spike moves its mean by 50 N.
+      if (c.jump_member && group_pending_ && group_age_ == 1 && std::abs(x - c.previous2) < 0.5 * std::abs(c.jump_size)) {
+        c.jump_member = false;
+        group_sum_ -= c.type == FaultType::gain ? c.jump_size / c.gain : c.jump_size;
+        --group_size_;
+        group_emptied = group_emptied || group_size_ == 0;
+      }
+      // Likewise a member of its foot's plane group (inside a touchdown guard).
+      const std::size_t foot = j / feet_points_;
+      if (c.relation_member && relation_group_[foot] == 1 && relation_group_age_[foot] == 1 &&
+          std::abs(x - c.previous2) < 0.5 * std::abs(c.relation_jump_size)) {
+        c.relation_member = false;
+        const std::size_t relations = unmeasured_.relations_per_foot();
+        const double jump = c.type == FaultType::gain ? c.relation_jump_size / c.gain : c.relation_jump_size;
+        for (std::size_t r = 0; r < relations; ++r) {
+          relation_expect_[foot * relations + r] -= unmeasured_.relation_weight(j % feet_points_, r) * jump;
+        }
+        bool members = false;
+        for (std::size_t i = 0; i < feet_points_; ++i) members = members || channels_[foot * feet_points_ + i].relation_member;
+        if (!members) relation_group_[foot] = 0;
+      }
       // Any time but a landing: a rolling foot's pads change a few newtons per tick, far below
       // jump_threshold_N, and the sum-residual confirmation rejects what is not a sensor step.
       const bool may_jump = !touching_down && !pad_landing;
@@ -765,6 +803,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
   }
   bool group_dropped = false;
+  if (group_emptied && group_pending_) {
+    group_pending_ = false;
+    group_dropped = true;
+  }
   if (substituting_rolling && group_pending_) {
     group_pending_ = false;
     group_dropped = true;

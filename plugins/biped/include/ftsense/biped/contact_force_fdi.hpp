@@ -53,8 +53,10 @@
 //             its foot's summed reading spikes the same way by at least half as much (load that
 //             rocks between two pads of a sole for a tick, a heel pad chattering on and off the
 //             ground, leaves the sum smooth; a sensor's spike is in it), and no other pad of its
-//             foot is substituted under load (its reading misses the load it trades with this
-//             pad, so neither the sum nor this pad tells a spike then; the noise test alike) (not
+//             foot reads other than its load (substituted under load, or a noise burst: its
+//             reading misses or swamps the load it trades with this pad, so neither the sum nor
+//             this pad tells a spike then; the noise test alike; a channel already flagged is
+//             judged on, so that it clears) (not
 //             within touchdown_guard_s of a touchdown, nor while the pad rings after its own
 //             landing, as for jumps below: a landing heel rings like a spike); the flag stays h after the last spike. Spikes of a faulty
 //             sensor come at random (rate lambda, exponential gaps), so once an episode has n >= 2
@@ -90,7 +92,11 @@
 //             confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
-//             each other): an abrupt fault, isolated at once. While a loaded channel is
+//             each other): an abrupt fault, isolated at once. A member whose reading is back
+//             within half its jump on the next tick leaves the group (and its foot's plane group
+//             below): it spiked for a tick, which at 200 Hz moves a 2-tick window's mean by half
+//             the jump. The residual takes a spiking channel as the median of its last three
+//             readings (a 250 N spike moves a 10 ms mean by 50 N at 500 Hz). While a loaded channel is
 //             substituted from the total force (frozen, saturated, invalid; not a noise burst or spikes,
 //             which are recovered from their own readings), the sum carries its
 //             unmeasured changes, and while a loaded channel reads a noise burst, its swings: so
@@ -431,6 +437,9 @@ class ContactForceFdi {
   // The feet's plane relations this tick: their window steps, their fault-free statistics and the
   // groups of jumps inside a touchdown guard they confirm (after the channel tests).
   void relation_jumps(std::span<const double> measured, std::span<const double> height, double t) noexcept;
+  // Channel j's reading is not its load, as flagged until this tick: substituted from the total
+  // force on the ground, or a noise burst (anywhere: its noise is in its foot's summed reading).
+  [[nodiscard]] bool unread(std::size_t j, std::span<const double> height) const noexcept;
   // The fault's size now (a gain's from the reading before the step, `load_before`).
   [[nodiscard]] static double fault_size(const Channel& c, double t, double load_before) noexcept;
   // A one-tick change that takes a fault of that size back: |jump + size| < 0.4 |size| + jump_confirm_N.
@@ -478,7 +487,7 @@ class ContactForceFdi {
   std::vector<std::array<double, 2>> foot_sum_;  // summed reading one and two ticks ago
   std::vector<int> foot_sum_ticks_;              // consecutive ticks with every pad's value, up to 2
   std::vector<double> foot_d2_;                  // second difference of the summed reading, this tick
-  std::vector<int> foot_substituted_;            // its loaded pads substituted from the total force
+  std::vector<int> foot_unread_;                 // its pads whose reading is not their load (unread())
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
   int frozen_ticks_ = 2;        // n_f, the frozen test's run length (INT_MAX: never reached)
