@@ -677,6 +677,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.jump_pending = true;
         c.jump_size = change;
         c.candidate_load = c.previous;
+        c.candidate_flagged = c.type != FaultType::none;
         ++jump_candidates;
         // In the terms of the sum residual, which takes a gain fault's reading corrected.
         jump_sum += c.type == FaultType::gain ? change / c.gain : change;
@@ -703,6 +704,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.relation_pending = true;
         c.relation_jump = change;
         c.relation_candidate_load = c.previous;
+        c.candidate_flagged = c.type != FaultType::none;
       } else if (steps && touching_down && !pad_landing && !c.end_pending && corrects(c.type) &&
                  (c.type == FaultType::gain || c.fit_has_air) &&
                  t - last_touchdown_s_[j / feet_points_] >= params_.touchdown_guard_s && fz_ok &&
@@ -776,7 +778,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     group_size_ = jump_candidates;
     for (auto& c : channels_) {
       c.jump_member = c.jump_pending;
-      if (c.jump_member) c.jump_load_before = c.candidate_load;
+      if (c.jump_member) {
+        c.jump_load_before = c.candidate_load;
+        c.jump_from_flagged = c.candidate_flagged;
+      }
     }
   }
   // While a loaded channel is substituted from the total force, the sum residual carries that
@@ -881,10 +886,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (!std::isfinite(x)) continue;
     // The channel's jump, when its group is decided: the sum residual's group, then (inside a
     // touchdown guard) its foot's plane group; each with its own jump and load before it.
-    const auto decide = [&](double jump, double load_before) {
+    // A jump of a channel flagged when it jumped is no onset: a stuck output's step back to its
+    // load is its end, whichever test re-admitted it while the group was pending (the follow
+    // test, on that very step).
+    const auto decide = [&](double jump, double load_before, bool from_flagged) {
       if (corrects(c.type) && steps_back(jump, fault_size(c, t, load_before))) {
         clear(c);  // the fault ended with a jump back
-      } else if (c.type == FaultType::none) {
+      } else if (c.type == FaultType::none && !from_flagged) {
         c.jump_load_before = load_before;  // the load the onset jump left (onset_gain)
         raise(c, FaultType::offset, t);
         c.fit.clear(t);
@@ -895,12 +903,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     };
     if (group_decided && c.jump_member) {
       c.jump_member = false;
-      if (group_confirmed) decide(c.jump_size, c.jump_load_before);
+      if (group_confirmed) decide(c.jump_size, c.jump_load_before, c.jump_from_flagged);
     }
     const std::size_t foot = j / feet_points_;
     if (c.relation_member && relation_group_[foot] == 2) {
       c.relation_member = false;
-      if (relation_verdict_[foot] != 0) decide(c.relation_jump_size, c.relation_load_before);
+      if (relation_verdict_[foot] != 0) decide(c.relation_jump_size, c.relation_load_before, c.relation_from_flagged);
     }
     // Frozen / saturation.
     if (repeat_test_off_ && params_.upper_limit_N > 0.0 && x >= params_.upper_limit_N - repeat_band_N_) {
@@ -1247,6 +1255,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
         if (!c.relation_member) continue;
         c.relation_load_before = c.relation_candidate_load;
         c.relation_jump_size = c.relation_jump;
+        c.relation_from_flagged = c.candidate_flagged;
         const double jump = c.type == FaultType::gain ? c.relation_jump / c.gain : c.relation_jump;
         for (std::size_t r = 0; r < relations; ++r) {
           relation_expect_[f * relations + r] += unmeasured_.relation_weight(i, r) * jump;

@@ -1428,5 +1428,41 @@ TEST(ContactForceFdi, ANeighbourOfANoiseBurstIsNotJudgedSpikyByTheLoadItTrades) 
   }
 }
 
+TEST(ContactForceFdi, AStuckOutputsStepBackToItsLoadIsItsEndNotANewOffset) {
+  // Pad 2 carries 250 N, and from tick 500 its load falls at 400 N/s to 20 N (tick 1075) while its
+  // output stays stuck at 250 N with its +-1 N noise: raised frozen by the still-reading test. At
+  // tick 1200 the output reads its load again: a -230 N step. The follow test re-admits it once
+  // its smoothed reading (10 Hz, a = 1 - e^(-2 pi 10 T) = 0.0609 per tick) has moved by 80 N:
+  // 1 - (1 - a)^m >= 80 / 230 takes m = 7 updates, seen on tick 1207, before the jump's window
+  // is complete (tick 1209): the step is the end of a flagged channel's fault, and is not then
+  // taken for an offset's onset.
+  Feet feet(suralp(), 1e-3);
+  int frozen_at = -1, cleared_at = -1;
+  for (int k = 0; k < 1600; ++k) {
+    double fz = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double load = j == 2 ? (k < 500 ? 250.0 : std::max(20.0, 250.0 - 0.4 * (k - 500)))
+                                 : 200.0 + 10.0 * static_cast<double>(j) + 40.0 * std::sin(2.0 * std::numbers::pi * k * 1e-3 + static_cast<double>(j));
+      fz += load;
+      const double read = j == 2 && k >= 500 && k < 1200 ? 250.0 : load;
+      feet.measured[j] = read + (k % 2 == 0 ? 1.0 : -1.0);
+    }
+    feet.step(fz);
+    if (frozen_at < 0 && feet.type(2) == FaultType::frozen) frozen_at = k;
+    if (frozen_at >= 0 && cleared_at < 0 && feet.type(2) == FaultType::none) cleared_at = k;
+    if (cleared_at >= 0) {
+      ASSERT_EQ(feet.type(2), FaultType::none) << "tick " << k;
+    }
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 2) {
+        ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+  EXPECT_GT(frozen_at, 500);
+  EXPECT_LT(frozen_at, 1200);
+  EXPECT_EQ(cleared_at, 1200 + 7);
+}
+
 }  // namespace
 }  // namespace ftsense::biped

@@ -96,7 +96,10 @@
 //             within half its jump on the next tick leaves the group (and its foot's plane group
 //             below): it spiked for a tick, which at 200 Hz moves a 2-tick window's mean by half
 //             the jump. The residual takes a spiking channel as the median of its last three
-//             readings (a 250 N spike moves a 10 ms mean by 50 N at 500 Hz). While a loaded channel is
+//             readings (a 250 N spike moves a 10 ms mean by 50 N at 500 Hz). A confirmed jump
+//             of a channel that was flagged when it jumped is no onset, even if a test cleared the
+//             flag while the group was pending (a stuck output's step back to its load, which the
+//             follow test re-admits on that very step). While a loaded channel is
 //             substituted from the total force (frozen, saturated, invalid; not a noise burst or spikes,
 //             which are recovered from their own readings), the sum carries its
 //             unmeasured changes, and while a loaded channel reads a noise burst, its swings: so
@@ -372,6 +375,9 @@ class ContactForceFdi {
     double jump_size = 0.0;
     double candidate_load = 0.0;
     double jump_load_before = 0.0;
+    bool candidate_flagged = false;      // this tick's candidate jumped while flagged
+    bool jump_from_flagged = false;      // the group's member did (its jump is no onset)
+    bool relation_from_flagged = false;  // the plane group's member did
     // A reverse jump of the fault's size inside another foot's touchdown guard: judged by the
     // sum residual's step once the guard is over (end_jump: the step an end implies; end_before: the
     // residual's mean over the jump window before the guard). Likewise a step back while
