@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Runs the robust pipeline (configs/suralp_robust.json) on SURALP walks the demo does not use, and
-reports the false alarms of each: the trial a new user makes before trusting it.
+reports the false alarms of each: the trial a new user makes before trusting it. With --robot
+quadruped, configs/quadruped.json on crawls of the 13 kg quadruped the demo does not use.
 
-    tools/unseen_walks.py BUILD_BIN [--faults] [--work DIR] [--duration S] [--jobs N]
+    tools/unseen_walks.py BUILD_BIN [--robot suralp|quadruped] [--faults] [--work DIR] [--duration S] [--jobs N]
 
 BUILD_BIN holds ftsense and ftsense-sim (e.g. build/bin). 4 gaits x 4 sensor settings, each walk
 seeded 300 + its number (printed), the config told each walk's sensors and log period as a user
@@ -10,6 +11,12 @@ would (noise_std_N, resolution_N, sample_period_s). Gaits (step length m, step t
 support ratio): 0.15/1.0/0.3, 0.25/0.7/0.15, 0.2/0.9/0.25, 0.18/0.75/0.2 (the demo walks
 0.2/0.8/0.2 and a slower one). Sensors (log period s, noise N, resolution N): 0.001/1/0,
 0.005/3/0, 0.002/2/2, 0.001/2/5. Exit 1 on any false alarm. About 10 s on 2 cores (ctest unseen_walks).
+
+The quadruped's gaits (stride m, cycle s, step height m): 0.08/4.0/0.04, 0.12/3.0/0.05,
+0.06/5.0/0.03, 0.10/3.5/0.04 (the demo crawls 0.08/4.0/0.04 only); its sensors (log period s,
+noise N, resolution N): 0.001/0.5/0, 0.005/1/0, 0.002/0.3/0.5, 0.001/1/2; seeds 500 + its number
+(600 + with faults); fault sizes for its 32 N per foot: offsets +-10/15/25 N, drifts +-2/3/5 N/s,
+noise bursts 5/8 N, spikes 30/60 N, saturation at 30/40 N.
 
 With --faults, each walk (seeded 400 + its number) carries two faults on two channels drawn by a
 random.Random(FAULT_SEED) that is printed: one starting in 4-9 s, one in 13-18 s, each lasting 3-7
@@ -34,19 +41,38 @@ GAITS = [(0.15, 1.0, 0.3), (0.25, 0.7, 0.15), (0.2, 0.9, 0.25), (0.18, 0.75, 0.2
 SENSORS = [(0.001, 1.0, 0.0), (0.005, 3.0, 0.0), (0.002, 2.0, 2.0), (0.001, 2.0, 5.0)]
 
 
-CHANNELS = [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)]
 FAULT_SEED = 7
+# Per robot: its config, channels, gaits, sensor settings, seeds and fault sizes (docstring).
+ROBOTS = {
+    "suralp": {
+        "config": "suralp_robust.json",
+        "channels": [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)],
+        "gaits": [{"step_length_m": a, "step_time_s": b, "double_support_ratio": c} for a, b, c in GAITS],
+        "sensors": SENSORS, "seeds": (300, 400),
+        "offset_N": [40, 60, 100], "slope_N_s": [5, 10, 15], "noise_N": [15, 30, 40],
+        "spike_N": [100, 250], "ceiling_N": [250, 350],
+    },
+    "quadruped": {
+        "config": "quadruped.json",
+        "channels": ["lf_foot", "rf_foot", "lh_foot", "rh_foot"],
+        "gaits": [{"stride_m": a, "cycle_s": b, "step_height_m": c}
+                  for a, b, c in [(0.08, 4.0, 0.04), (0.12, 3.0, 0.05), (0.06, 5.0, 0.03), (0.10, 3.5, 0.04)]],
+        "sensors": [(0.001, 0.5, 0.0), (0.005, 1.0, 0.0), (0.002, 0.3, 0.5), (0.001, 1.0, 2.0)], "seeds": (500, 600),
+        "offset_N": [10, 15, 25], "slope_N_s": [2, 3, 5], "noise_N": [5, 8],
+        "spike_N": [30, 60], "ceiling_N": [30, 40],
+    },
+}
 
 
-def draw_fault(rng, channel, start_s, noise_std_N):
+def draw_fault(rng, robot, channel, start_s, noise_std_N):
     """One fault of a type drawn by rng (the module docstring's list)."""
     kind = rng.choice(["offset", "drift", "frozen", "gain", "noise", "spikes", "saturation", "frozen_noisy"])
     fault = {"channel": channel, "start_s": start_s, "end_s": round(start_s + rng.uniform(3.0, 7.0), 2)}
     sign = rng.choice([-1, 1])
     if kind == "offset":
-        fault.update(type="offset", offset_N=sign * rng.choice([40, 60, 100]))
+        fault.update(type="offset", offset_N=sign * rng.choice(robot["offset_N"]))
     elif kind == "drift":
-        fault.update(type="drift", slope_N_s=sign * rng.choice([5, 10, 15]))
+        fault.update(type="drift", slope_N_s=sign * rng.choice(robot["slope_N_s"]))
     elif kind == "frozen":
         fault.update(type="frozen")
     elif kind == "frozen_noisy":
@@ -54,35 +80,39 @@ def draw_fault(rng, channel, start_s, noise_std_N):
     elif kind == "gain":
         fault.update(type="gain", gain=rng.choice([0.5, 1.5, 2.0]))
     elif kind == "noise":
-        fault.update(type="noise", std_N=rng.choice([15, 30, 40]))
+        fault.update(type="noise", std_N=rng.choice(robot["noise_N"]))
     elif kind == "spikes":
-        fault.update(type="spikes", amplitude_N=rng.choice([100, 250]), rate_hz=rng.choice([2, 5]))
+        fault.update(type="spikes", amplitude_N=rng.choice(robot["spike_N"]), rate_hz=rng.choice([2, 5]))
     else:
-        fault.update(type="saturation", max_N=rng.choice([250, 350]), min_N=0.0)
+        fault.update(type="saturation", max_N=rng.choice(robot["ceiling_N"]), min_N=0.0)
     return fault
 
 
-def walks(duration_s, with_faults):
+def walks(robot_name, duration_s, with_faults):
+    robot = ROBOTS[robot_name]
+    channels = robot["channels"]
     rng = random.Random(FAULT_SEED)
     number = 0
-    for length, step, support in GAITS:
-        for period, noise, resolution in SENSORS:
+    for gait in robot["gaits"]:
+        for period, noise, resolution in robot["sensors"]:
             number += 1
             faults = []
             if with_faults:
-                first = rng.choice(CHANNELS)
-                second = rng.choice([c for c in CHANNELS if c != first])
-                faults = [draw_fault(rng, first, round(rng.uniform(4.0, 9.0), 2), noise),
-                          draw_fault(rng, second, round(rng.uniform(13.0, 18.0), 2), noise)]
+                first = rng.choice(channels)
+                second = rng.choice([c for c in channels if c != first])
+                faults = [draw_fault(rng, robot, first, round(rng.uniform(4.0, 9.0), 2), noise),
+                          draw_fault(rng, robot, second, round(rng.uniform(13.0, 18.0), 2), noise)]
             scenario = {
                 "name": f"unseen_{number}",
                 "description": "walk for tools/unseen_walks.py",
                 "duration_s": duration_s,
-                "seed": (400 if with_faults else 300) + number,
-                "gait": {"step_length_m": length, "step_time_s": step, "double_support_ratio": support},
+                "seed": robot["seeds"][1 if with_faults else 0] + number,
+                "gait": gait,
                 "sensors": {"force": {"noise_std_N": noise, "resolution_N": resolution}},
                 "faults": faults,
             }
+            if robot_name != "suralp":
+                scenario["robot"] = robot_name
             if period != 0.001:
                 scenario["log_period_s"] = period
             yield scenario
@@ -93,9 +123,14 @@ def told(config, scenario):
     config = json.loads(json.dumps(config))
     config.pop("$schema", None)
     config["sample_period_s"] = scenario.get("log_period_s", 0.001)
+    # Files the config names relative to itself (a URDF) stay found from the work directory.
+    for stage in config["stages"]:
+        for key, value in stage.get("params", {}).items():
+            if key == "urdf" and isinstance(value, str) and not os.path.isabs(value):
+                stage["params"][key] = os.path.join(ROOT, "configs", value)
     stages = [s for s in config["stages"] if s["plugin"] == "contact_force_fdi"]
     if len(stages) != 1:
-        sys.exit("configs/suralp_robust.json: one contact_force_fdi stage expected")
+        sys.exit("the config: one contact_force_fdi stage expected")
     for key in ("noise_std_N", "resolution_N"):
         stages[0]["params"][key] = scenario["sensors"]["force"][key]
     return config
@@ -128,8 +163,9 @@ def main():
     parser.add_argument("--duration", type=float, default=25.0, help="seconds per walk (default 25)")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--faults", action="store_true", help="two faults per walk (a report, not a gate)")
+    parser.add_argument("--robot", choices=sorted(ROBOTS), default="suralp")
     args = parser.parse_args()
-    config = json.load(open(os.path.join(ROOT, "configs", "suralp_robust.json")))
+    config = json.load(open(os.path.join(ROOT, "configs", ROBOTS[args.robot]["config"])))
     if args.work:
         return run_all(args, config, args.work)
     with tempfile.TemporaryDirectory(prefix="unseen_walks_") as work:  # removed afterwards
@@ -153,13 +189,13 @@ def run_all(args, config, work):
     alarm_total = walks_with_alarms = 0
     faulty = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        jobs = [pool.submit(trial, args.bin, work, config, s) for s in walks(args.duration, args.faults)]
+        jobs = [pool.submit(trial, args.bin, work, config, s) for s in walks(args.robot, args.duration, args.faults)]
         for job in jobs:
             scenario, metrics, error = job.result()
             gait = scenario["gait"]
             force = scenario["sensors"]["force"]
-            label = (f"{scenario['name']:10s} seed {scenario['seed']} gait {gait['step_length_m']}/"
-                     f"{gait['step_time_s']}/{gait['double_support_ratio']} period {scenario.get('log_period_s', 0.001)} s "
+            label = (f"{scenario['name']:10s} seed {scenario['seed']} gait {'/'.join(str(v) for v in gait.values())} "
+                     f"period {scenario.get('log_period_s', 0.001)} s "
                      f"noise {force['noise_std_N']} N resolution {force['resolution_N']} N")
             if error:
                 print(f"{label}: ERROR {error}")

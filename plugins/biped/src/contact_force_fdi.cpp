@@ -1158,7 +1158,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       offset_or_gain_test(channels_[j], measured[j], height[j] > params_.airborne_height_m, residual);
     }
   }
-  still_reading_test(measured, virtual_force, height, residual, fz_ok && all_finite_readings, any_step, t);
+  still_reading_test(measured, height, residual, fz_ok && all_finite_readings, any_step, t);
   gain_regression(measured, recovered, height, residual,
                   fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
@@ -1302,7 +1302,7 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, double t) const noexc
   return observed >= z2 && expected >= z2 && agreement > 0.0;
 }
 
-void ContactForceFdi::still_reading_test(std::span<const double> measured, std::span<const double> virtual_force,
+void ContactForceFdi::still_reading_test(std::span<const double> measured,
                                          std::span<const double> height, double residual, bool usable,
                                          bool stepped, double t) noexcept {
   if (usable) {
@@ -1358,9 +1358,12 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured, std::
   std::size_t candidates = 0, culprit = 0;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     const Channel& c = channels_[j];
-    // Under "j is stuck" its load is its leave-one-out force: it must carry one.
+    // Under "j is stuck" its load is its leave-one-out force, x_j - r (both smoothed): a pad only
+    // pushes, so one that would carry less than -airborne_threshold_N cannot be the one (a pad
+    // reading 0 while the pads' sum reads too much); one stuck where its load came to 0 (a foot
+    // about to lift) can.
     if (c.still_grounded && c.still_hi - c.still_lo < params_.follow_ratio * residual_span &&
-        virtual_force[j] > params_.airborne_threshold_N) {
+        c.smoothed - residual_smoothed_ > -params_.airborne_threshold_N) {
       ++candidates;
       culprit = j;
     }

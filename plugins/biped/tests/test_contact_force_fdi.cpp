@@ -1153,6 +1153,8 @@ struct StillReadingTrace {
   std::vector<std::size_t> still;
   bool load_falls = true;
   double reference_error_N_s = 0.0;
+  double still_load_N = 150.0;  // the first still pad's load before it falls, and its stuck reading (the others: 150 N)
+  double floor_N = -1e9;        // the falling load stops there
 };
 constexpr int kStillFrom = 500;
 
@@ -1160,8 +1162,10 @@ double true_load(const StillReadingTrace& trace, std::size_t j, int k) {
   const double t = k * 1e-3;
   const bool is_still = std::find(trace.still.begin(), trace.still.end(), j) != trace.still.end();
   if (!is_still) return 200.0 + 10.0 * static_cast<double>(j) + 40.0 * std::sin(2.0 * std::numbers::pi * t + static_cast<double>(j));
-  if (trace.load_falls && j == trace.still.front() && k >= kStillFrom) return 150.0 - 400.0 * (k - kStillFrom) * 1e-3;
-  return 150.0;
+  if (trace.load_falls && j == trace.still.front() && k >= kStillFrom) {
+    return std::max(trace.floor_N, trace.still_load_N - 400.0 * (k - kStillFrom) * 1e-3);
+  }
+  return j == trace.still.front() ? trace.still_load_N : 150.0;
 }
 
 // Runs the trace for `ticks`; returns the tick each channel was first flagged (-1: never).
@@ -1174,7 +1178,8 @@ std::vector<int> first_flags(const StillReadingTrace& trace, int ticks, std::vec
       const bool is_still = std::find(trace.still.begin(), trace.still.end(), j) != trace.still.end();
       const double load = true_load(trace, j, k);
       fz += load;
-      feet.measured[j] = (is_still ? 150.0 : load) + (k % 2 == 0 ? 1.0 : -1.0);
+      const bool stuck = is_still && j == trace.still.front();
+      feet.measured[j] = (stuck ? trace.still_load_N : is_still ? 150.0 : load) + (k % 2 == 0 ? 1.0 : -1.0);
     }
     feet.step(fz);
     for (std::size_t j = 0; j < kChannels; ++j) {
@@ -1194,7 +1199,8 @@ int residual_moves_beyond_its_bound_at(const StillReadingTrace& trace, int ticks
   double smoothed = 0.0, lo = 0.0, hi = 0.0;
   for (int k = 0; k < ticks; ++k) {
     const double residual =
-        (150.0 - true_load(trace, trace.still.front(), k)) - std::max(0, k - kStillFrom) * 1e-3 * trace.reference_error_N_s;
+        (trace.still_load_N - true_load(trace, trace.still.front(), k)) -
+        std::max(0, k - kStillFrom) * 1e-3 * trace.reference_error_N_s;
     smoothed = k == 0 ? residual : smoothed + a * (residual - smoothed);
     lo = k == 0 ? smoothed : std::min(lo, smoothed);
     hi = k == 0 ? smoothed : std::max(hi, smoothed);
@@ -1226,6 +1232,19 @@ TEST(ContactForceFdi, TwoStillReadingsAreNotToldApartAndNeitherIsBlamed) {
   const auto first = first_flags({{2, 6}, true, 0.0}, 900, &cannot_judge);
   for (std::size_t j = 0; j < kChannels; ++j) EXPECT_EQ(first[j], -1) << "channel " << j;
   EXPECT_EQ(cannot_judge[0], 1.0);
+}
+
+TEST(ContactForceFdi, APadStuckWhereItsLoadCameToZeroIsStillACandidate) {
+  // Pad 2 carries 85 N, pad 6 a steady 150 N; from tick 500 pad 2's load falls at 400 N/s to 0 N
+  // (tick 712, a foot about to lift) while its output stays at 85 N. When the residual has moved
+  // by 80 N, pad 2's leave-one-out force x - r is under 5 N, below the airborne threshold (8 N):
+  // were it stuck, it would carry almost nothing, which a pad may. It is a candidate beside the
+  // still pad 6, so neither is blamed (taking only pads whose leave-one-out force is above the
+  // airborne threshold, pad 6 was blamed alone).
+  const StillReadingTrace trace{{2, 6}, true, 0.0, 85.0, 0.0};
+  ASSERT_GT(residual_moves_beyond_its_bound_at(trace, 1200), 700);
+  const auto first = first_flags(trace, 1200);
+  for (std::size_t j = 0; j < kChannels; ++j) EXPECT_EQ(first[j], -1) << "channel " << j;
 }
 
 TEST(ContactForceFdi, AReferenceThatDriftsBlamesNoReadingThatFollowsItsLoad) {

@@ -184,8 +184,9 @@
 //             the 13 kg quadruped's 8.9 N bound), a channel stuck at c makes r = c - N_j + e, so
 //             its load moved by that much unread. The channels on the ground and not flagged
 //             throughout the window whose smoothed reading spans under follow_ratio of r's move,
-//             and whose leave-one-out force (its load, were it stuck) is above
-//             airborne_threshold_N, are the candidates: exactly one is raised frozen (and
+//             and whose leave-one-out force x_j - r (its load, were it stuck; smoothed) is above
+//             -airborne_threshold_N (a pad only pushes; one stuck where its load came to 0, a
+//             foot about to lift, is one), are the candidates: exactly one is raised frozen (and
 //             re-admitted by the follow test); two or more cannot be told apart (a steadily
 //             loaded pad reads still too), and none is blamed. The window is at least the
 //             smoother's settling (five time constants) long, and restarts, a settling later,
@@ -427,9 +428,8 @@ class ContactForceFdi {
   void restart_gain_window() noexcept;
   void clear(Channel& c) noexcept;
   // The still-reading test (header comment), once the corrected sum residual of this tick is known.
-  void still_reading_test(std::span<const double> measured, std::span<const double> virtual_force,
-                          std::span<const double> height, double residual, bool usable, bool stepped,
-                          double t) noexcept;
+  void still_reading_test(std::span<const double> measured, std::span<const double> height, double residual,
+                          bool usable, bool stepped, double t) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
   void follow_test(Channel& c, double reading, double virtual_force, double t) noexcept;
   // The offset-or-gain test (header comment), once the corrected sum residual of this tick is known.
