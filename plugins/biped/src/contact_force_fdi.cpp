@@ -643,10 +643,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
       c.jump_pending = false;
       c.relation_pending = false;
-      // A member of the pending group whose reading is back within half its jump on the next
-      // tick jumped for one tick: a spike (the spike test's, seen on this tick), not a step. At
-      // 200 Hz the jump window is two ticks, and a 100 N spike moves its mean by 50 N.
-      if (c.jump_member && group_pending_ && group_age_ == 1 && std::abs(x - c.previous2) < 0.5 * std::abs(c.jump_size)) {
+      // A member of the pending group whose reading is back within half its jump of the reading
+      // before it, on the tick after, jumped for one tick: a spike, not a step. At 200 Hz the
+      // jump window is two ticks, and a 100 N spike moves its mean by 50 N. (Judged against the
+      // reading before, not its trend: a noise burst's trend is its last swing, and extrapolated
+      // it took a burst's swings for steps. So a step against a pad unloading as fast as half
+      // the step per tick, at a slow log rate, leaves the group too: found by the other tests.)
+      const auto back = [&](double jump) { return std::abs(x - c.previous2) < 0.5 * std::abs(jump); };
+      if (c.jump_member && group_pending_ && group_age_ == 1 && back(c.jump_size)) {
         c.jump_member = false;
         group_sum_ -= c.type == FaultType::gain ? c.jump_size / c.gain : c.jump_size;
         --group_size_;
@@ -655,7 +659,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // Likewise a member of its foot's plane group (inside a touchdown guard).
       const std::size_t foot = j / feet_points_;
       if (c.relation_member && relation_group_[foot] == 1 && relation_group_age_[foot] == 1 &&
-          std::abs(x - c.previous2) < 0.5 * std::abs(c.relation_jump_size)) {
+          back(c.relation_jump_size)) {
         c.relation_member = false;
         const std::size_t relations = unmeasured_.relations_per_foot();
         const double jump = c.type == FaultType::gain ? c.relation_jump_size / c.gain : c.relation_jump_size;
@@ -1305,6 +1309,7 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, double t) const noexc
 void ContactForceFdi::still_reading_test(std::span<const double> measured,
                                          std::span<const double> height, double residual, bool usable,
                                          bool stepped, double t) noexcept {
+  usable = usable && std::isfinite(residual);  // readings too large to sum leave it unknown
   if (usable) {
     residual_smoothed_ = residual_smoothed_started_ ? residual_smoothed_ + smoothing_ * (residual - residual_smoothed_)
                                                     : residual;

@@ -55,8 +55,9 @@
 //             ground, leaves the sum smooth; a sensor's spike is in it), and no other pad of its
 //             foot reads other than its load (substituted under load, or a noise burst: its
 //             reading misses or swamps the load it trades with this pad, so neither the sum nor
-//             this pad tells a spike then; the noise test alike; a channel already flagged is
-//             judged on, so that it clears) (not
+//             this pad tells a spike then; the noise test alike, so a second noise burst on that
+//             foot waits for the first to clear; a channel already flagged is judged on, so that
+//             it clears) (not
 //             within touchdown_guard_s of a touchdown, nor while the pad rings after its own
 //             landing, as for jumps below: a landing heel rings like a spike); the flag stays h after the last spike. Spikes of a faulty
 //             sensor come at random (rate lambda, exponential gaps), so once an episode has n >= 2
@@ -93,9 +94,11 @@
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
 //             each other): an abrupt fault, isolated at once. A member whose reading is back
-//             within half its jump on the next tick leaves the group (and its foot's plane group
-//             below): it spiked for a tick, which at 200 Hz moves a 2-tick window's mean by half
-//             the jump. The residual takes a spiking channel as the median of its last three
+//             within half its jump of the reading before, on the next tick, leaves the group (and
+//             its foot's plane group below): it spiked for a tick, which at 200 Hz moves a 2-tick
+//             window's mean by half the jump. (Not against the trend: a noise burst's trend is
+//             its last swing. A step against a pad unloading by half the step per tick leaves
+//             the group too, and is left to the other tests.) The residual takes a spiking channel as the median of its last three
 //             readings (a 250 N spike moves a 10 ms mean by 50 N at 500 Hz). A confirmed jump
 //             of a channel that was flagged when it jumped is no onset, even if a test cleared the
 //             flag while the group was pending (a stuck output's step back to its load, which the
@@ -106,7 +109,9 @@
 //             confirmation then takes 3 x jump_confirm_N (with a channel substituted, at least
 //             sum_threshold_N, the bound of the total force's error its share carries: a
 //             substituted heel chattering on and off hands 40-55 N to its neighbours within a
-//             tick), and none is confirmed while a substituted channel's foot rolls on or off.
+//             tick; so while any pad is substituted, a step under sum_threshold_N, an onset or an
+//             end, is left to the air test), and none is confirmed while a substituted channel's
+//             foot rolls on or off.
 //             Inside a touchdown guard, with the soles' layout given (`points`), a jump is
 //             confirmed by its foot's plane relations instead (unmeasured_contact_loads.hpp: a
 //             rigid sole's loads are affine in the pads' positions, through an impact too, which
