@@ -13,6 +13,7 @@
 #include "ftsense/biped/frames.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/median_of_three.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::biped {
@@ -562,7 +563,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (c.type == FaultType::gain) {
       raw_sum += airborne ? 0.0 : x / c.gain;
     } else if (c.type == FaultType::spikes && ticks_since_start > 0) {
-      raw_sum += std::max(std::min(x, c.previous), std::min(std::max(x, c.previous), c.previous2));
+      raw_sum += generic::median_of_three(x, c.previous, c.previous2);
     } else {
       raw_sum += x;
     }
@@ -1049,9 +1050,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     } else if (c.type == FaultType::noise) {
       value = airborne ? 0.0 : c.smoothed;
     } else if (c.type == FaultType::spikes) {
-      // Median of the last three readings: an isolated spike never wins.
-      const double a = x, b = c.previous, d = c.previous2;
-      value = airborne ? 0.0 : std::max(std::min(a, b), std::min(std::max(a, b), d));
+      value = airborne ? 0.0 : generic::median_of_three(x, c.previous, c.previous2);
     } else if (c.type != FaultType::none) {
       value = 0.0;
       unknown = !airborne;

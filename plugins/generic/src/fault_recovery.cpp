@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ftsense/generic/median_of_three.hpp"
 #include "ftsense/low_pass_gain.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
@@ -99,11 +100,6 @@ void FaultRecovery::reset() noexcept {
   std::fill(previous_count_.begin(), previous_count_.end(), static_cast<unsigned char>(0));
 }
 
-namespace {
-double median_of_three(double a, double b, double c) noexcept {
-  return std::max(std::min(a, b), std::min(std::max(a, b), c));
-}
-}  // namespace
 
 void FaultRecovery::step(const StepIO& io) noexcept {
   const auto measured = io.in(kMeasured);

@@ -184,9 +184,9 @@
 //   still     (no flag yet) a reading that stays still while the load it should carry moves: a
 //             frozen output that keeps its noise, found in stance. One window for all channels:
 //             while the corrected sum residual r, low-passed at 10 Hz as the readings are, moves
-//             by sum_threshold_N (the bound of the total force's error; its 10 Hz low-pass spans
-//             at most 39 N over the simulated SURALP's fault-free walks at every rate, 3.5 N of
-//             the 13 kg quadruped's 8.9 N bound), a channel stuck at c makes r = c - N_j + e, so
+//             by sum_threshold_N (the bound of the total force's error e; the fault-free walks and
+//             crawls of the demo and of tools/unseen_walks.py raise no flag with it), a channel
+//             stuck at c makes r = c - N_j + e, so
 //             its load moved by that much unread. The channels on the ground and not flagged
 //             throughout the window whose smoothed reading spans under follow_ratio of r's move,
 //             and whose leave-one-out force x_j - r (its load, were it stuck; smoothed) is above
