@@ -395,6 +395,7 @@ void ContactForceFdi::reset() noexcept {
   still_window_settle_until_s_ = -1e300;
   started_ = false;
   group_pending_ = false;
+  late_pending_ = group_deferred_ = false;
   std::fill(last_touchdown_s_.begin(), last_touchdown_s_.end(), -1e9);
   std::fill(foot_sum_.begin(), foot_sum_.end(), std::array<double, 2>{0.0, 0.0});
   std::fill(foot_sum_ticks_.begin(), foot_sum_ticks_.end(), 0);
@@ -540,6 +541,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   bool group_emptied = false;  // every member of the pending group was a one-tick spike
   bool any_step = false;  // a channel stepped this tick (the still-reading test's window restarts)
   double jump_sum = 0.0;
+  int late_candidates = 0;  // healthy channels stepping while a group is pending
+  double late_jump_sum = 0.0;
   double raw_sum = 0.0;
   bool all_finite_readings = true;  // the gain test takes only ticks where every channel has a value
   for (std::size_t j = 0; j < channels_.size(); ++j) {
@@ -643,6 +646,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.first_diff[c.second_diff_next] = std::abs(change);
       c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
       c.jump_pending = false;
+      c.late_candidate = false;
       c.relation_pending = false;
       // A member of the pending group whose reading is back within half its jump of the reading
       // before it, on the tick after, jumped for one tick: a spike, not a step. At 200 Hz the
@@ -656,6 +660,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         group_sum_ -= c.type == FaultType::gain ? c.jump_size / c.gain : c.jump_size;
         --group_size_;
         group_emptied = group_emptied || group_size_ == 0;
+      }
+      if (c.late_member && late_pending_ && late_age_ == 1 && back(c.late_jump)) {
+        c.late_member = false;
+        late_sum_ -= c.late_jump;
+        --late_size_;
       }
       // Likewise a member of its foot's plane group (inside a touchdown guard).
       const std::size_t foot = j / feet_points_;
@@ -678,7 +687,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const bool steps = std::abs(change) > params_.jump_threshold_N &&
                          std::abs(innovation) > params_.jump_threshold_N && c.type != FaultType::noise;
       any_step = any_step || steps;
-      if (steps && may_jump && !group_pending_) {
+      if (steps && may_jump && !group_pending_ && !late_pending_) {
         c.jump_pending = true;
         c.jump_size = change;
         c.candidate_load = c.previous;
@@ -686,8 +695,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         ++jump_candidates;
         // In the terms of the sum residual, which takes a gain fault's reading corrected.
         jump_sum += c.type == FaultType::gain ? change / c.gain : change;
-      } else if (steps && may_jump && !c.jump_member && !c.end_pending && corrects(c.type) && fz_ok &&
+      } else if (steps && may_jump && !late_pending_ && c.type == FaultType::none && fz_ok &&
                  residual_count_ == residual_ring_.size()) {
+        // A healthy channel's step while a group awaits its confirmation (the other foot's pads
+        // unloading at its lift-off, a fault starting within the jump window; a member of that
+        // group too, as the load it moved keeps moving): a late group, decided with the pending
+        // one (below), not lost.
+        c.late_candidate = true;
+        c.late_jump = change;
+        c.late_load_before = c.previous;
+        ++late_candidates;
+        late_jump_sum += change;
+      } else if (steps && may_jump && !late_pending_ && !c.jump_member && !c.end_pending && corrects(c.type) &&
+                 fz_ok && residual_count_ == residual_ring_.size()) {
         // A step while another group awaits its confirmation (a landing foot's pads jumping as
         // it rolls on): judged on its own window, as a group of its own would be, when it steps
         // back by the fault's size (the fault may have ended; an onset on a healthy channel waits
@@ -789,6 +809,17 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
     }
   }
+  // A late group forms only while no fault's end is pending: an end's residual step is judged
+  // against the first group's decision alone.
+  bool ends_waiting = false;
+  for (const auto& c : channels_) ends_waiting = ends_waiting || c.end_pending;
+  if (late_candidates > 0 && group_pending_ && !ends_waiting) {
+    late_pending_ = true;
+    late_age_ = 0;
+    late_sum_ = late_jump_sum;
+    late_size_ = late_candidates;
+    for (auto& c : channels_) c.late_member = c.late_candidate;
+  }
   // While a loaded channel is substituted from the total force, the sum residual carries that
   // channel's unmeasured changes, and while one reads a noise burst, its swings (a 10 ms mean of
   // 40 N noise moves by 13 N; spikes come too seldom to matter): confirming a jump then takes
@@ -821,6 +852,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     group_pending_ = false;
     group_dropped = true;
   }
+  if (substituting_rolling && (late_pending_ || group_deferred_)) {
+    group_dropped = group_dropped || group_deferred_;
+    late_pending_ = group_deferred_ = false;
+    for (auto& c : channels_) c.late_member = false;
+  }
+  // Every late member spiked for a tick, and the first group is still in its window: it is
+  // decided alone, as before.
+  if (late_pending_ && late_size_ == 0 && !group_deferred_) late_pending_ = false;
   const double confirm_N = substituted_loaded    ? std::max(3.0 * params_.jump_confirm_N, params_.sum_threshold_N)
                            : unmeasured_in_residual ? 3.0 * params_.jump_confirm_N
                                                     : params_.jump_confirm_N;
@@ -829,13 +868,48 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   bool group_decided = false;
   if (group_pending_ && group_age_++ >= jump_window_ticks_ - 1) {
     group_pending_ = false;
-    group_decided = true;
-    if (residual_count_ == residual_ring_.size()) {
+    if (late_pending_) {
+      // A late group's jump is in this window: decided with it, once its window is over.
+      group_deferred_ = true;
+    } else if (residual_count_ == residual_ring_.size()) {
+      group_decided = true;
       const double step =
           recent_residual_mean() - recent_residual_mean(static_cast<std::size_t>(jump_window_ticks_));
       // Pads trading load jump in opposite directions and leave the residual alone: not a fault.
       group_confirmed = std::abs(group_sum_) >= confirm_N && residual_steps_by(step, group_sum_, confirm_N);
     } else {
+      group_decided = true;
+      group_dropped = true;
+    }
+  }
+  // The late group, a jump window after its jump, with the first if that one is still undecided:
+  // the residual's step from before the first group's jump is the first's sum, the late one's, or
+  // both (a dropped first group: the late one's only); the hypothesis that passes the step test
+  // and lies nearest is taken. (The first group's own window holds the late jump, so it cannot
+  // be judged alone.)
+  bool late_decided = false;
+  bool late_confirmed = false;
+  if (late_pending_ && late_age_++ >= jump_window_ticks_ - 1) {
+    late_pending_ = false;
+    late_decided = true;
+    const bool first_open = group_deferred_;
+    group_deferred_ = false;
+    if (first_open) group_decided = true;
+    if (residual_count_ == residual_ring_.size()) {
+      const double step = recent_residual_mean() - group_before_;
+      const double first = first_open ? group_sum_ : 0.0;
+      double best = std::numeric_limits<double>::infinity();
+      const auto consider = [&](double expected, bool alone, bool with_first, bool with_late) {
+        if (alone && std::abs(expected) < confirm_N) return;
+        if (!residual_steps_by(step, expected, confirm_N) || std::abs(step - expected) >= best) return;
+        best = std::abs(step - expected);
+        group_confirmed = with_first;
+        late_confirmed = with_late;
+      };
+      if (late_size_ > 0) consider(late_sum_, true, false, true);
+      if (first_open) consider(first, true, true, false);
+      if (first_open && late_size_ > 0) consider(first + late_sum_, false, true, true);
+    } else if (first_open) {
       group_dropped = true;
     }
   }
@@ -906,9 +980,16 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.slope = 0.0;
       }
     };
-    if (group_decided && c.jump_member) {
-      c.jump_member = false;
-      if (group_confirmed) decide(c.jump_size, c.jump_load_before, c.jump_from_flagged);
+    const bool first_member = group_decided && c.jump_member;
+    const bool late_member = late_decided && c.late_member;
+    if (first_member) c.jump_member = false;
+    if (late_member) c.late_member = false;
+    if (first_member && group_confirmed && late_member && late_confirmed) {
+      decide(c.jump_size + c.late_jump, c.jump_load_before, c.jump_from_flagged);  // both its steps
+    } else if (first_member && group_confirmed) {
+      decide(c.jump_size, c.jump_load_before, c.jump_from_flagged);
+    } else if (late_member && late_confirmed) {
+      decide(c.late_jump, c.late_load_before, false);
     }
     const std::size_t foot = j / feet_points_;
     if (c.relation_member && relation_group_[foot] == 2) {

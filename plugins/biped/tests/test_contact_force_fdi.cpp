@@ -1144,6 +1144,52 @@ TEST(ContactForceFdi, AnOffsetThatEndsWhileAnotherGroupIsPendingIsJudgedOnItsOwn
   EXPECT_EQ(offset_end_during_a_pending_group_dropped_at(), 405 + 9);
 }
 
+// Two steps within one jump window (1 kHz, 10 ticks): pads 4 and 5 (or `first_pads`) step up by
+// 30 N each at tick 400, pad 0 steps down by 100 N at tick 403; `first_is_fault` / `late_is_fault`
+// say whether the total force leaves each step out (a sensor's fault) or carries it (the load
+// moved). Returns the tick each pad was first flagged (-1: never).
+std::vector<int> steps_within_one_window_flagged_at(bool first_is_fault, bool late_is_fault,
+                                                    std::array<std::size_t, 2> first_pads = {4, 5}) {
+  Feet feet(suralp(), 1e-3);
+  std::vector<int> first(kChannels, -1);
+  for (int k = 0; k < 600; ++k) {
+    double truth = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = moving(j, k, 0.0);
+      truth += feet.measured[j];
+    }
+    if (k >= 400) {
+      for (std::size_t j : first_pads) feet.measured[j] += 30.0;
+      if (!first_is_fault) truth += 60.0;
+    }
+    if (k >= 403) {
+      feet.measured[0] -= 100.0;
+      if (!late_is_fault) truth -= 100.0;
+    }
+    feet.step(truth);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (first[j] < 0 && feet.type(j) != FaultType::none) first[j] = k;
+    }
+  }
+  return first;
+}
+
+TEST(ContactForceFdi, AFaultStartingWhileAnotherGroupIsPendingIsFoundWhenBothAreDecided) {
+  // The late group (pad 0) is decided with the first a jump window after its own jump, 403 + 9,
+  // by the hypothesis nearest the residual's step from before tick 400: the late sum (-100 N),
+  // the first's (+60 N), or both (-40 N). Before, a healthy pad's step while a group was pending
+  // joined no group, and pad 0's fault under a steady load went unseen.
+  const std::vector<int> healthy_then_fault = steps_within_one_window_flagged_at(false, true);
+  EXPECT_EQ(healthy_then_fault, (std::vector<int>{412, -1, -1, -1, -1, -1, -1, -1}));
+  const std::vector<int> fault_then_healthy = steps_within_one_window_flagged_at(true, false);
+  EXPECT_EQ(fault_then_healthy, (std::vector<int>{-1, -1, -1, -1, 412, 412, -1, -1}));
+  const std::vector<int> both_faults = steps_within_one_window_flagged_at(true, true);
+  EXPECT_EQ(both_faults, (std::vector<int>{412, -1, -1, -1, 412, 412, -1, -1}));
+  // A pad of the first group that steps again (its load kept moving, then its sensor failed).
+  const std::vector<int> member_then_fault = steps_within_one_window_flagged_at(false, true, {0, 5});
+  EXPECT_EQ(member_then_fault, (std::vector<int>{412, -1, -1, -1, -1, -1, -1, -1}));
+}
+
 // The still-reading test: eight loaded pads at 1 kHz, each healthy load 200 + 10 j + 40 sin(2 pi t +
 // j) N (its 10 Hz low-pass spans more than a quarter of 80 N within the window), read with a +-1 N
 // alternation (a live sensor's noise, never a step). `still` pads carry a steady 150 N instead;

@@ -129,9 +129,17 @@
 //             (-b; a gain: -(1 - 1/k) x_before / k), within max(jump_confirm_N, 50 %), beyond
 //             the confirmation step: then the channel is re-admitted. The step itself is not the
 //             measure: at a landing the pad also hands load over (tens of N in a tick at 200 Hz).
-//             A group is confirmed one at a time, and steps while one is pending join none; but a
-//             flagged channel that steps back by its fault's size then (a landing foot's pads
-//             jumping as it rolls on, the fault ending in the same jump window) is judged on its
+//             A healthy channel's step while a group is pending (the other foot's pads unloading
+//             at its lift-off, and a fault starting within that jump window; a member of the
+//             pending group stepping again counts too) forms a late group (one at most); the two
+//             are decided together a jump window after the late jump (the first group's window
+//             holds the late jump, so it cannot be judged alone): the residual's step from its
+//             mean before the first group's jump must match the first group's sum, the late
+//             group's, or both (each alone at least the confirmation step), and the nearest
+//             match that passes is taken. A late group forms only while no fault's end is
+//             pending, and steps while it is pending join none. A flagged channel that steps
+//             back by its fault's size while a group is pending (a landing foot's pads jumping
+//             as it rolls on, the fault ending in the same jump window) is judged on its
 //             own: a jump window after its step, the residual must have stepped from its mean
 //             before the group's jump by its step, plus the group's if that was confirmed (a
 //             dropped group drops it). With more than one such end pending, none is re-admitted
@@ -393,6 +401,11 @@ class ContactForceFdi {
     double end_jump = 0.0, end_before = 0.0, end_since_s = 0.0;
     int end_clear_ticks = 0;  // ticks judged since the guard ended (or since the step)
     std::uint64_t end_group = 0;  // the pending group it was seen beside (not after a guard)
+    // A healthy channel's step while a group is pending: a member of the late group, decided with
+    // it (its jump, the reading before it).
+    bool late_candidate = false;  // a candidate this tick
+    bool late_member = false;
+    double late_jump = 0.0, late_load_before = 0.0;
     // state
     FaultType type = FaultType::none;
     double flagged_since = 0.0;
@@ -492,6 +505,14 @@ class ContactForceFdi {
   int group_age_ = 0;
   double group_sum_ = 0.0;
   int group_size_ = 0;
+  // The late group: healthy channels' steps on one tick while the group above was pending (at most
+  // one). Both are decided together, a jump window after the late group's jump, by which of the
+  // two sums the residual's step from before the first group's jump matches best.
+  bool late_pending_ = false;
+  bool group_deferred_ = false;  // the first group's window is over; decided with the late group
+  int late_age_ = 0;
+  double late_sum_ = 0.0;
+  int late_size_ = 0;
   // Per foot.
   std::vector<double> last_touchdown_s_;
   std::vector<char> foot_airborne_;
