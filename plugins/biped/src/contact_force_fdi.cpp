@@ -1477,6 +1477,7 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
   if (!c.following) {
     c.following = true;
     c.offset_power = c.gain_power = 0.0;
+    c.load_move_from_onset = 0.0;
     c.virtual_smoothed = virtual_force;
     c.reading_lo = c.reading_hi = smoothed;
     c.virtual_lo = c.virtual_hi = virtual_force;
@@ -1522,9 +1523,12 @@ void ContactForceFdi::offset_or_gain_test(Channel& c, double reading, bool airbo
   const double as_gain = airborne ? residual : residual - (reading - c.offset) + reading / *k;
   c.offset_power += residual * residual;
   c.gain_power += as_gain * as_gain;
-  // Judged once the load has moved beyond the total force's own error, as the follow test; the
-  // gain must leave under half the offset's residual power (a clear win, not a tie on noise).
-  if (c.virtual_hi - c.virtual_lo < 2.0 * params_.sum_threshold_N) return;
+  // Judged once the load has moved from L0, where both models meet, by twice the total force's
+  // own error bound (not the span since the smoother settled: the load may have moved most of
+  // the way within that settling); the gain must leave under half the offset's residual power (a
+  // clear win, not a tie on noise).
+  c.load_move_from_onset = std::max(c.load_move_from_onset, std::abs(c.virtual_smoothed - c.jump_load_before));
+  if (c.load_move_from_onset < 2.0 * params_.sum_threshold_N) return;
   if (c.gain_power < 0.5 * c.offset_power) take_gain(c, *k);
 }
 

@@ -657,6 +657,34 @@ TEST(ContactForceFdi, AJumpUnderLoadIsAGainWhenTheResidualGrowsWithTheLoadAsAnOf
   EXPECT_NEAR(recovered, load + 1.0, 1e-9) << "x - b, b = 199 N: the jump";
 }
 
+// As above, but the load rises by 4 N per tick from the onset (tick 50) to 700 N, so it has moved
+// 356 N from L0 = 200 N when the follow test's span starts (the flag raised on tick 59, its
+// smoother settled five time constants of 10 Hz later, 0.0796 s: tick 139). Returns the first
+// tick typed gain (-1: never).
+int gain_typed_after_a_jump_under_a_fast_rising_load() {
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 400; ++k) {
+    const double load = (k < 50 ? 200.0 : std::min(700.0, 200.0 + 4.0 * (k - 50))) + (k % 2 == 0 ? 0.0 : 1.0);
+    double fz = load;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j == 2) continue;
+      feet.measured[j] = moving(j, k, 0.0);
+      fz += feet.measured[j];
+    }
+    feet.measured[2] = k < 50 ? load : 2.0 * load;
+    feet.step(fz);
+    if (feet.type(2) == FaultType::gain) return k;
+  }
+  return -1;
+}
+
+TEST(ContactForceFdi, AGainIsTypedOnceTheLoadHasMovedFromWhereBothModelsMeetNotSinceTheSpanStarted) {
+  // Judged on the tick the span starts (139; the type shows from the next): the load is 356 N from
+  // L0 there. Judged on the span since the smoother settled, it waited until the smoothed force
+  // had risen a further 160 N.
+  EXPECT_EQ(gain_typed_after_a_jump_under_a_fast_rising_load(), 140);
+}
+
 TEST(ContactForceFdi, AnOffsetWhoseReadingDoesNotFollowTheLoadIsAFrozenOutputThatKeepsItsNoise) {
   double recovered = 0.0;
   EXPECT_EQ(after_landing(true, recovered), FaultType::frozen);

@@ -215,8 +215,10 @@
 //             r - (x - b) + x / k (taken as x / k) accumulate their power (not within
 //             touchdown_guard_s of a touchdown: the impact moves r as the load shifts between the
 //             feet, which a gain of the unloading pad mimics); once the leave-one-out
-//             force has moved by 2 sum_threshold_N, the gain is taken when it leaves under half
-//             the offset's power (a gain x2 raised on its jump no longer waits for the swing).
+//             force (smoothed) has moved by 2 sum_threshold_N from L0, where both models meet
+//             (they part by (k - 1)(L - L0): twice the force's error bound for k = 2), the gain
+//             is taken when it leaves under half the offset's power (a gain x2 raised on its jump
+//             no longer waits for the swing).
 //   negative  a pad only pushes: a loaded pad (leave-one-out force above gain_min_load_N)
 //             reading below -airborne_threshold_N for as many ticks as the airborne mean takes
 //             is a gain fault with k < 0 (a sign flip) when the least-squares line of the reading
@@ -431,6 +433,7 @@ class ContactForceFdi {
     // Offset or gain? Over the same span, the corrected sum residual's power with the offset's
     // correction and with the gain k = 1 + jump / load that the same onset jump implies.
     double offset_power = 0.0, gain_power = 0.0;
+    double load_move_from_onset = 0.0;  // largest |smoothed leave-one-out force - L0| over it
     // A pad that reads below zero under load (sign flip): the run, its regression on the load.
     double last_virtual = 0.0;  // the leave-one-out force of the previous tick
     int negative_ticks = 0, positive_ticks = 0;
