@@ -632,9 +632,9 @@ TEST(ContactForceFdi, AnOffsetEndsWithItsJumpBackWhileANeighbourSpikes) {
 // residual that grows with the load; taken as x / k, k = 1 + jump / load before = 1 + 199 / 201,
 // it leaves none: re-typed gain once the load has moved by 2 sum_threshold_N. An offset's residual
 // stays at zero taken as x - b: it stays an offset.
-FaultType after_a_jump_under_a_rising_load(bool gain, double& recovered, double& load) {
+FaultType after_a_jump_under_a_rising_load(bool gain, double& recovered, double& load, int ticks = 600) {
   Feet feet(suralp(), 1e-3);
-  for (int k = 0; k < 600; ++k) {
+  for (int k = 0; k < ticks; ++k) {
     load = (k < 100 ? 200.0 : std::min(500.0, 200.0 + (k - 100))) + (k % 2 == 0 ? 0.0 : 1.0);
     double fz = load;
     for (std::size_t j = 0; j < kChannels; ++j) {
@@ -655,6 +655,18 @@ TEST(ContactForceFdi, AJumpUnderLoadIsAGainWhenTheResidualGrowsWithTheLoadAsAnOf
   EXPECT_NEAR(recovered, 2.0 * load / (1.0 + 199.0 / 201.0), 1e-9) << "x / k, k from the onset jump";
   EXPECT_EQ(after_a_jump_under_a_rising_load(false, recovered, load), FaultType::offset);
   EXPECT_NEAR(recovered, load + 1.0, 1e-9) << "x - b, b = 199 N: the jump";
+}
+
+TEST(ContactForceFdi, AnUndecidedOffsetOrGainIsRecoveredByTheModelNearerItsLeaveOneOutForce) {
+  // Tick 180: the load has moved 80 N from L0, under the 2 sum_threshold_N the test waits for, so
+  // the type is still offset. The gain's x / k (k = 1 + 199 / 201 from the onset jump) lies
+  // 1.4 N from the (exact) leave-one-out force, x - b 81 N off it (more than jump_confirm_N, 25 N,
+  // further): recovered as x / k. A true offset's x - b lies on it: kept.
+  double recovered = 0.0, load = 0.0;
+  EXPECT_EQ(after_a_jump_under_a_rising_load(true, recovered, load, 181), FaultType::offset);
+  EXPECT_NEAR(recovered, 2.0 * load / (1.0 + 199.0 / 201.0), 1e-9);
+  EXPECT_EQ(after_a_jump_under_a_rising_load(false, recovered, load, 181), FaultType::offset);
+  EXPECT_NEAR(recovered, load + 1.0, 1e-9);
 }
 
 // As above, but the load rises by 4 N per tick from the onset (tick 50) to 700 N, so it has moved
