@@ -1245,6 +1245,21 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   still_reading_test(measured, height, residual, fz_ok && all_finite_readings, any_step, t);
   gain_regression(measured, recovered, height, residual,
                   fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
+  // A pad only pushes: an unflagged reading on the ground below -airborne_threshold_N (4 sigma of
+  // the sensor: a healthy reading goes there once in about 30,000 ticks) is no force. Until the
+  // negative-reading test has the ticks it needs to type it (a sign flip, a negative offset),
+  // that tick's value is its leave-one-out force (unflagged: one such tick is no fault).
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const double x = measured[j];
+    if (c.type != FaultType::none || height[j] > params_.airborne_height_m || !std::isfinite(x) ||
+        !(x < -params_.airborne_threshold_N) || !std::isfinite(virtual_force[j])) {
+      continue;
+    }
+    recovered[j] = virtual_force[j];
+    fault_estimate[j] = x - virtual_force[j];
+    c.recovered = virtual_force[j];
+  }
   // An offset raised by a jump under load that may yet be a gain (the offset-or-gain test has not
   // decided): recovered by whichever model, x - b or x / k, lies nearer its leave-one-out force.
   // The wrong one is taken only where the two lie within twice that force's error e of each

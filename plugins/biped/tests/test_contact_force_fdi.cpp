@@ -669,6 +669,27 @@ TEST(ContactForceFdi, AnUndecidedOffsetOrGainIsRecoveredByTheModelNearerItsLeave
   EXPECT_NEAR(recovered, load + 1.0, 1e-9);
 }
 
+TEST(ContactForceFdi, ANegativeReadingOfALoadedPadIsNoForceAndItsLeaveOneOutForceStandsIn) {
+  // Pad 2 (load about 220 N) reads its load negated for three ticks, fewer than the
+  // negative-reading test needs to type it: unflagged, recovered as its (exact) leave-one-out force
+  // on each; its reading itself on the ticks around them.
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 320; ++k) {
+    double truth = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = moving(j, k, 0.0);
+      truth += feet.measured[j];
+    }
+    const double load = feet.measured[2];
+    const bool negated = k >= 300 && k < 303;
+    if (negated) feet.measured[2] = -load;
+    feet.step(truth);
+    ASSERT_EQ(feet.type(2), FaultType::none) << "tick " << k;
+    EXPECT_NEAR(feet.outs[ContactForceFdi::kRecovered][2], load, 1e-9) << "tick " << k;
+    EXPECT_NEAR(feet.outs[ContactForceFdi::kFaultEstimate][2], negated ? -2.0 * load : 0.0, 1e-9) << "tick " << k;
+  }
+}
+
 // As above, but the load rises by 4 N per tick from the onset (tick 50) to 700 N, so it has moved
 // 356 N from L0 = 200 N when the follow test's span starts (the flag raised on tick 59, its
 // smoother settled five time constants of 10 Hz later, 0.0796 s: tick 139). Returns the first

@@ -243,7 +243,8 @@
 // the offset-or-gain test has not decided yet: N / k, k = 1 + b / L0, where that lies nearer v,
 // the leave-one-out force, by more than jump_confirm_N (the wrong model is taken only where the
 // two lie within about twice v's error of each other; the tests keep judging it as N - b);
-// gain: N / k; noise: v + a 10 Hz low-pass of
+// gain: N / k; an unflagged reading on the ground below -airborne_threshold_N, which no pad that
+// only pushes reads, v on that tick; noise: v + a 10 Hz low-pass of
 // N - v, v the leave-one-out force, loaded and while no loaded channel is substituted (v carries
 // the load's fast moves, which a low-pass of N lags by tens of newtons; the low-pass keeps the
 // slow part v misses), else a 10 Hz low-pass of N; spikes: median of the last three readings;
