@@ -663,7 +663,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       if (c.late_member && late_pending_ && late_age_ == 1 && back(c.late_jump)) {
         c.late_member = false;
-        late_sum_ -= c.late_jump;
+        late_sum_ -= c.type == FaultType::gain ? c.late_jump / c.gain : c.late_jump;
         --late_size_;
       }
       // Likewise a member of its foot's plane group (inside a touchdown guard).
@@ -695,17 +695,21 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         ++jump_candidates;
         // In the terms of the sum residual, which takes a gain fault's reading corrected.
         jump_sum += c.type == FaultType::gain ? change / c.gain : change;
-      } else if (steps && may_jump && !late_pending_ && c.type == FaultType::none && fz_ok &&
-                 residual_count_ == residual_ring_.size()) {
+      } else if (steps && may_jump && !late_pending_ && fz_ok && residual_count_ == residual_ring_.size() &&
+                 (c.type == FaultType::none ||
+                  (c.jump_member && !c.end_pending && corrects(c.type) &&
+                   steps_back(change, fault_size(c, t, c.previous))))) {
         // A healthy channel's step while a group awaits its confirmation (the other foot's pads
         // unloading at its lift-off, a fault starting within the jump window; a member of that
-        // group too, as the load it moved keeps moving): a late group, decided with the pending
-        // one (below), not lost.
+        // group too, as the load it moved keeps moving), or a member's step back by its fault's
+        // size (the fault's end, which the end test below leaves to the group it is in): a late
+        // group, decided with the pending one (below), not lost.
         c.late_candidate = true;
         c.late_jump = change;
         c.late_load_before = c.previous;
+        c.late_from_flagged = c.type != FaultType::none;
         ++late_candidates;
-        late_jump_sum += change;
+        late_jump_sum += c.type == FaultType::gain ? change / c.gain : change;  // as the sum residual takes it
       } else if (steps && may_jump && !late_pending_ && !c.jump_member && !c.end_pending && corrects(c.type) &&
                  fz_ok && residual_count_ == residual_ring_.size()) {
         // A step while another group awaits its confirmation (a landing foot's pads jumping as
@@ -989,7 +993,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     } else if (first_member && group_confirmed) {
       decide(c.jump_size, c.jump_load_before, c.jump_from_flagged);
     } else if (late_member && late_confirmed) {
-      decide(c.late_jump, c.late_load_before, false);
+      decide(c.late_jump, c.late_load_before, c.late_from_flagged);
     }
     const std::size_t foot = j / feet_points_;
     if (c.relation_member && relation_group_[foot] == 2) {

@@ -413,6 +413,7 @@ class ContactForceFdi {
     bool late_candidate = false;  // a candidate this tick
     bool late_member = false;
     double late_jump = 0.0, late_load_before = 0.0;
+    bool late_from_flagged = false;  // a flagged member's step back (its end, not an onset)
     // state
     FaultType type = FaultType::none;
     double flagged_since = 0.0;
