@@ -1251,6 +1251,31 @@ TEST(ContactForceFdi, AFaultStartingWhileAnotherGroupIsPendingIsFoundWhenBothAre
   EXPECT_EQ(member_then_fault, (std::vector<int>{412, -1, -1, -1, -1, -1, -1, -1}));
 }
 
+TEST(ContactForceFdi, AFlaggedMemberOfAPendingGroupThatStepsBackIsReadmittedWithTheLateGroup) {
+  // Pad 0 reads +60 N from tick 100 (flagged an offset on tick 109). At tick 400 its load and pad
+  // 4's rise by 30 N each (a pending group, healthy: the total force carries them); at tick 403 its
+  // offset ends. The step back joins the late group, decided on tick 403 + 9 by the residual's
+  // -60 N step: re-admitted. Before, a member's own step joined neither the end test nor a group,
+  // and the offset was held.
+  Feet feet(suralp(), 1e-3);
+  int readmitted = -1;
+  for (int k = 0; k < 600; ++k) {
+    double truth = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = moving(j, k, 0.0) + (k >= 400 && (j == 0 || j == 4) ? 30.0 : 0.0);
+      truth += feet.measured[j];
+    }
+    if (k >= 100 && k < 403) feet.measured[0] += 60.0;
+    feet.step(truth);
+    if (k == 399) {
+      EXPECT_EQ(feet.type(0), FaultType::offset);
+    }
+    for (std::size_t j = 1; j < kChannels; ++j) EXPECT_EQ(feet.type(j), FaultType::none) << "pad " << j << ", tick " << k;
+    if (k >= 400 && readmitted < 0 && feet.type(0) == FaultType::none) readmitted = k;
+  }
+  EXPECT_EQ(readmitted, 403 + 9);
+}
+
 // The still-reading test: eight loaded pads at 1 kHz, each healthy load 200 + 10 j + 40 sin(2 pi t +
 // j) N (its 10 Hz low-pass spans more than a quarter of 80 N within the window), read with a +-1 N
 // alternation (a live sensor's noise, never a step). `still` pads carry a steady 150 N instead;

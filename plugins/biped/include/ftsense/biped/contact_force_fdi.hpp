@@ -131,7 +131,8 @@
 //             measure: at a landing the pad also hands load over (tens of N in a tick at 200 Hz).
 //             A healthy channel's step while a group is pending (the other foot's pads unloading
 //             at its lift-off, and a fault starting within that jump window; a member of the
-//             pending group stepping again counts too) forms a late group (one at most); the two
+//             pending group stepping again counts too, and a flagged member's step back by its
+//             fault's size, its end) forms a late group (one at most); the two
 //             are decided together a jump window after the late jump (the first group's window
 //             holds the late jump, so it cannot be judged alone): the residual's step from its
 //             mean before the first group's jump must match the first group's sum, the late
