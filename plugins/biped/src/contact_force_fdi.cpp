@@ -253,7 +253,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * kSmoothingHz * period_s_);
   // Five time constants of that low-pass: a step has settled to within e^-5 (under 1 %).
   smoother_settle_s_ = 5.0 / (2.0 * 3.141592653589793 * kSmoothingHz);
-  spike_gap_log_ = std::log(1.0 / params_.spike_gap_probability);
+  spike_rule_ = {params_.spike_hold_s, std::min(params_.clear_s, params_.spike_hold_s),
+                 std::log(1.0 / params_.spike_gap_probability)};
   min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
   // Thresholds left at 0 follow from the readings' error and the robot's weight W (header). The
   // error is the noise and the quantisation, sigma^2 + q^2 / 12: where the noise cannot dither a
@@ -608,10 +609,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const bool neighbour_unread = foot_unread_[j / feet_points_] > (unread(j, height) ? 1 : 0);
       const double spike = c.previous - 0.5 * (x + c.previous2);
       const bool spikes_seen = !touching_down && !pad_landing;
-      if (spikes_seen) {
-        c.spike_seen_s += period_s_;
-        c.spike_quiet_s += period_s_;
-      }
+      if (spikes_seen) c.spikes.see(period_s_);
       // A sensor's spike is in its foot's summed reading too (the sum's own spike, -d2 / 2, at
       // least half the pad's, same sign); load that rocks between the pads of a foot for a tick
       // (a pad chattering on and off the ground) is not. Unknown (a pad without a value): counted.
@@ -620,19 +618,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
           std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum &&
           (!neighbour_unread || c.type == FaultType::spikes)) {
-        if (c.spike_count == 0 || c.spike_quiet_s >= c.spike_hold) {  // the previous episode had ended
-          c.spike_count = 1;
-          c.spike_seen_s = 0.0;
-        } else {
-          c.spike_count = std::min(c.spike_count + 1, kCountCap);
-        }
-        c.spike_quiet_s = 0.0;
-        c.spike_hold = params_.spike_hold_s;
-        if (c.spike_count >= 2 && c.spike_seen_s > 0.0) {
-          const double rate_hz = (c.spike_count - 1) / c.spike_seen_s;
-          c.spike_hold = std::clamp(spike_gap_log_ / rate_hz,
-                                    std::min(params_.clear_s, params_.spike_hold_s), params_.spike_hold_s);
-        }
+        c.spikes.spike(spike_rule_);
       }
       const double innovation = x - 2.0 * c.previous + c.previous2;
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
@@ -903,16 +889,18 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const double step = recent_residual_mean() - group_before_;
       const double first = first_open ? group_sum_ : 0.0;
       double best = std::numeric_limits<double>::infinity();
-      const auto consider = [&](double expected, bool alone, bool with_first, bool with_late) {
-        if (alone && std::abs(expected) < confirm_N) return;
+      // Each group's own sum must reach the confirmation step, as it must alone (two moves under it
+      // are no step of a sensor, even where the residual drifts by their sum).
+      const auto consider = [&](double expected, bool with_first, bool with_late) {
+        if ((with_first && std::abs(first) < confirm_N) || (with_late && std::abs(late_sum_) < confirm_N)) return;
         if (!residual_steps_by(step, expected, confirm_N) || std::abs(step - expected) >= best) return;
         best = std::abs(step - expected);
         group_confirmed = with_first;
         late_confirmed = with_late;
       };
-      if (late_size_ > 0) consider(late_sum_, true, false, true);
-      if (first_open) consider(first, true, true, false);
-      if (first_open && late_size_ > 0) consider(first + late_sum_, false, true, true);
+      if (late_size_ > 0) consider(late_sum_, false, true);
+      if (first_open) consider(first, true, false);
+      if (first_open && late_size_ > 0) consider(first + late_sum_, true, true);
     } else if (first_open) {
       group_dropped = true;
     }
@@ -1025,7 +1013,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
     // Spikes. While the channel is flagged as a noise burst, the spikes seen are that noise's own
     // tails: the noise test alone judges when it ends, and the spike episode ends with it.
-    if (c.spike_count > 0 && c.spike_quiet_s < c.spike_hold) {
+    if (c.spikes.running()) {
       if (c.type != FaultType::noise) raise(c, FaultType::spikes, t);
     } else if (c.type == FaultType::spikes) {
       clear(c);
@@ -1050,7 +1038,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (c.clear_since < 0) c.clear_since = t;
       if (t - c.clear_since >= params_.clear_s && t - c.flagged_since >= params_.hold_s) {
         clear(c);
-        c.spike_count = 0;
+        c.spikes.end();
       }
     }
     // Negative reading under load (see the evidence loop).

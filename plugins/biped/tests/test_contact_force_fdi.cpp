@@ -1251,6 +1251,28 @@ TEST(ContactForceFdi, AFaultStartingWhileAnotherGroupIsPendingIsFoundWhenBothAre
   EXPECT_EQ(member_then_fault, (std::vector<int>{412, -1, -1, -1, -1, -1, -1, -1}));
 }
 
+TEST(ContactForceFdi, TwoGroupsEachUnderTheConfirmationStepAreNotConfirmedTogether) {
+  // Pad 4 steps +23 N at tick 400 and pad 0 +23 N at tick 403, neither in the total force: each
+  // jumps beyond jump_threshold_N (20 N; with the 1 N alternation, by 22 and 24 N) but under
+  // jump_confirm_N (25 N), so neither is confirmed, even though the residual steps by their sum. (A heel chattering beside a
+  // clipped pad moved a pad by 38 N, its neighbour by 29 N, and the residual drifted with the
+  // clipped load: the two were confirmed together as an offset of the chattering heel.)
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 600; ++k) {
+    double truth = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = moving(j, k, 0.0);
+      truth += feet.measured[j];
+    }
+    if (k >= 400) feet.measured[4] += 23.0;
+    if (k >= 403) feet.measured[0] += 23.0;
+    feet.step(truth);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      ASSERT_EQ(feet.type(j), FaultType::none) << "pad " << j << ", tick " << k;
+    }
+  }
+}
+
 TEST(ContactForceFdi, AFlaggedMemberOfAPendingGroupThatStepsBackIsReadmittedWithTheLateGroup) {
   // Pad 0 reads +60 N from tick 100 (flagged an offset on tick 109). At tick 400 its load and pad
   // 4's rise by 30 N each (a pending group, healthy: the total force carries them); at tick 403 its

@@ -106,7 +106,6 @@ void SignalValidator::Params::validate(Diagnostics& diag, std::string_view path)
 SignalValidator::SignalValidator(const Params& params, const StageContext& context)
     : sample_period_s_(context.sample_period_s()),
       window_s_(params.window_s),
-      spike_gap_log_(-std::log(params.spike_gap_probability)),
       follow_ratio_(params.follow_ratio),
       reference_(params.reference),
       guard_(params.guard) {
@@ -133,6 +132,7 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
   }
   window_ = static_cast<std::size_t>(ticks);
   spike_hold_max_ticks_ = std::max(std::round(params.spike_hold_s / sample_period_s_), ticks);
+  spike_rule_ = {spike_hold_max_ticks_, ticks, -std::log(params.spike_gap_probability)};
   if (!(params.noise_margin >= 1.0 && std::isfinite(params.noise_margin))) {
     throw ConfigError("/params/noise_margin",
                       " = " + format_number(params.noise_margin) + " is not a factor of at least 1");
@@ -257,23 +257,6 @@ void SignalValidator::reset() noexcept {
   std::fill(lp_storage_.begin(), lp_storage_.end(), 0.0);
 }
 
-void SignalValidator::start_or_extend_spike_episode(State& s) const noexcept {
-  s.spike_quiet_ticks = 0;
-  s.spike_idle_ticks = 0;
-  if (s.spike_count == 0) {
-    s.spike_count = 1;
-    s.spike_seen_ticks = 0;
-    s.spike_hold_ticks = spike_hold_max_ticks_;
-    return;
-  }
-  s.spike_count = std::min(s.spike_count + 1, kTickCap);
-  // h / T = ln(1 / p_gap) / (lambda^ T), lambda^ T = (n - 1) / seen ticks; seen >= 1: it grew on
-  // this tick before the spike was seen.
-  const double gap_ticks = spike_gap_log_ * static_cast<double>(s.spike_seen_ticks) /
-                           static_cast<double>(s.spike_count - 1);
-  s.spike_hold_ticks = std::clamp(gap_ticks, static_cast<double>(window_), spike_hold_max_ticks_);
-}
-
 void SignalValidator::step(const StepIO& io) noexcept {
   const auto x = io.in(kSignal);
   const auto fault = io.out(kFault);
@@ -293,7 +276,7 @@ void SignalValidator::step(const StepIO& io) noexcept {
       s.lp_started = false;
       clear(s.lp_signal);
       clear(s.lp_reference);
-      if (s.spike_count > 0) s.spike_idle_ticks = std::min(s.spike_idle_ticks + 1, kTickCap);
+      if (s.spikes.count > 0.0) s.spike_idle_ticks = std::min(s.spike_idle_ticks + 1, kTickCap);
       fault[j] = 1.0;
       type[j] = fault_code(FaultType::invalid);
       continue;
@@ -356,12 +339,10 @@ void SignalValidator::step(const StepIO& io) noexcept {
         push(s.tested_d2, sums_storage_, n, !guarded && std::abs(d2) > l.noise_level ? 1.0 : 0.0);
         const double off_neighbours = s.y1 - 0.5 * (s.y2 + y);
         if (!guarded) {
-          if (s.spike_count > 0) {
-            s.spike_seen_ticks = std::min(s.spike_seen_ticks + 1, kTickCap);
-            s.spike_quiet_ticks = std::min(s.spike_quiet_ticks + 1, kTickCap);
-          }
+          s.spikes.see(1.0);
           if (std::abs(off_neighbours) > l.spike_above && std::abs(y - s.y2) < std::abs(off_neighbours)) {
-            start_or_extend_spike_episode(s);
+            s.spikes.spike(spike_rule_);
+            s.spike_idle_ticks = 0;
           }
         }
       }
@@ -378,12 +359,12 @@ void SignalValidator::step(const StepIO& io) noexcept {
     }
     // The hold counts seen ticks; a channel blind for twice the longest hold (a guard or a
     // reference that stays on, NaN readings) ends the episode all the same.
-    if (found == FaultType::noise || static_cast<double>(s.spike_quiet_ticks) >= s.spike_hold_ticks ||
+    if (found == FaultType::noise || !s.spikes.running() ||
         static_cast<double>(s.spike_idle_ticks) >= 2.0 * spike_hold_max_ticks_) {
-      s.spike_count = 0;
+      s.spikes.end();
     }
-    if (found == FaultType::none && spike_test_ && s.spike_count > 0) found = FaultType::spikes;
-    if (s.spike_count > 0) s.spike_idle_ticks = std::min(s.spike_idle_ticks + 1, kTickCap);
+    if (found == FaultType::none && spike_test_ && s.spikes.count > 0.0) found = FaultType::spikes;
+    if (s.spikes.count > 0.0) s.spike_idle_ticks = std::min(s.spike_idle_ticks + 1, kTickCap);
 
     fault[j] = found == FaultType::none ? 0.0 : 1.0;
     type[j] = fault_code(found);

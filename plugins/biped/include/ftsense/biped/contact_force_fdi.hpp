@@ -65,7 +65,8 @@
 //             says the process has stopped: a running one leaves so long a gap with probability
 //             p_gap (spike_gap_probability). h stays within [clear_s, spike_hold_s]; the first
 //             spike of an episode (rate unknown) holds spike_hold_s. D and the gap count only the
-//             time the test could see (outside the guards), so blind stretches bias neither.
+//             time the test could see (outside the guards), so blind stretches bias neither
+//             (the rule is generic/spike_episode.hpp's, shared with signal_validator).
 //             While the channel is flagged as a noise burst, its spikes are that noise's tails:
 //             the noise test alone clears it, and the spike episode ends with it.
 //   noise     over noise_window_s, more than half of the second differences d2 exceed
@@ -280,6 +281,7 @@
 
 #include "ftsense/biped/unmeasured_contact_loads.hpp"
 #include "ftsense/fault_type.hpp"
+#include "ftsense/generic/spike_episode.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::biped {
@@ -373,10 +375,7 @@ class ContactForceFdi {
     double max_seen = 0.0;
     // The current spike episode, timed in seconds the spike test could see (not within a
     // touchdown's or the pad's landing guard, where spikes are not looked for).
-    int spike_count = 0;            // spikes in it
-    double spike_seen_s = 0.0;      // seen time since its first spike
-    double spike_quiet_s = 0.0;     // seen time since its last spike
-    double spike_hold = 0.0;        // h: the flag stays until spike_quiet_s reaches it
+    generic::SpikeEpisode spikes;
     double last_pad_landing_s = -1e9;  // the pad last took load back from its zero level
     double last_landing_ring_s = -1e9;  // its last change above jump_threshold_N since
     std::vector<double> second_diff;  // ring of |d2|, noise test
@@ -541,7 +540,7 @@ class ContactForceFdi {
   static constexpr double kSmoothingHz = 10.0;  // cutoff of `smoothed` and `virtual_smoothed`
   double smoothing_ = 1.0;  // gain of that low-pass per tick
   double smoother_settle_s_ = 0.0;  // its settling time (five time constants)
-  double spike_gap_log_ = 0.0;      // ln(1 / spike_gap_probability): the spike hold times the rate
+  generic::SpikeHoldRule spike_rule_;  // spike_hold_s, min(clear_s, spike_hold_s), ln(1 / spike_gap_probability)
   // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.
   std::vector<double> gain_xx_;
   std::vector<double> gain_xr_;

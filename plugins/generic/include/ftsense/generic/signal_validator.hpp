@@ -62,7 +62,8 @@
 //               (`spike_gap_probability`). D and the gap count only the ticks the test could see
 //               (not guarded, finite), so blind stretches bias neither; a channel blind for
 //               2 spike_hold_s after its last spike ends the episode all the same. spike_hold_s
-//               under window_s is taken as window_s. A noise burst ends the
+//               under window_s is taken as window_s (the rule: spike_episode.hpp, shared with
+//               contact_force_fdi). A noise burst ends the
 //               episode (its spikes are the noise's tails; the noise test alone clears it).
 // Invalid and saturation always run; `tests` chooses among frozen, spikes and noise. Without a
 // reference, spikes and noise judge the reading's own second differences, so they hold only for a
@@ -82,6 +83,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ftsense/generic/spike_episode.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::generic {
@@ -166,17 +168,13 @@ class SignalValidator {
     Window lp_reference;
     double lp_x = 0.0, lp_r = 0.0;
     bool lp_started = false;
-    // The present spike episode, timed in the ticks the spike test could see.
-    std::int64_t spike_count = 0;        // spikes in it (0: none running)
-    std::int64_t spike_seen_ticks = 0;   // seen ticks since its first spike
-    std::int64_t spike_quiet_ticks = 0;  // seen ticks since its last spike
-    std::int64_t spike_idle_ticks = 0;   // all ticks since its last spike
-    double spike_hold_ticks = 0.0; // h / T: the flag holds until spike_quiet_ticks reaches it
+    // The present spike episode, timed in the ticks the spike test could see (spike_episode.hpp),
+    // and all ticks since its last spike.
+    SpikeEpisode spikes;
+    std::int64_t spike_idle_ticks = 0;
   };
 
   static constexpr std::int64_t kTickCap = 1'000'000'000'000;  // tick counters saturate here
-  // A spike seen on this tick: starts an episode, or counts in the running one and sets its hold.
-  void start_or_extend_spike_episode(State& s) const noexcept;
   static void push(Window& w, std::vector<double>& storage, std::size_t size, double value) noexcept;
   static double oldest(const Window& w, const std::vector<double>& storage, std::size_t size) noexcept;
   static void clear(Window& w) noexcept;
@@ -190,7 +188,7 @@ class SignalValidator {
   double sample_period_s_;
   double window_s_;
   double spike_hold_max_ticks_ = 800.0;  // round(spike_hold_s / T): the first spike's hold, the longest h
-  double spike_gap_log_ = 0.0;     // ln(1 / spike_gap_probability)
+  SpikeHoldRule spike_rule_;             // in ticks: that, window_s, ln(1 / spike_gap_probability)
   double lp_gain_ = 0.0;
   double noise_count_above_ = 0.0;  // more such |d2| in a window: noise
   double follow_ratio_ = 0.25;
