@@ -137,7 +137,7 @@
 //             are decided together a jump window after the late jump (the first group's window
 //             holds the late jump, so it cannot be judged alone): the residual's step from its
 //             mean before the first group's jump must match the first group's sum, the late
-//             group's, or both (each alone at least the confirmation step), and the nearest
+//             group's, or both (each group's own sum at least the confirmation step), and the nearest
 //             match that passes is taken. A late group forms only while no fault's end is
 //             pending, and steps while it is pending join none. A flagged channel that steps
 //             back by its fault's size while a group is pending (a landing foot's pads jumping
