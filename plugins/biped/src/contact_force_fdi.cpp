@@ -1237,6 +1237,20 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   still_reading_test(measured, height, residual, fz_ok && all_finite_readings, any_step, t);
   gain_regression(measured, recovered, height, residual,
                   fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
+  // A pad in the air carries nothing: an unflagged airborne reading beyond airborne_threshold_N
+  // (4 sigma) is no force. Until the air test has the samples it needs to raise it, its value is
+  // 0, its leave-one-out force in the air.
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const double x = measured[j];
+    if (c.type != FaultType::none || !(height[j] > params_.airborne_height_m) || !std::isfinite(x) ||
+        !(std::abs(x) > params_.airborne_threshold_N)) {
+      continue;
+    }
+    recovered[j] = 0.0;
+    fault_estimate[j] = x;
+    c.recovered = 0.0;
+  }
   // A pad only pushes: an unflagged reading on the ground below -airborne_threshold_N (4 sigma of
   // the sensor: a healthy reading goes there once in about 30,000 ticks) is no force. Until the
   // negative-reading test has the ticks it needs to type it (a sign flip, a negative offset),

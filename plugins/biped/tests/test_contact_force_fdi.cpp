@@ -690,6 +690,35 @@ TEST(ContactForceFdi, ANegativeReadingOfALoadedPadIsNoForceAndItsLeaveOneOutForc
   }
 }
 
+TEST(ContactForceFdi, AnAirborneReadingBeyondItsNoiseIsNoForceBeforeTheAirTestRaisesIt) {
+  // The left foot in the air (pads at 5 cm), the right one carrying the robot. From tick 100 pad 0
+  // reads 50 N (beyond airborne_threshold_N, 4 sigma = 8 N), pad 1 about 3 N (within it). Before
+  // the air test raises pad 0, its value is 0, what a pad in the air carries; pad 1 keeps its
+  // reading.
+  Feet feet(suralp(), 1e-3);
+  feet.left_foot_at(0.05);
+  int raised = -1;
+  for (int k = 0; k < 400; ++k) {
+    double truth = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = j < 4 ? 0.0 : moving(j, k, 0.0);
+      truth += feet.measured[j];
+    }
+    if (k >= 100) {
+      feet.measured[0] = 50.0 + (k % 2 == 0 ? 0.0 : 1.0);
+      feet.measured[1] = 3.0 + (k % 2 == 0 ? 0.5 : -0.5);  // a live sensor: never repeats itself
+    }
+    feet.step(truth);
+    if (raised < 0 && feet.type(0) != FaultType::none) raised = k;
+    if (k >= 100 && raised < 0) {
+      ASSERT_EQ(feet.outs[ContactForceFdi::kRecovered][0], 0.0) << "tick " << k;
+    }
+    EXPECT_EQ(feet.type(1), FaultType::none) << "tick " << k;
+    EXPECT_EQ(feet.outs[ContactForceFdi::kRecovered][1], feet.measured[1]) << "tick " << k;
+  }
+  EXPECT_GT(raised, 100) << "the air test needs its samples first";
+}
+
 // As above, but the load rises by 4 N per tick from the onset (tick 50) to 700 N, so it has moved
 // 356 N from L0 = 200 N when the follow test's span starts (the flag raised on tick 59, its
 // smoother settled five time constants of 10 Hz later, 0.0796 s: tick 139). Returns the first

@@ -246,7 +246,9 @@
 // the leave-one-out force, by more than jump_confirm_N (the wrong model is taken only where the
 // two lie within about twice v's error of each other; the tests keep judging it as N - b);
 // gain: N / k; an unflagged reading on the ground below -airborne_threshold_N, which no pad that
-// only pushes reads, v on that tick; noise: v + a 10 Hz low-pass of
+// only pushes reads, v on that tick, and an unflagged airborne one beyond +-airborne_threshold_N,
+// 0 (what a pad in the air carries) until the air test has its samples; noise: v + a 10 Hz
+// low-pass of
 // N - v, v the leave-one-out force, loaded and while no loaded channel is substituted (v carries
 // the load's fast moves, which a low-pass of N lags by tens of newtons; the low-pass keeps the
 // slow part v misses), else a 10 Hz low-pass of N; spikes: median of the last three readings;
