@@ -24,6 +24,9 @@ TEST(SpikeEpisode, TheFirstSpikeHoldsFirstHold) {
   EXPECT_TRUE(e.running());
   e.see(1.0);
   EXPECT_FALSE(e.running()) << "quiet 800 = hold";
+  e.spike(kRule);  // on the tick the hold is reached: a new episode, not a second spike of the old
+  EXPECT_EQ(e.count, 1.0);
+  EXPECT_EQ(e.hold, 800.0);
 }
 
 TEST(SpikeEpisode, LaterSpikesHoldTheGapTheirRateLeavesWithProbabilityPGap) {

@@ -556,6 +556,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.stale_count = 0;
       c.airborne_ticks = c.airborne_count = 0;
       c.airborne_sum = 0.0;
+      c.jump_pending = c.late_candidate = c.relation_pending = false;  // no candidate without a value
       raw_sum += c.recovered;
       continue;
     }
@@ -641,7 +642,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // it took a burst's swings for steps. So a step against a pad unloading as fast as half
       // the step per tick, at a slow log rate, leaves the group too: found by the other tests.)
       const auto back = [&](double jump) { return std::abs(x - c.previous2) < 0.5 * std::abs(jump); };
+      bool spiked_back = false;  // its return is no step of its own (no late candidate)
       if (c.jump_member && group_pending_ && group_age_ == 1 && back(c.jump_size)) {
+        spiked_back = true;
         c.jump_member = false;
         group_sum_ -= c.type == FaultType::gain ? c.jump_size / c.gain : c.jump_size;
         --group_size_;
@@ -681,7 +684,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         ++jump_candidates;
         // In the terms of the sum residual, which takes a gain fault's reading corrected.
         jump_sum += c.type == FaultType::gain ? change / c.gain : change;
-      } else if (steps && may_jump && !late_pending_ && fz_ok && residual_count_ == residual_ring_.size() &&
+      } else if (steps && may_jump && !late_pending_ && !spiked_back && fz_ok &&
+                 residual_count_ == residual_ring_.size() &&
                  (c.type == FaultType::none ||
                   (c.jump_member && !c.end_pending && corrects(c.type) &&
                    steps_back(change, fault_size(c, t, c.previous))))) {
@@ -964,7 +968,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (corrects(c.type) && steps_back(jump, fault_size(c, t, load_before))) {
         clear(c);  // the fault ended with a jump back
       } else if (c.type == FaultType::none && !from_flagged) {
-        c.jump_load_before = load_before;  // the load the onset jump left (onset_gain)
+        c.onset_load = load_before;  // the load the onset jump left (onset_gain)
         raise(c, FaultType::offset, t);
         c.fit.clear(t);
         c.fit.add(t, jump, 1.0);
@@ -976,8 +980,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const bool late_member = late_decided && c.late_member;
     if (first_member) c.jump_member = false;
     if (late_member) c.late_member = false;
-    if (first_member && group_confirmed && late_member && late_confirmed) {
-      decide(c.jump_size + c.late_jump, c.jump_load_before, c.jump_from_flagged);  // both its steps
+    if (first_member && group_confirmed && late_member && late_confirmed && !c.late_from_flagged) {
+      decide(c.jump_size + c.late_jump, c.jump_load_before, c.jump_from_flagged);  // both its steps: one onset
+    } else if (late_member && late_confirmed && c.late_from_flagged) {
+      decide(c.late_jump, c.late_load_before, true);  // a flagged member's end is its step back alone
     } else if (first_member && group_confirmed) {
       decide(c.jump_size, c.jump_load_before, c.jump_from_flagged);
     } else if (late_member && late_confirmed) {
@@ -1238,8 +1244,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   gain_regression(measured, recovered, height, residual,
                   fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
   // A pad in the air carries nothing: an unflagged airborne reading beyond airborne_threshold_N
-  // (4 sigma) is no force. Until the air test has the samples it needs to raise it, its value is
-  // 0, its leave-one-out force in the air.
+  // (4 sigma) is no force, and its value is 0, its leave-one-out force in the air, while it stays
+  // unflagged (the air test raises it once it has its samples, if their mean is beyond that too).
+  // Only the output: the tests judge the reading (the channel's state keeps its own value).
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
@@ -1249,12 +1256,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
     recovered[j] = 0.0;
     fault_estimate[j] = x;
-    c.recovered = 0.0;
   }
   // A pad only pushes: an unflagged reading on the ground below -airborne_threshold_N (4 sigma of
-  // the sensor: a healthy reading goes there once in about 30,000 ticks) is no force. Until the
-  // negative-reading test has the ticks it needs to type it (a sign flip, a negative offset),
-  // that tick's value is its leave-one-out force (unflagged: one such tick is no fault).
+  // the sensor: a healthy reading goes there once in about 30,000 ticks) is no force, and that
+  // tick's value is its leave-one-out force while it stays unflagged (the negative-reading test
+  // types a run of them once it has the ticks it needs: a sign flip, a negative offset). One such
+  // tick is no fault. Only the output, as below.
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
@@ -1264,7 +1271,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
     recovered[j] = virtual_force[j];
     fault_estimate[j] = x - virtual_force[j];
-    c.recovered = virtual_force[j];
   }
   // An offset raised by a jump under load that may yet be a gain (the offset-or-gain test has not
   // decided): recovered by whichever model, x - b or x / k, lies nearer its leave-one-out force.
@@ -1283,7 +1289,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (std::abs(as_gain - virtual_force[j]) + params_.jump_confirm_N < std::abs(recovered[j] - virtual_force[j])) {
       recovered[j] = as_gain;
       fault_estimate[j] = x - as_gain;
-      c.recovered = as_gain;
     }
   }
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
@@ -1568,16 +1573,16 @@ void ContactForceFdi::offset_or_gain_test(Channel& c, double reading, bool airbo
   // own error bound (not the span since the smoother settled: the load may have moved most of
   // the way within that settling); the gain must leave under half the offset's residual power (a
   // clear win, not a tie on noise).
-  c.load_move_from_onset = std::max(c.load_move_from_onset, std::abs(c.virtual_smoothed - c.jump_load_before));
+  c.load_move_from_onset = std::max(c.load_move_from_onset, std::abs(c.virtual_smoothed - c.onset_load));
   if (c.load_move_from_onset < 2.0 * params_.sum_threshold_N) return;
   if (c.gain_power < 0.5 * c.offset_power) take_gain(c, *k);
 }
 
 std::optional<double> ContactForceFdi::onset_gain(const Channel& c) const noexcept {
-  if (!(c.jump_load_before > params_.gain_min_load_N) || !(std::abs(c.offset) > 0.1 * c.jump_load_before)) {
+  if (!(c.onset_load > params_.gain_min_load_N) || !(std::abs(c.offset) > 0.1 * c.onset_load)) {
     return std::nullopt;
   }
-  return 1.0 + c.offset / c.jump_load_before;
+  return 1.0 + c.offset / c.onset_load;
 }
 
 void ContactForceFdi::take_gain(Channel& c, double k) noexcept {

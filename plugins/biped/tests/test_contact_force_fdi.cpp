@@ -1302,6 +1302,26 @@ TEST(ContactForceFdi, TwoGroupsEachUnderTheConfirmationStepAreNotConfirmedTogeth
   }
 }
 
+TEST(ContactForceFdi, ASpikesReturnIsNoLateGroupAndAFaultJustAfterItIsFound) {
+  // Pad 2 spikes by 100 N for tick 400 (a group, emptied on tick 401 when it is back); pad 0
+  // steps by -100 N at tick 403 (a fault). The spike's return is no step of its own: no late
+  // group holds the jump test, and pad 0 forms a group of its own, confirmed on 403 + 9.
+  Feet feet(suralp(), 1e-3);
+  int pad0_flagged = -1;
+  for (int k = 0; k < 600; ++k) {
+    double truth = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = moving(j, k, 0.0);
+      truth += feet.measured[j];
+    }
+    if (k == 400) feet.measured[2] += 100.0;
+    if (k >= 403) feet.measured[0] -= 100.0;
+    feet.step(truth);
+    if (pad0_flagged < 0 && feet.type(0) != FaultType::none) pad0_flagged = k;
+  }
+  EXPECT_EQ(pad0_flagged, 403 + 9);
+}
+
 TEST(ContactForceFdi, AFlaggedMemberOfAPendingGroupThatStepsBackIsReadmittedWithTheLateGroup) {
   // Pad 0 reads +60 N from tick 100 (flagged an offset on tick 109). At tick 400 its load and pad
   // 4's rise by 30 N each (a pending group, healthy: the total force carries them); at tick 403 its

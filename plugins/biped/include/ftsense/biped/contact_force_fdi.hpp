@@ -247,7 +247,7 @@
 // two lie within about twice v's error of each other; the tests keep judging it as N - b);
 // gain: N / k; an unflagged reading on the ground below -airborne_threshold_N, which no pad that
 // only pushes reads, v on that tick, and an unflagged airborne one beyond +-airborne_threshold_N,
-// 0 (what a pad in the air carries) until the air test has its samples; noise: v + a 10 Hz
+// 0 (what a pad in the air carries), while they stay unflagged; noise: v + a 10 Hz
 // low-pass of
 // N - v, v the leave-one-out force, loaded and while no loaded channel is substituted (v carries
 // the load's fast moves, which a low-pass of N lags by tens of newtons; the low-pass keeps the
@@ -398,6 +398,7 @@ class ContactForceFdi {
     double jump_size = 0.0;
     double candidate_load = 0.0;
     double jump_load_before = 0.0;
+    double onset_load = 0.0;  // L0: the load before the jump that raised the offset (onset_gain)
     bool candidate_flagged = false;      // this tick's candidate jumped while flagged
     bool jump_from_flagged = false;      // the group's member did (its jump is no onset)
     bool relation_from_flagged = false;  // the plane group's member did
