@@ -57,6 +57,10 @@ bool own_estimate(FaultType type) {
   return corrects(type) || type == FaultType::noise || type == FaultType::spikes;
 }
 
+// A channel's reading step as the jump test's sum residual takes it: a gain fault's reading is
+// taken corrected (x / k), any other as read.
+double in_residual(FaultType type, double gain, double step) { return type == FaultType::gain ? step / gain : step; }
+
 }  // namespace
 
 void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
@@ -646,13 +650,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (c.jump_member && group_pending_ && group_age_ == 1 && back(c.jump_size)) {
         spiked_back = true;
         c.jump_member = false;
-        group_sum_ -= c.type == FaultType::gain ? c.jump_size / c.gain : c.jump_size;
+        group_sum_ -= in_residual(c.type, c.gain, c.jump_size);
         --group_size_;
         group_emptied = group_emptied || group_size_ == 0;
       }
       if (c.late_member && late_pending_ && late_age_ == 1 && back(c.late_jump)) {
         c.late_member = false;
-        late_sum_ -= c.type == FaultType::gain ? c.late_jump / c.gain : c.late_jump;
+        late_sum_ -= in_residual(c.type, c.gain, c.late_jump);
         --late_size_;
       }
       // Likewise a member of its foot's plane group (inside a touchdown guard).
@@ -661,7 +665,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           back(c.relation_jump_size)) {
         c.relation_member = false;
         const std::size_t relations = unmeasured_.relations_per_foot();
-        const double jump = c.type == FaultType::gain ? c.relation_jump_size / c.gain : c.relation_jump_size;
+        const double jump = in_residual(c.type, c.gain, c.relation_jump_size);
         for (std::size_t r = 0; r < relations; ++r) {
           relation_expect_[foot * relations + r] -= unmeasured_.relation_weight(j % feet_points_, r) * jump;
         }
@@ -683,7 +687,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.candidate_flagged = c.type != FaultType::none;
         ++jump_candidates;
         // In the terms of the sum residual, which takes a gain fault's reading corrected.
-        jump_sum += c.type == FaultType::gain ? change / c.gain : change;
+        jump_sum += in_residual(c.type, c.gain, change);
       } else if (steps && may_jump && !late_pending_ && !spiked_back && fz_ok &&
                  residual_count_ == residual_ring_.size() &&
                  (c.type == FaultType::none ||
@@ -699,7 +703,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.late_load_before = c.previous;
         c.late_from_flagged = c.type != FaultType::none;
         ++late_candidates;
-        late_jump_sum += c.type == FaultType::gain ? change / c.gain : change;  // as the sum residual takes it
+        late_jump_sum += in_residual(c.type, c.gain, change);  // as the sum residual takes it
       } else if (steps && may_jump && !late_pending_ && !c.jump_member && !c.end_pending && corrects(c.type) &&
                  fz_ok && residual_count_ == residual_ring_.size()) {
         // A step while another group awaits its confirmation (a landing foot's pads jumping as
@@ -709,7 +713,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         if (steps_back(change, fault_size(c, t, c.previous))) {
           c.end_pending = true;
           c.end_after_guard = false;
-          c.end_jump = c.type == FaultType::gain ? change / c.gain : change;  // as the sum residual takes it
+          c.end_jump = in_residual(c.type, c.gain, change);  // as the sum residual takes it
           // Before the pending group's jump, which the group's own confirmation then accounts for
           // (its step is added to what this end implies once the group is decided).
           c.end_before = group_before_;
@@ -805,9 +809,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   // A late group forms only while no fault's end is pending: an end's residual step is judged
   // against the first group's decision alone.
-  bool ends_waiting = false;
-  for (const auto& c : channels_) ends_waiting = ends_waiting || c.end_pending;
-  if (late_candidates > 0 && group_pending_ && !ends_waiting) {
+  const auto ends_waiting = [&] {
+    return std::any_of(channels_.begin(), channels_.end(), [](const Channel& c) { return c.end_pending; });
+  };
+  if (late_candidates > 0 && group_pending_ && !ends_waiting()) {
     late_pending_ = true;
     late_age_ = 0;
     late_sum_ = late_jump_sum;
@@ -987,7 +992,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     } else if (first_member && group_confirmed) {
       decide(c.jump_size, c.jump_load_before, c.jump_from_flagged);
     } else if (late_member && late_confirmed) {
-      decide(c.late_jump, c.late_load_before, c.late_from_flagged);
+      decide(c.late_jump, c.late_load_before, false);  // a healthy channel's (flagged: above)
     }
     const std::size_t foot = j / feet_points_;
     if (c.relation_member && relation_group_[foot] == 2) {
@@ -1243,52 +1248,39 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   still_reading_test(measured, height, residual, fz_ok && all_finite_readings, any_step, t);
   gain_regression(measured, recovered, height, residual,
                   fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
-  // A pad in the air carries nothing: an unflagged airborne reading beyond airborne_threshold_N
-  // (4 sigma) is no force, and its value is 0, its leave-one-out force in the air, while it stays
-  // unflagged (the air test raises it once it has its samples, if their mean is beyond that too).
-  // Only the output: the tests judge the reading (the channel's state keeps its own value).
+  // The recovered value within what the physics allows, before (or while) the tests decide. Only
+  // the output: the tests judge the reading, and the channel's state keeps its own value.
+  // - A pad in the air carries nothing: an unflagged airborne reading beyond airborne_threshold_N
+  //   (4 sigma) is no force; its value is 0, its leave-one-out force in the air, while it stays
+  //   unflagged (the air test raises it once it has its samples, if their mean is beyond that too).
+  // - A pad only pushes: an unflagged reading on the ground below -airborne_threshold_N (a healthy
+  //   reading goes there once in about 30,000 ticks) is no force; that tick's value is its
+  //   leave-one-out force while it stays unflagged (the negative-reading test types a run of them
+  //   once it has the ticks it needs: a sign flip, a negative offset). One such tick is no fault.
+  // - An offset raised by a jump under load that may yet be a gain (the offset-or-gain test has not
+  //   decided): recovered by whichever model, x - b or x / k, lies nearer its leave-one-out force
+  //   by more than jump_confirm_N. The wrong one is taken only where the two lie within about
+  //   twice that force's error e of each other, so the error stays within about 2 |e|.
   for (std::size_t j = 0; j < channels_.size(); ++j) {
-    Channel& c = channels_[j];
+    const Channel& c = channels_[j];
     const double x = measured[j];
-    if (c.type != FaultType::none || !(height[j] > params_.airborne_height_m) || !std::isfinite(x) ||
-        !(std::abs(x) > params_.airborne_threshold_N)) {
-      continue;
+    if (!std::isfinite(x)) continue;
+    const bool airborne = height[j] > params_.airborne_height_m;
+    double value = recovered[j];
+    if (c.type == FaultType::none && airborne) {
+      if (std::abs(x) > params_.airborne_threshold_N) value = 0.0;
+    } else if (c.type == FaultType::none) {
+      if (x < -params_.airborne_threshold_N && std::isfinite(virtual_force[j])) value = virtual_force[j];
+    } else if (c.type == FaultType::offset && !c.fit_has_air && !airborne && std::isfinite(virtual_force[j])) {
+      const auto k = onset_gain(c);
+      if (k && std::abs(*k) >= kMinGain &&
+          std::abs(x / *k - virtual_force[j]) + params_.jump_confirm_N < std::abs(recovered[j] - virtual_force[j])) {
+        value = x / *k;
+      }
     }
-    recovered[j] = 0.0;
-    fault_estimate[j] = x;
-  }
-  // A pad only pushes: an unflagged reading on the ground below -airborne_threshold_N (4 sigma of
-  // the sensor: a healthy reading goes there once in about 30,000 ticks) is no force, and that
-  // tick's value is its leave-one-out force while it stays unflagged (the negative-reading test
-  // types a run of them once it has the ticks it needs: a sign flip, a negative offset). One such
-  // tick is no fault. Only the output, as below.
-  for (std::size_t j = 0; j < channels_.size(); ++j) {
-    Channel& c = channels_[j];
-    const double x = measured[j];
-    if (c.type != FaultType::none || height[j] > params_.airborne_height_m || !std::isfinite(x) ||
-        !(x < -params_.airborne_threshold_N) || !std::isfinite(virtual_force[j])) {
-      continue;
-    }
-    recovered[j] = virtual_force[j];
-    fault_estimate[j] = x - virtual_force[j];
-  }
-  // An offset raised by a jump under load that may yet be a gain (the offset-or-gain test has not
-  // decided): recovered by whichever model, x - b or x / k, lies nearer its leave-one-out force.
-  // The wrong one is taken only where the two lie within twice that force's error e of each
-  // other, so the error stays within 2 |e|; the tests above keep judging it as x - b.
-  for (std::size_t j = 0; j < channels_.size(); ++j) {
-    Channel& c = channels_[j];
-    const double x = measured[j];
-    if (c.type != FaultType::offset || c.fit_has_air || height[j] > params_.airborne_height_m ||
-        !std::isfinite(x) || !std::isfinite(virtual_force[j])) {
-      continue;
-    }
-    const auto k = onset_gain(c);
-    if (!k || std::abs(*k) < kMinGain) continue;
-    const double as_gain = x / *k;
-    if (std::abs(as_gain - virtual_force[j]) + params_.jump_confirm_N < std::abs(recovered[j] - virtual_force[j])) {
-      recovered[j] = as_gain;
-      fault_estimate[j] = x - as_gain;
+    if (value != recovered[j]) {
+      recovered[j] = value;
+      fault_estimate[j] = x - value;
     }
   }
   const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
@@ -1386,7 +1378,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
         c.relation_load_before = c.relation_candidate_load;
         c.relation_jump_size = c.relation_jump;
         c.relation_from_flagged = c.candidate_flagged;
-        const double jump = c.type == FaultType::gain ? c.relation_jump / c.gain : c.relation_jump;
+        const double jump = in_residual(c.type, c.gain, c.relation_jump);
         for (std::size_t r = 0; r < relations; ++r) {
           relation_expect_[f * relations + r] += unmeasured_.relation_weight(i, r) * jump;
         }
