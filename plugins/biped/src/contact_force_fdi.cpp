@@ -433,7 +433,7 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.end_pending = false;
   c.offset = c.slope = 0.0;
   c.gain = 1.0;
-  c.fit_has_air = false;
+  c.fit_has_air = c.air_refit = c.air_block_reads_zero = false;
   c.clear_since = -1.0;
   c.following = c.frozen_by_follow = false;
   c.sign_fault = false;
@@ -755,20 +755,38 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
     }
     if (airborne) {
-      // A step in flight (a fault starting or ending in the air): the mean starts again there.
+      // A step in flight (a fault starting or ending in the air): the mean starts again there, and
+      // so does the air's fit of the fault (one line through the readings before and after a step
+      // would average the two levels: a fault that ended mid-swing was kept at half its size).
       if (c.airborne_ticks > 0 && ticks_since_start > 0 && std::abs(x - c.previous) > params_.jump_threshold_N) {
         c.airborne_ticks = 0;
         c.airborne_sum = 0.0;
         c.airborne_count = 0;
+        c.air_refit = c.fit_has_air;
+        c.air_block_sum = 0.0;
+        c.air_block_count = 0;
+        c.air_block_reads_zero = false;
       }
       ++c.airborne_ticks;
       if (c.airborne_ticks * period_s_ >= params_.airborne_settle_s) {
         c.airborne_sum += x;
         ++c.airborne_count;
+        // The latest block of min_airborne_samples readings: does it read zero? (A fault that
+        // ends mid-swing, by a step too small to restart the mean, leaves the swing's mean
+        // beyond airborne_clear_N to the landing; its last block does not.)
+        c.air_block_sum += x;
+        if (++c.air_block_count >= min_airborne_samples_) {
+          c.air_block_reads_zero = std::abs(c.air_block_sum / c.air_block_count) < params_.airborne_clear_N;
+          c.air_block_sum = 0.0;
+          c.air_block_count = 0;
+        }
       }
     } else {
       c.airborne_ticks = c.airborne_count = 0;
       c.airborne_sum = 0.0;
+      c.air_refit = c.air_block_reads_zero = false;
+      c.air_block_sum = 0.0;
+      c.air_block_count = 0;
     }
     c.max_seen = std::max(c.max_seen, x);
     // A pad only pushes: a loaded pad reading below -airborne_threshold_N is a negative offset
@@ -969,9 +987,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     // A jump of a channel flagged when it jumped is no onset: a stuck output's step back to its
     // load is its end, whichever test re-admitted it while the group was pending (the follow
     // test, on that very step).
+    const bool in_air = height[j] > params_.airborne_height_m;
     const auto decide = [&](double jump, double load_before, bool from_flagged) {
       if (corrects(c.type) && steps_back(jump, fault_size(c, t, load_before))) {
-        clear(c);  // the fault ended with a jump back
+        // The fault ended with a jump back. In the air, where the reading is the fault itself, a
+        // step back by half the fault's size is within steps_back's band and is a fault that
+        // changed: there the reading must be back within its noise of 0 (else the mean of the
+        // readings after the step decides: the air test, below).
+        if (!(in_air && c.fit_has_air) || std::abs(x) < params_.airborne_threshold_N) clear(c);
       } else if (c.type == FaultType::none && !from_flagged) {
         c.onset_load = load_before;  // the load the onset jump left (onset_gain)
         raise(c, FaultType::offset, t);
@@ -1095,11 +1118,17 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           } else {
             clear(c);
           }
-        } else if (c.fit_has_air && std::abs(mean) < params_.airborne_clear_N && c.airborne_count >= 3 * min_airborne_samples &&
+        } else if (c.fit_has_air && ((std::abs(mean) < params_.airborne_clear_N && settled) || c.air_block_reads_zero) &&
                    t - c.flagged_since >= params_.hold_s) {
-          clear(c);  // reads zero in the air again: the offset or drift is over
+          clear(c);  // reads zero in the air again (this swing, or its latest block): the offset or drift is over
+          // Judged healthy from here: the swing's mean, which still holds the fault's readings,
+          // starts again (else the raise below would take it back at once).
+          c.airborne_sum = 0.0;
+          c.airborne_count = 0;
         } else {
-          if (!c.fit_has_air) c.fit.clear(t);  // the air measures directly: drop the jump's estimate
+          // The air measures directly: drop the jump's estimate, or the level before a step in flight.
+          if (!c.fit_has_air || c.air_refit) c.fit.clear(t);
+          c.air_refit = false;
           c.fit_has_air = true;
           c.fit.add(t, x, 1.0);
           double a = c.offset, s = 0.0;

@@ -833,6 +833,62 @@ TEST(ContactForceFdi, AGainThatEndedInTheAirIsDroppedWithinTheNextStance) {
   EXPECT_EQ(doubling_gain_cleared_at(false, recovered), -1);
 }
 
+// The left foot swings over ticks [100, land); l_foot/p1 reads an offset of `before` N from tick
+// 150, raised in the air, which becomes `after` N at tick 400, still in the air. Returns the tick
+// the channel is re-admitted (-1: never) and its fault estimate 50 ticks after the landing.
+int offset_changed_in_flight(double before, double after, int land, double& estimate_after_landing) {
+  Feet feet(suralp(), 1e-3);
+  int cleared = -1;
+  for (int k = 0; k < land + 100; ++k) {
+    const bool swinging = k >= 100 && k < land;
+    feet.left_foot_at(swinging ? 0.03 : 0.0);
+    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + wiggle;
+    }
+    if (k >= 150) feet.measured[0] += k < 400 ? before : after;
+    feet.step(800.0);
+    if (k >= 200 && k < 400) {
+      EXPECT_EQ(feet.type(0), FaultType::offset) << "tick " << k;
+    }
+    if (k >= 400 && cleared < 0 && feet.type(0) == FaultType::none) cleared = k;
+    if (cleared >= 0 && feet.type(0) != FaultType::none) {
+      ADD_FAILURE() << "raised again at tick " << k << ", re-admitted at " << cleared;
+      return -1;
+    }
+    if (k == land + 50) estimate_after_landing = feet.outs[ContactForceFdi::kFaultEstimate][0];
+  }
+  return cleared;
+}
+
+TEST(ContactForceFdi, AnOffsetThatEndsInTheAirIsReadmittedOnTheFirstBlockOfTheAirThatReadsZero) {
+  // 15 N (beyond airborne_threshold_N, 8 N; its end under jump_threshold_N, 20 N, so no step
+  // restarts the swing's mean, and no jump confirms the end). The air's readings count from tick
+  // 119 (airborne_settle_s after the lift-off at tick 100) in blocks of 20 (kAirborneMeanWindow_s):
+  // the block of ticks 399-418 holds one 15 N reading, mean 0.75 N < airborne_clear_N (4 N):
+  // re-admitted at tick 418. Before, the swing's mean (15 N over 250 readings, 0 over 60) stayed
+  // beyond 4 N to the landing, and the channel stayed flagged into the stance.
+  double estimate = 0.0;
+  const int cleared = offset_changed_in_flight(15.0, 0.0, 460, estimate);
+  std::printf("15 N offset ended in the air at tick 400: re-admitted at tick %d\n", cleared);
+  EXPECT_EQ(cleared, 418);
+  EXPECT_NEAR(estimate, 0.0, 1e-9);
+  // A 60 N offset's end is a confirmed jump back to within the noise of 0: re-admitted on its
+  // jump window (jump_window_s, 10 ms) as before.
+  EXPECT_EQ(offset_changed_in_flight(60.0, 0.0, 460, estimate), 409);
+}
+
+TEST(ContactForceFdi, AnOffsetThatChangesSizeInTheAirIsFittedOnTheReadingsAfterTheStep) {
+  // 60 N -> 30 N at tick 400: a step within steps_back's band (|-30 + 60| = 30 N < 0.4 x 60 N +
+  // jump_confirm_N = 49 N), which the jump test took for the fault's end (re-admitted at tick 409,
+  // raised again by the air test at 438). In the air the readings after the step decide: they read
+  // 30 N, so it stays an offset, fitted on them alone (not on one line through both levels).
+  double estimate = 0.0;
+  const int cleared = offset_changed_in_flight(60.0, 30.0, 500, estimate);
+  EXPECT_EQ(cleared, -1);
+  EXPECT_NEAR(estimate, 30.0, 0.5);
+}
+
 TEST(ContactForceFdi, AGainCorrectionThatDoesNotLowerTheResidualIsDroppedWithoutIsolation) {
   FaultType middle = FaultType::none;
   EXPECT_EQ(gain_held_then(true, middle), FaultType::none) << "re-admitted by model comparison";

@@ -424,6 +424,12 @@ class ContactForceFdi {
     double offset = 0.0, slope = 0.0, gain = 1.0;
     LineFit fit;
     bool fit_has_air = false;
+    // A step in flight while the air fits the fault: the fit starts again on the readings after
+    // it. The air's readings in blocks of min_airborne_samples_: the open block's sum and count,
+    // and whether the last whole block's mean read zero (within airborne_clear_N).
+    bool air_refit = false, air_block_reads_zero = false;
+    double air_block_sum = 0.0;
+    int air_block_count = 0;
     double recovered = 0.0;
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
     double noise_bias = 0.0;  // 10 Hz low-pass of reading - leave-one-out force, while flagged noise
