@@ -331,11 +331,9 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_raw_rr_.assign(n, 0.0);
   gain_held_ticks_.assign(n, 0);
   gain_held_rr_.assign(n, 0.0);
-  stance_held_ticks_.assign(n, 0);
+  stance_powers_.assign(n, StancePowers{});
+  stance_cusum_.assign(n, StancePowers{});
   stance_min_ticks_ = std::max(2, static_cast<int>(std::min(std::round(params.clear_s / period_s_), 1e9)));
-  stance_raw_rr_.assign(n, 0.0);
-  stance_held_rr_.assign(n, 0.0);
-  stance_correction_cc_.assign(n, 0.0);
   channels_.resize(n);
   for (auto& c : channels_) {
     c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
@@ -1646,41 +1644,55 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   // What the residual would be if a channel held as a gain fault were read as it is, against what
   // it is with the correction, both over the ticks since the correction was last set.
+  // In stance, the same comparison for a gain and for an offset: an offset whose end stepped
+  // under jump_threshold_N (no jump test sees it) leaves its correction in the residual while its
+  // foot stays down, and the air test would only drop it at the next swing. Not for a drift: its
+  // slope, fitted on a swing's readings, is extrapolated through the stance, and a correction
+  // grown wrong by that is no sign the fault is over (a 12 N/s drift at 200 Hz was dropped while
+  // 30 N, in a try).
   const double stance_bound = params_.gain_min_load_N * params_.gain_min_load_N;
-  bool readmitted_in_stance = false;
+  std::size_t stance_readmit = gain_raw_rr_.size();
+  int stance_candidates = 0;
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
     const bool on_ground = height[j] <= params_.airborne_height_m;
-    if (channels_[j].type != FaultType::gain || !on_ground) {
-      stance_raw_rr_[j] = stance_held_rr_[j] = stance_correction_cc_[j] = 0.0;
-      stance_held_ticks_[j] = 0;
-    }
-    if (channels_[j].type != FaultType::gain) {
-      gain_raw_rr_[j] = gain_held_rr_[j] = 0.0;
-      gain_held_ticks_[j] = 0;
-      continue;
+    const FaultType type = channels_[j].type;
+    if ((type != FaultType::gain && type != FaultType::offset) || !on_ground) {
+      stance_powers_[j] = stance_cusum_[j] = StancePowers{};
     }
     const double raw = residual + measured[j] - recovered[j];
-    gain_raw_rr_[j] = f * gain_raw_rr_[j] + raw * raw;
-    gain_held_rr_[j] = f * gain_held_rr_[j] + residual * residual;
-    gain_held_ticks_[j] = std::min(gain_held_ticks_[j] + 1, kCountCap);
-    if (!on_ground) continue;
-    stance_raw_rr_[j] += raw * raw;
-    stance_held_rr_[j] += residual * residual;
-    stance_held_ticks_[j] = std::min(stance_held_ticks_[j] + 1, kCountCap);
-    // Two explanations of the stance so far, the gain and the reading as it is: the reading wins
+    if (type != FaultType::gain) {
+      gain_raw_rr_[j] = gain_held_rr_[j] = 0.0;
+      gain_held_ticks_[j] = 0;
+    } else {
+      gain_raw_rr_[j] = f * gain_raw_rr_[j] + raw * raw;
+      gain_held_rr_[j] = f * gain_held_rr_[j] + residual * residual;
+      gain_held_ticks_[j] = std::min(gain_held_ticks_[j] + 1, kCountCap);
+    }
+    if ((type != FaultType::gain && type != FaultType::offset) || !on_ground) continue;
+    // Two explanations of the stance, the correction and the reading as it is: the reading wins
     // when the correction leaves 4 times its residual power (twice its RMS), over clear_s of
     // usable ticks in which the correction itself moved the reading by gain_min_load_N RMS or
     // more (a smaller correction is within what the residual's own error can mimic: as a pad
     // unloads, the sum residual's error is as large as a gain's effect on its few newtons).
+    // Over the stance so far, or over the ticks since the CUSUM of held^2 - 4 raw^2 was last at
+    // 0: its sums start again whenever the correction has won so far, so a fault that ends late
+    // in a long stance is judged on the ticks since its end, not against the stance it was right
+    // in (the stance's sums judge one that ended in the air, whose first ticks on the ground, a
+    // light load, may favour neither).
     const double correction = measured[j] - recovered[j];
-    stance_correction_cc_[j] += correction * correction;
-    if (stance_held_ticks_[j] >= stance_min_ticks_ && stance_held_rr_[j] > 4.0 * stance_raw_rr_[j] &&
-        stance_correction_cc_[j] >= static_cast<double>(stance_held_ticks_[j]) * stance_bound) {
-      clear(channels_[j]);
-      readmitted_in_stance = true;
+    stance_powers_[j].add(raw, residual, correction);
+    stance_cusum_[j].add(raw, residual, correction);
+    if (!(stance_cusum_[j].held_rr > 4.0 * stance_cusum_[j].raw_rr)) stance_cusum_[j] = StancePowers{};
+    if (stance_powers_[j].reading_wins(stance_min_ticks_, stance_bound) ||
+        stance_cusum_[j].reading_wins(stance_min_ticks_, stance_bound)) {
+      stance_readmit = j;
+      ++stance_candidates;
     }
   }
-  if (readmitted_in_stance) {
+  // Two corrections that each explain the residual's move (equal faults, one ended) cannot be
+  // told apart by one sum: neither is re-admitted this way.
+  if (stance_candidates == 1) {
+    clear(channels_[stance_readmit]);
     restart_gain_window();
     return;
   }
@@ -1783,10 +1795,8 @@ void ContactForceFdi::restart_gain_window() noexcept {
   std::fill(gain_raw_rr_.begin(), gain_raw_rr_.end(), 0.0);
   std::fill(gain_held_rr_.begin(), gain_held_rr_.end(), 0.0);
   std::fill(gain_held_ticks_.begin(), gain_held_ticks_.end(), 0);
-  std::fill(stance_held_ticks_.begin(), stance_held_ticks_.end(), 0);
-  std::fill(stance_raw_rr_.begin(), stance_raw_rr_.end(), 0.0);
-  std::fill(stance_held_rr_.begin(), stance_held_rr_.end(), 0.0);
-  std::fill(stance_correction_cc_.begin(), stance_correction_cc_.end(), 0.0);
+  std::fill(stance_powers_.begin(), stance_powers_.end(), StancePowers{});
+  std::fill(stance_cusum_.begin(), stance_cusum_.end(), StancePowers{});
   gain_rr_ = gain_weight_ = 0.0;
   gain_ticks_ = 0;
 }

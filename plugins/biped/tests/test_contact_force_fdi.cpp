@@ -889,6 +889,53 @@ TEST(ContactForceFdi, AnOffsetThatChangesSizeInTheAirIsFittedOnTheReadingsAfterT
   EXPECT_NEAR(estimate, 30.0, 0.5);
 }
 
+// Both feet down for the whole trace, every pad carrying 100 N; l_foot/p1 (and, with `twin`,
+// r_foot/p1 too) steps +60 N at tick 200 (an offset, raised by the jump test) and, unless
+// `ends` is false, l_foot/p1's offset fades out over ticks [1200, 1300) at 0.6 N per tick (no
+// step for the jump test). Returns the tick l_foot/p1 is re-admitted (-1: never).
+int offset_faded_in_stance(bool ends, bool twin) {
+  Feet feet(suralp(), 1e-3);
+  int cleared = -1;
+  bool raised = false;
+  for (int k = 0; k < 2000; ++k) {
+    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = 100.0 + (j % 2 == 0 ? wiggle : -wiggle);
+    const double fade = ends ? std::clamp((k - 1200) / 100.0, 0.0, 1.0) : 0.0;
+    if (k >= 200) feet.measured[0] += 60.0 * (1.0 - fade);
+    if (twin && k >= 200) feet.measured[4] += 60.0;
+    feet.step(800.0);
+    raised = raised || feet.type(0) == FaultType::offset;
+    if (raised && cleared < 0 && feet.type(0) == FaultType::none) cleared = k;
+    if (twin && raised) {
+      EXPECT_EQ(feet.type(4), FaultType::offset) << "r_foot/p1, tick " << k;  // its offset stays
+    }
+    for (std::size_t j = 1; j < kChannels; ++j) {
+      if (j != 4 || !twin) {
+        EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+  EXPECT_TRUE(raised);
+  return cleared;
+}
+
+TEST(ContactForceFdi, AnOffsetThatFadesOutLateInALongStanceIsReadmittedOnTheTicksSinceItsEnd) {
+  // The correction (60 N) leaves 4 times the residual power of the reading as it is once the
+  // offset left is under 20 N ((60 - b)^2 > 4 b^2): from tick 1267 (b = 19.8 N). The CUSUM of
+  // held^2 - 4 raw^2 is positive from there; after clear_s (50 ticks, the 50th is tick 1316)
+  // the reading wins, decided once that tick's residual is known (after its outputs): shown
+  // from tick 1317. Over the stance so far (a thousand ticks in which the correction was right)
+  // it would not win for another thousand; before, an offset was only dropped in the air.
+  const int cleared = offset_faded_in_stance(true, false);
+  std::printf("offset faded out over ticks 1200-1300: re-admitted at tick %d\n", cleared);
+  EXPECT_EQ(cleared, 1317);
+  // An offset that stays: its correction keeps winning.
+  EXPECT_EQ(offset_faded_in_stance(false, false), -1);
+  // Two equal offsets, one fades out: either correction explains the residual's move alike, and
+  // one sum cannot tell which ended; neither is re-admitted by this comparison.
+  EXPECT_EQ(offset_faded_in_stance(true, true), -1);
+}
+
 TEST(ContactForceFdi, AGainCorrectionThatDoesNotLowerTheResidualIsDroppedWithoutIsolation) {
   FaultType middle = FaultType::none;
   EXPECT_EQ(gain_held_then(true, middle), FaultType::none) << "re-admitted by model comparison";

@@ -276,6 +276,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -568,13 +569,28 @@ class ContactForceFdi {
   std::vector<int> gain_held_ticks_;
   std::vector<double> gain_raw_rr_;
   std::vector<double> gain_held_rr_;
-  // The same two powers summed (not weighted) over the present stance of the channel's point, for
-  // a correction gone wrong in it: usable ticks on the ground while held as a gain fault.
-  std::vector<int> stance_held_ticks_;
+  // The same two powers summed (not weighted) over usable ticks on the ground while held as a
+  // gain or an offset, for a correction gone wrong in a stance: <r_raw, r_raw>, <r, r> and the
+  // correction's own power <N_j - N^_j, N_j - N^_j>.
+  struct StancePowers {
+    int ticks = 0;
+    double raw_rr = 0.0, held_rr = 0.0, correction_cc = 0.0;
+    void add(double raw, double held, double correction) noexcept {
+      raw_rr += raw * raw;
+      held_rr += held * held;
+      correction_cc += correction * correction;
+      ticks = ticks < std::numeric_limits<int>::max() ? ticks + 1 : ticks;
+    }
+    // The reading as it is wins: the correction leaves 4 times its residual power over at least
+    // min_ticks, and moved the reading by at least sqrt(bound_sq) RMS.
+    [[nodiscard]] bool reading_wins(int min_ticks, double bound_sq) const noexcept {
+      return ticks >= min_ticks && held_rr > 4.0 * raw_rr && correction_cc >= static_cast<double>(ticks) * bound_sq;
+    }
+  };
+  // Over the present stance of the channel's point, and since the CUSUM of held^2 - 4 raw^2 was
+  // last at 0 (a fault that ends late in a long stance: judged on the ticks since its end).
+  std::vector<StancePowers> stance_powers_, stance_cusum_;
   int stance_min_ticks_ = 50;  // round(clear_s / T), at least 2
-  std::vector<double> stance_raw_rr_;
-  std::vector<double> stance_held_rr_;
-  std::vector<double> stance_correction_cc_;  // sum of (N_j - N^_j)^2: the correction's own power
   double gain_weight_ = 0.0;
   double gain_forgetting_ = 1.0;
   int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
