@@ -547,6 +547,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   int late_candidates = 0;  // healthy channels stepping while a group is pending
   double late_jump_sum = 0.0;
   double raw_sum = 0.0;
+  double median_lag_correction = 0.0;  // for the last tick's residual (below)
   bool all_finite_readings = true;  // the gain test takes only ticks where every channel has a value
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
@@ -559,6 +560,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.airborne_ticks = c.airborne_count = 0;
       c.airborne_sum = 0.0;
       c.jump_pending = c.late_candidate = c.relation_pending = false;  // no candidate without a value
+      c.median_gap = 0.0;
       raw_sum += c.recovered;
       continue;
     }
@@ -567,10 +569,21 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     // steps), and a spiking channel's as the median of its last three readings (a 250 N spike
     // moves a 10 ms window's mean by 50 N at 500 Hz). Offsets stay as read: their correction
     // ends with the jump that ends them.
+    // A median of three lags a step by a tick (at 200 Hz, 70 N as a spiking heel lands), which a
+    // neighbour's step in the same window took for its confirmation: once the next reading shows
+    // the step stayed (no spike returns within half its rise), the last tick's residual takes
+    // the reading instead.
+    if (c.type == FaultType::spikes && std::abs(c.median_gap) > params_.jump_threshold_N &&
+        std::abs(x - c.previous) < 0.5 * std::abs(c.previous - c.previous2)) {
+      median_lag_correction += c.median_gap;
+    }
+    c.median_gap = 0.0;
     if (c.type == FaultType::gain) {
       raw_sum += airborne ? 0.0 : x / c.gain;
     } else if (c.type == FaultType::spikes && ticks_since_start > 0) {
-      raw_sum += generic::median_of_three(x, c.previous, c.previous2);
+      const double median = generic::median_of_three(x, c.previous, c.previous2);
+      raw_sum += median;
+      c.median_gap = fz_ok ? x - median : 0.0;
     } else {
       raw_sum += x;
     }
@@ -805,6 +818,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   relation_jumps(measured, height, t);
   // Sum residual history for the jump confirmation.
   const double raw_residual = fz_ok ? raw_sum - fz : 0.0;
+  if (median_lag_correction != 0.0 && residual_count_ > 0) {
+    residual_ring_[(residual_next_ + residual_ring_.size() - 1) % residual_ring_.size()] += median_lag_correction;
+  }
   residual_ring_[residual_next_] = raw_residual;
   residual_next_ = (residual_next_ + 1) % residual_ring_.size();
   residual_count_ = std::min(residual_count_ + 1, residual_ring_.size());

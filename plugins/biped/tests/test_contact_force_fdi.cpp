@@ -1730,6 +1730,42 @@ TEST(ContactForceFdi, AChannelFlaggedForSpikesEntersTheJumpTestsSumAsItsMedian) 
   }
 }
 
+TEST(ContactForceFdi, ASpikingPadsMedianLagAtItsLandingConfirmsNoNeighboursLoadShift) {
+  // 200 Hz (a 2-tick jump window). Pad 3 spikes by 250 N at ticks 40, 60 and 80 (flagged spikes),
+  // then hands its load to pad 2 over ticks 85-94 (10 N per tick, no step) and reads 0. At tick
+  // 120 it lands again, 0 -> 80 N in one tick (a pad landing: no candidate itself), while pad 2
+  // sheds 40 N in that tick and pad 0 40 N over ticks 116-123: healthy moves, the total force
+  // with them. Its median of three (0, 0, 80) = 0 leaves -80 N in the residual of tick 120, and
+  // the window's mean, -40 N, matched pad 2's -40 N step: an offset on a healthy pad (as at a
+  // spiking heel's landing in tools/unseen_walks.py). Once tick 121 shows the rise stayed, tick
+  // 120's residual takes the reading: no step.
+  Feet feet(suralp(), 5e-3);
+  for (int k = 0; k < 200; ++k) {
+    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+    double load[kChannels];
+    for (std::size_t j = 0; j < kChannels; ++j) load[j] = 100.0;
+    const double handed = std::clamp((k - 84) * 10.0, 0.0, 100.0);  // pad 3 -> pad 2
+    load[3] -= handed;
+    load[2] += handed;
+    if (k >= 120) {
+      load[3] += 80.0;
+      load[2] -= 40.0;
+    }
+    load[0] -= std::clamp((k - 115) * 5.0, 0.0, 40.0);
+    double fz = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = load[j] + (j % 2 == 0 ? wiggle : -wiggle);
+      fz += load[j];
+    }
+    if (k == 40 || k == 60 || k == 80) feet.measured[3] += 250.0;
+    feet.step(fz);
+    for (std::size_t j = 0; j < 3; ++j) ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+    if (k >= 81 && k <= 121) {
+      ASSERT_EQ(feet.type(3), FaultType::spikes) << "tick " << k;
+    }
+  }
+}
+
 TEST(ContactForceFdi, ANeighbourOfANoiseBurstIsNotJudgedSpikyByTheLoadItTrades) {
   // 1 kHz, 1 N of noise (spike threshold 30 N). Pad 1 reads a +-30 N noise burst (flagged noise);
   // every 50 ticks, on even ticks, pad 0 hands 38 N to pad 3 for one tick and takes it back. The

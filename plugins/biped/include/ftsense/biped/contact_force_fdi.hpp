@@ -425,6 +425,7 @@ class ContactForceFdi {
     double offset = 0.0, slope = 0.0, gain = 1.0;
     LineFit fit;
     bool fit_has_air = false;
+    double median_gap = 0.0;  // spiking: reading - median of three on the last tick (jump test's sum)
     // A step in flight while the air fits the fault: the fit starts again on the readings after
     // it. The air's readings in blocks of min_airborne_samples_: the open block's sum and count,
     // and whether the last whole block's mean read zero (within airborne_clear_N).
