@@ -100,7 +100,10 @@
 //             window's mean by half the jump. (Not against the trend: a noise burst's trend is
 //             its last swing. A step against a pad unloading by half the step per tick leaves
 //             the group too, and is left to the other tests.) The residual takes a spiking channel as the median of its last three
-//             readings (a 250 N spike moves a 10 ms mean by 50 N at 500 Hz). A confirmed jump
+//             readings (a 250 N spike moves a 10 ms mean by 50 N at 500 Hz); the median lags a
+//             step by a tick, so once the next reading shows the step stayed (no return within
+//             half its rise) the last tick's residual takes the reading (a spiking heel landing at
+//             200 Hz otherwise confirmed a neighbour's load shift). A confirmed jump
 //             of a channel that was flagged when it jumped is no onset, even if a test cleared the
 //             flag while the group was pending (a stuck output's step back to its load, which the
 //             follow test re-admits on that very step). While a loaded channel is
@@ -171,7 +174,11 @@
 //             its correction does over the gain window since the correction was set; and
 //             within one stance, once it has clear_s of usable ticks, when the correction leaves
 //             4 times the residual power the reading leaves as it is, and moved the reading by
-//             gain_min_load_N RMS or more: the two explanations of that stance, compared. A
+//             gain_min_load_N RMS or more: the two explanations of that stance, compared (for an
+//             offset too, whose end stepped under jump_threshold_N; not a drift, whose slope is
+//             extrapolated through the stance), over the stance so far or since the CUSUM of
+//             held^2 - 4 raw^2 was last at 0 (a fault that ends late in a long stance); with two
+//             candidates on one tick, neither (one sum cannot tell them apart). A
 //             gain that ended in the air, or a gain inferred in the air from an offset that ended
 //             there (both read 0 in the air), would otherwise scale a healthy reading by 1 / k
 //             through the next stances until the window decides. The window
@@ -238,7 +245,12 @@
 // a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
 // Re-admission: when the test that raised the flag has been clear for clear_s (an airborne zero,
-// a finite value, varying values, a reverse jump of the estimated size).
+// a finite value, varying values, a reverse jump of the estimated size). An airborne zero: the
+// swing's mean within airborne_clear_N over three times the air test's readings, or the latest
+// block of that many readings within it (a fault that ends mid-swing by a step under
+// jump_threshold_N). A step in flight restarts the air's mean and fit (one line through two
+// levels would keep half the fault), and a confirmed jump back in the air re-admits only a
+// reading back within airborne_threshold_N of 0 (a fault that changed size is still a fault).
 //
 // Outputs per channel: fault, fault_type (codes of fault_type.hpp), fault_estimate (measured -
 // recovered), recovered (offset/drift: N - b(t), but an offset raised by a jump under load that
