@@ -559,6 +559,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.stale_count = 0;
       c.airborne_ticks = c.airborne_count = 0;
       c.airborne_sum = 0.0;
+      c.air_block_sum = 0.0;
+      c.air_block_count = 0;
+      c.air_block_reads_zero = false;
       c.jump_pending = c.late_candidate = c.relation_pending = false;  // no candidate without a value
       c.median_gap = 0.0;
       raw_sum += c.recovered;
@@ -767,8 +770,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
     if (airborne) {
       // A step in flight (a fault starting or ending in the air): the mean starts again there, and
-      // so does the air's fit of the fault (one line through the readings before and after a step
-      // would average the two levels: a fault that ended mid-swing was kept at half its size).
+      // so does the air's fit of the fault, at its next reading in the air, this swing or the
+      // next (one line through the readings before and after a step would average the two
+      // levels: a fault that ended mid-swing was kept at half its size).
       if (c.airborne_ticks > 0 && ticks_since_start > 0 && std::abs(x - c.previous) > params_.jump_threshold_N) {
         c.airborne_ticks = 0;
         c.airborne_sum = 0.0;
@@ -795,7 +799,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     } else {
       c.airborne_ticks = c.airborne_count = 0;
       c.airborne_sum = 0.0;
-      c.air_refit = c.air_block_reads_zero = false;
+      // (air_refit stays until the air's fit next takes a reading: a step late in a swing.)
+      c.air_block_reads_zero = false;
       c.air_block_sum = 0.0;
       c.air_block_count = 0;
     }
@@ -1111,6 +1116,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         raise(c, FaultType::offset, t);
         c.fit.clear(t);
         c.fit_has_air = false;
+        c.air_block_reads_zero = false;  // a block read before the raise says nothing of the fault
       }
       if (c.type == FaultType::offset || c.type == FaultType::drift) {
         const bool reads_zero = std::abs(mean) < params_.airborne_clear_N;
@@ -1665,18 +1671,24 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // foot stays down, and the air test would only drop it at the next swing. Not for a drift: its
   // slope, fitted on a swing's readings, is extrapolated through the stance, and a correction
   // grown wrong by that is no sign the fault is over (a 12 N/s drift at 200 Hz was dropped while
-  // 30 N, in a try).
+  // 30 N, in a try). Only while it is the one correction the residual carries: with two, the
+  // one that ended and the one that did not both move it, and the one still faulty could win
+  // first (a +48 N offset beside a +60 N one fading out).
   const double stance_bound = params_.gain_min_load_N * params_.gain_min_load_N;
-  std::size_t stance_readmit = gain_raw_rr_.size();
-  int stance_candidates = 0;
+  int corrections = 0;
+  for (const Channel& c : channels_) corrections += corrects(c.type) ? 1 : 0;
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
+    const Channel& c = channels_[j];
     const bool on_ground = height[j] <= params_.airborne_height_m;
-    const FaultType type = channels_[j].type;
-    if ((type != FaultType::gain && type != FaultType::offset) || !on_ground) {
-      stance_powers_[j] = stance_cusum_[j] = StancePowers{};
+    const bool judged = (c.type == FaultType::gain || c.type == FaultType::offset) && on_ground;
+    StancePowers& stance = stance_powers_[j];
+    StancePowers& run = stance_cusum_[j];
+    if (!judged || stance.type != c.type) {  // a new stance, or sums taken for another correction
+      stance = run = StancePowers{};
+      stance.type = run.type = c.type;
     }
     const double raw = residual + measured[j] - recovered[j];
-    if (type != FaultType::gain) {
+    if (c.type != FaultType::gain) {
       gain_raw_rr_[j] = gain_held_rr_[j] = 0.0;
       gain_held_ticks_[j] = 0;
     } else {
@@ -1684,33 +1696,38 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       gain_held_rr_[j] = f * gain_held_rr_[j] + residual * residual;
       gain_held_ticks_[j] = std::min(gain_held_ticks_[j] + 1, kCountCap);
     }
-    if ((type != FaultType::gain && type != FaultType::offset) || !on_ground) continue;
+    if (!judged) continue;
     // Two explanations of the stance, the correction and the reading as it is: the reading wins
     // when the correction leaves 4 times its residual power (twice its RMS), over clear_s of
     // usable ticks in which the correction itself moved the reading by gain_min_load_N RMS or
     // more (a smaller correction is within what the residual's own error can mimic: as a pad
-    // unloads, the sum residual's error is as large as a gain's effect on its few newtons).
-    // Over the stance so far, or over the ticks since the CUSUM of held^2 - 4 raw^2 was last at
-    // 0: its sums start again whenever the correction has won so far, so a fault that ends late
-    // in a long stance is judged on the ticks since its end, not against the stance it was right
-    // in (the stance's sums judge one that ended in the air, whose first ticks on the ground, a
-    // light load, may favour neither).
+    // unloads, the sum residual's error is as large as a gain's effect on its few newtons). An
+    // offset that may yet be a gain must leave a quarter of that model's power too.
+    // Over the stance so far; for an offset also over the ticks since the CUSUM of the reading's
+    // lead was last at 0: its sums start again whenever the correction has won so far, so a
+    // fault that ends late in a long stance is judged on the ticks since its end, not against
+    // the stance it was right in. (Not for a gain: its stance so far judges it, as before.)
     const double correction = measured[j] - recovered[j];
-    stance_powers_[j].add(raw, residual, correction);
-    stance_cusum_[j].add(raw, residual, correction);
-    if (!(stance_cusum_[j].held_rr > 4.0 * stance_cusum_[j].raw_rr)) stance_cusum_[j] = StancePowers{};
-    if (stance_powers_[j].reading_wins(stance_min_ticks_, stance_bound) ||
-        stance_cusum_[j].reading_wins(stance_min_ticks_, stance_bound)) {
-      stance_readmit = j;
-      ++stance_candidates;
+    stance.add(raw, residual, correction);
+    run.add(raw, residual, correction);
+    if (c.type == FaultType::offset && !c.fit_has_air) {
+      if (const auto k = onset_gain(c); k && std::abs(*k) >= kMinGain) {
+        const double as_gain = residual - recovered[j] + measured[j] / *k;
+        stance.add_gain_model(as_gain, measured[j] - measured[j] / *k);
+        run.add_gain_model(as_gain, measured[j] - measured[j] / *k);
+      }
     }
-  }
-  // Two corrections that each explain the residual's move (equal faults, one ended) cannot be
-  // told apart by one sum: neither is re-admitted this way.
-  if (stance_candidates == 1) {
-    clear(channels_[stance_readmit]);
-    restart_gain_window();
-    return;
+    if (!run.reading_leads()) {
+      run = StancePowers{};
+      run.type = c.type;
+    }
+    const bool wins = stance.reading_wins(stance_min_ticks_, stance_bound) ||
+                      (c.type == FaultType::offset && run.reading_wins(stance_min_ticks_, stance_bound));
+    if (wins && corrections == 1) {
+      clear(channels_[j]);
+      restart_gain_window();
+      return;
+    }
   }
   gain_weight_ = f * gain_weight_ + 1.0;
   // Saturates by whole windows of 10, so the judging cadence and a full window both hold.

@@ -246,8 +246,8 @@
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
 // Re-admission: when the test that raised the flag has been clear for clear_s (an airborne zero,
 // a finite value, varying values, a reverse jump of the estimated size). An airborne zero: the
-// swing's mean within airborne_clear_N over three times the air test's readings, or the latest
-// block of that many readings within it (a fault that ends mid-swing by a step under
+// swing's mean within airborne_clear_N over three times the air test's readings, or the mean of
+// the latest block of the air test's readings (min_airborne_samples) within it (a fault that ends mid-swing by a step under
 // jump_threshold_N). A step in flight restarts the air's mean and fit (one line through two
 // levels would keep half the fault), and a confirmed jump back in the air re-admits only a
 // reading back within airborne_threshold_N of 0 (a fault that changed size is still a fault).
@@ -439,7 +439,7 @@ class ContactForceFdi {
     bool fit_has_air = false;
     double median_gap = 0.0;  // spiking: reading - median of three on the last tick (jump test's sum)
     // A step in flight while the air fits the fault: the fit starts again on the readings after
-    // it. The air's readings in blocks of min_airborne_samples_: the open block's sum and count,
+    // it (kept until the fit takes its next airborne reading). The air's readings in blocks of min_airborne_samples_: the open block's sum and count,
     // and whether the last whole block's mean read zero (within airborne_clear_N).
     bool air_refit = false, air_block_reads_zero = false;
     double air_block_sum = 0.0;
@@ -582,26 +582,44 @@ class ContactForceFdi {
   std::vector<int> gain_held_ticks_;
   std::vector<double> gain_raw_rr_;
   std::vector<double> gain_held_rr_;
-  // The same two powers summed (not weighted) over usable ticks on the ground while held as a
-  // gain or an offset, for a correction gone wrong in a stance: <r_raw, r_raw>, <r, r> and the
-  // correction's own power <N_j - N^_j, N_j - N^_j>.
+  // The same powers summed (not weighted) over usable ticks on the ground while held as a gain or
+  // an offset, for a correction gone wrong in a stance: <r_raw, r_raw>, <r, r>, the correction's
+  // own power <N_j - N^_j, N_j - N^_j>, and, for an offset raised by a jump under load and not
+  // yet measured in the air, <r_gain, r_gain> with the reading taken as the gain that same onset
+  // implies (r_gain = r - N^_j + N_j / k; it may yet be a gain, whose error shrinks as its pad
+  // unloads, as an ended offset's would seem to).
   struct StancePowers {
+    FaultType type = FaultType::none;  // the fault the sums were taken for
     int ticks = 0;
-    double raw_rr = 0.0, held_rr = 0.0, correction_cc = 0.0;
+    double raw_rr = 0.0, held_rr = 0.0, correction_cc = 0.0, gain_rr = 0.0, gain_cc = 0.0;
+    bool gain_model = false;  // some tick had the gain explanation
     void add(double raw, double held, double correction) noexcept {
       raw_rr += raw * raw;
       held_rr += held * held;
       correction_cc += correction * correction;
       ticks = ticks < std::numeric_limits<int>::max() ? ticks + 1 : ticks;
     }
-    // The reading as it is wins: the correction leaves 4 times its residual power over at least
-    // min_ticks, and moved the reading by at least sqrt(bound_sq) RMS.
+    // The gain explanation's residual and its own correction N_j - N_j / k.
+    void add_gain_model(double as_gain, double correction) noexcept {
+      gain_rr += as_gain * as_gain;
+      gain_cc += correction * correction;
+      gain_model = true;
+    }
+    // The reading as it is leaves a quarter of the residual power of every other explanation.
+    [[nodiscard]] bool reading_leads() const noexcept {
+      return held_rr > 4.0 * raw_rr && (!gain_model || gain_rr > 4.0 * raw_rr);
+    }
+    // ... over at least min_ticks, and each other explanation moved the reading by sqrt(bound_sq)
+    // RMS or more (one that moved it less is within what the residual's error can mimic: a gain
+    // on a pad that has unloaded reads as its load does).
     [[nodiscard]] bool reading_wins(int min_ticks, double bound_sq) const noexcept {
-      return ticks >= min_ticks && held_rr > 4.0 * raw_rr && correction_cc >= static_cast<double>(ticks) * bound_sq;
+      const double bound = static_cast<double>(ticks) * bound_sq;
+      return ticks >= min_ticks && reading_leads() && correction_cc >= bound && (!gain_model || gain_cc >= bound);
     }
   };
-  // Over the present stance of the channel's point, and since the CUSUM of held^2 - 4 raw^2 was
-  // last at 0 (a fault that ends late in a long stance: judged on the ticks since its end).
+  // Over the present stance of the channel's point, and (an offset) since the CUSUM of the
+  // reading's lead was last at 0 (a fault that ends late in a long stance: judged on the ticks
+  // since its end).
   std::vector<StancePowers> stance_powers_, stance_cusum_;
   int stance_min_ticks_ = 50;  // round(clear_s / T), at least 2
   double gain_weight_ = 0.0;
