@@ -176,9 +176,12 @@
 //             4 times the residual power the reading leaves as it is, and moved the reading by
 //             gain_min_load_N RMS or more: the two explanations of that stance, compared (for an
 //             offset too, whose end stepped under jump_threshold_N; not a drift, whose slope is
-//             extrapolated through the stance), over the stance so far or since the CUSUM of
-//             held^2 - 4 raw^2 was last at 0 (a fault that ends late in a long stance); with two
-//             candidates on one tick, neither (one sum cannot tell them apart). A
+//             extrapolated through the stance; an offset raised by a jump under load and not
+//             yet seen in the air must beat the gain its onset implies too, which must have moved
+//             the reading by gain_min_load_N RMS), over the stance so far or (an offset) since
+//             the CUSUM of the reading's lead was last at 0 (a fault that ends late in a long
+//             stance); only while it is the one correction the residual carries (with two, the
+//             one still faulty can win first). A
 //             gain that ended in the air, or a gain inferred in the air from an offset that ended
 //             there (both read 0 in the air), would otherwise scale a healthy reading by 1 / k
 //             through the next stances until the window decides. The window
