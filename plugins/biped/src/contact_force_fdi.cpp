@@ -557,11 +557,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       all_finite_readings = false;
       raise(c, FaultType::invalid, t);
       c.stale_count = 0;
-      c.airborne_ticks = c.airborne_count = 0;
-      c.airborne_sum = 0.0;
-      c.air_block_sum = 0.0;
-      c.air_block_count = 0;
-      c.air_block_reads_zero = false;
+      c.restart_air_readings();
       c.jump_pending = c.late_candidate = c.relation_pending = false;  // no candidate without a value
       c.median_gap = 0.0;
       raw_sum += c.recovered;
@@ -774,13 +770,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // next (one line through the readings before and after a step would average the two
       // levels: a fault that ended mid-swing was kept at half its size).
       if (c.airborne_ticks > 0 && ticks_since_start > 0 && std::abs(x - c.previous) > params_.jump_threshold_N) {
-        c.airborne_ticks = 0;
-        c.airborne_sum = 0.0;
-        c.airborne_count = 0;
+        c.restart_air_readings();
         c.air_refit = c.fit_has_air;
-        c.air_block_sum = 0.0;
-        c.air_block_count = 0;
-        c.air_block_reads_zero = false;
       }
       ++c.airborne_ticks;
       if (c.airborne_ticks * period_s_ >= params_.airborne_settle_s) {
@@ -797,12 +788,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         }
       }
     } else {
-      c.airborne_ticks = c.airborne_count = 0;
-      c.airborne_sum = 0.0;
-      // (air_refit stays until the air's fit next takes a reading: a step late in a swing.)
-      c.air_block_reads_zero = false;
-      c.air_block_sum = 0.0;
-      c.air_block_count = 0;
+      c.restart_air_readings();  // (air_refit stays until the air's fit next takes a reading)
     }
     c.max_seen = std::max(c.max_seen, x);
     // A pad only pushes: a loaded pad reading below -airborne_threshold_N is a negative offset
@@ -1684,8 +1670,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     StancePowers& stance = stance_powers_[j];
     StancePowers& run = stance_cusum_[j];
     if (!judged || stance.type != c.type) {  // a new stance, or sums taken for another correction
-      stance = run = StancePowers{};
-      stance.type = run.type = c.type;
+      stance = run = StancePowers{.type = c.type};
     }
     const double raw = residual + measured[j] - recovered[j];
     if (c.type != FaultType::gain) {
@@ -1713,14 +1698,12 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     if (c.type == FaultType::offset && !c.fit_has_air) {
       if (const auto k = onset_gain(c); k && std::abs(*k) >= kMinGain) {
         const double as_gain = residual - recovered[j] + measured[j] / *k;
-        stance.add_gain_model(as_gain, measured[j] - measured[j] / *k);
-        run.add_gain_model(as_gain, measured[j] - measured[j] / *k);
+        const double gain_correction = measured[j] - measured[j] / *k;
+        stance.add_gain_model(as_gain, gain_correction);
+        run.add_gain_model(as_gain, gain_correction);
       }
     }
-    if (!run.reading_leads()) {
-      run = StancePowers{};
-      run.type = c.type;
-    }
+    if (!run.reading_leads()) run = StancePowers{.type = c.type};
     const bool wins = stance.reading_wins(stance_min_ticks_, stance_bound) ||
                       (c.type == FaultType::offset && run.reading_wins(stance_min_ticks_, stance_bound));
     if (wins && corrections == 1) {

@@ -447,6 +447,14 @@ class ContactForceFdi {
     bool air_refit = false, air_block_reads_zero = false;
     double air_block_sum = 0.0;
     int air_block_count = 0;
+    // The air's readings start again: its settling, its mean and its blocks (on the ground, a
+    // reading without a value, a step in flight).
+    void restart_air_readings() noexcept {
+      airborne_ticks = airborne_count = 0;
+      airborne_sum = air_block_sum = 0.0;
+      air_block_count = 0;
+      air_block_reads_zero = false;
+    }
     double recovered = 0.0;
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
     double noise_bias = 0.0;  // 10 Hz low-pass of reading - leave-one-out force, while flagged noise
