@@ -34,6 +34,15 @@ std::string calibrated_params_list(const PluginRegistry& registry, std::string_v
   return text.empty() ? "none" : text;
 }
 
+// A parameter the plugin takes as one number for all its channels (its schema says so), not a
+// list per channel.
+bool takes_one_number(const PluginInfo& info, std::string_view param) {
+  for (const ParamInfo& p : info.params) {
+    if (p.key == param) return p.kind == ParamKind::number;
+  }
+  return false;
+}
+
 }  // namespace
 
 int calibrate_command(const std::vector<std::string>& args, const Context& context) {
@@ -112,6 +121,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     std::vector<generic::ResidualStatistics> statistics;  // per channel
     std::vector<generic::NoiseDensity> density;           // per channel (noise_density only)
     std::vector<generic::TickNoise> tick_noise;           // per channel (tick_noise and resolution only)
+    bool one_number = false;  // the plugin takes one number for all channels: the largest is written
   };
   std::vector<Measured> measured;
   double settle_s = 0.0;
@@ -140,7 +150,8 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       const auto in = ports.find_input(spec.input);
       const auto minus = spec.minus_input.empty() ? std::nullopt : ports.find_input(spec.minus_input);
       if (!in || (!spec.minus_input.empty() && !minus)) continue;  // the contract test rules this out
-      Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}, {}};
+      Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}, {},
+                 takes_one_number(*info, spec.param)};
       if (minus) m.minus = pipeline.stage_input(i, *minus);
       // Only a correlation time needs the lags beyond one (and their ring of past samples).
       const double max_lag_s = spec.statistic == FaultFreeStatistic::correlation_time
@@ -267,7 +278,8 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       }
     }
   }
-  // The measured statistics, per parameter: a list per channel (correlation_time: one number).
+  // The measured statistics, per parameter: a list per channel, or one number, the largest over
+  // the channels, for a parameter the plugin takes once for all of them (calibration.hpp).
   std::vector<Json> measured_values;
   for (const auto& m : measured) {
     std::vector<double> values;
@@ -315,7 +327,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       }
       values.push_back(value);
     }
-    if (m.spec.statistic == FaultFreeStatistic::correlation_time) {
+    if (m.one_number) {
       measured_values.push_back(values.empty() ? 0.0 : *std::max_element(values.begin(), values.end()));
     } else {
       measured_values.push_back(values);

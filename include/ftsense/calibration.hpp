@@ -14,8 +14,7 @@
 //   rms                 sqrt(mean(r^2))
 //   correlation_time    the e-folding time of the autocorrelation (generic/residual_statistics.hpp:
 //                       -T / ln(rho1) for a first-order process, the lag where rho falls to 1/e
-//                       for a smooth one; 0 when rho1 <= 0): one number, the largest over the
-//                       channels
+//                       for a smooth one; 0 when rho1 <= 0)
 //   noise_density       q = sqrt(mean(n_i T m_i^2)), m_i the mean of the n_i finite samples of r
 //                       in consecutive windows of w = kNoiseDensityWindowS seconds (n_i T = w when
 //                       whole): the mean of r over w seconds has standard deviation q / sqrt(w)
@@ -26,6 +25,12 @@
 //                       above (generic/tick_noise.hpp)
 //   resolution          the quantisation step q of a reading: the lattice its changes lie on, 0
 //                       when continuous (generic/tick_noise.hpp)
+//
+// A parameter is written as its plugin's schema takes it: a list of one value per channel, or,
+// for a parameter of one number (a correlation time, a noise level every channel shares), the
+// largest over the channels. Largest is the side on which no channel's healthy samples exceed
+// what the plugin assumes, so only spreads, correlation times and resolutions may be one number
+// (the plugin contract test checks it); a centre is always per channel.
 
 #include <string_view>
 
@@ -39,7 +44,7 @@ enum class FaultFreeStatistic { centre, standard_deviation, rms, correlation_tim
 inline constexpr double kNoiseDensityWindowS = 2.0;
 
 struct CalibratedParam {
-  std::string_view param;               // the parameter written (a list per channel; correlation_time: a number)
+  std::string_view param;               // the parameter written (a list per channel, or one number: above)
   std::string_view input;               // the input port whose fault-free samples are measured
   FaultFreeStatistic statistic;
   std::string_view minus_input = {};    // when set, the samples are input - minus_input

@@ -232,6 +232,15 @@ TYPED_TEST_P(PluginContract, CalibratedParamsNameItsParametersAndInputs) {
     for (const CalibratedParam& c : TypeParam::calibrated_params) {
       const bool known = std::any_of(params.begin(), params.end(), [&](const auto& i) { return i.key == c.param; });
       EXPECT_TRUE(known) << "calibrated parameter " << c.param << " is no parameter";
+      // calibrate writes a list per channel, or the largest over the channels for a parameter of
+      // one number (calibration.hpp): the largest of a centre means nothing.
+      for (const auto& i : params) {
+        if (i.key != c.param) continue;
+        EXPECT_TRUE(i.kind == ParamKind::number_list || i.kind == ParamKind::number)
+            << "calibrated parameter " << c.param << " is neither a number nor a list of numbers";
+        EXPECT_FALSE(i.kind == ParamKind::number && c.statistic == FaultFreeStatistic::centre)
+            << "calibrated parameter " << c.param << ": a centre of one number for all channels";
+      }
       EXPECT_TRUE(ports.find_input(c.input).has_value()) << "calibrated from " << c.input << ", no input";
       if (!c.minus_input.empty()) {
         EXPECT_TRUE(ports.find_input(c.minus_input).has_value()) << "calibrated from - " << c.minus_input;

@@ -298,6 +298,7 @@
 #include <vector>
 
 #include "ftsense/biped/unmeasured_contact_loads.hpp"
+#include "ftsense/calibration.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/spike_episode.hpp"
 #include "ftsense/plugin.hpp"
@@ -313,6 +314,14 @@ class ContactForceFdi {
   // For the config reference's port table and the schema (plugin.hpp).
   static constexpr std::string_view example_params =
       R"({"points_per_foot": 4, "noise_std_N": 2.0, "weight_N": 1118.0})";
+
+  // `ftsense calibrate` measures the sensors' white noise and quantisation step on fault-free
+  // logs (tick_noise.hpp): one value for all channels, the largest, as every threshold in newtons
+  // here follows from them.
+  static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
+      {"noise_std_N", "measured", FaultFreeStatistic::tick_noise},
+      {"resolution_N", "measured", FaultFreeStatistic::resolution},
+  });
 
   struct Params {
     int points_per_foot = 1;
