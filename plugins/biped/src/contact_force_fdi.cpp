@@ -181,6 +181,12 @@ double ContactForceFdi::LineFit::span() const noexcept {
   return variance > 0 ? std::sqrt(12.0 * variance) : 0.0;  // the length of a uniform spread
 }
 
+double ContactForceFdi::LineFit::slope_scale() const noexcept {
+  if (n <= 0) return 0.0;
+  const double spread = stt - st * st / n;
+  return spread > 0 ? std::sqrt(spread) : 0.0;
+}
+
 void ContactForceFdi::LineFit::solve(double& a, double& s) const noexcept {
   if (n <= 0) return;
   const double det = n * stt - st * st;
@@ -267,6 +273,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   // every level change for a jump.
   const double sigma =
       std::sqrt(params.noise_std_N * params.noise_std_N + params.resolution_N * params.resolution_N / 12.0);
+  reading_sigma_N_ = sigma;
   const auto derive = [](double& value, double derived) {
     if (value == 0.0) value = derived;
   };
@@ -1139,7 +1146,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           c.fit.add(t, x, 1.0);
           double a = c.offset, s = 0.0;
           c.fit.solve(a, s);
-          const bool drifting = c.fit.span() >= 0.3 && std::abs(s) * c.fit.span() > params_.airborne_clear_N;
+          // A drift when the slope stands out of the readings' noise: beyond relation_z_ of its
+          // standard errors (the decision is taken again every tick: alpha = T / interval).
+          const bool drifting = settled && std::abs(s) * c.fit.slope_scale() > relation_z_ * reading_sigma_N_;
           c.type = drifting ? FaultType::drift : FaultType::offset;
           c.offset = drifting ? a : c.fit.sb / c.fit.n;
           c.slope = drifting ? s : 0.0;

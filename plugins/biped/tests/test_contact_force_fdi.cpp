@@ -889,6 +889,54 @@ TEST(ContactForceFdi, AnOffsetThatChangesSizeInTheAirIsFittedOnTheReadingsAfterT
   EXPECT_NEAR(estimate, 30.0, 0.5);
 }
 
+// The left foot swings over ticks [100, 350), 0.25 s (a quadruped's swing, shorter than the
+// 0.3 s the air's line once needed), its pads reading 0 N +- 0.5 N; l_foot/p1 reads a fault of
+// 10 N + slope (t - 0.15 s) from tick 150 (no step for the jump test: under 20 N). Returns the
+// type it shows on the tick before the landing; `drift_from` the first tick it shows drift (-1:
+// none), `estimate_after_landing` its fault estimate 50 ticks after the landing.
+FaultType fault_in_a_short_swing(double slope_N_s, int& drift_from, double& estimate_after_landing) {
+  Feet feet(suralp(), 1e-3);
+  FaultType before_landing = FaultType::none;
+  drift_from = -1;
+  for (int k = 0; k < 400; ++k) {
+    const bool swinging = k >= 100 && k < 350;
+    feet.left_foot_at(swinging ? 0.03 : 0.0);
+    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + wiggle;
+    }
+    if (k >= 150) feet.measured[0] += 10.0 + slope_N_s * (k - 150) * 1e-3;
+    feet.step(800.0);
+    if (drift_from < 0 && feet.type(0) == FaultType::drift) drift_from = k;
+    if (k == 349) before_landing = feet.type(0);
+    if (k == 399) estimate_after_landing = feet.outs[ContactForceFdi::kFaultEstimate][0];
+  }
+  return before_landing;
+}
+
+TEST(ContactForceFdi, ADriftIsToldFromAnOffsetInAShortSwingWhereItsSlopeStandsOutOfTheNoise) {
+  // The air test raises the fault once the swing's mean passes airborne_threshold_N (8 N), on
+  // tick 222 at 40 N/s, and fits a line to the readings from there. A drift is a slope beyond
+  // z = 5.71 of its standard errors (the two-sided normal quantile of alpha = T /
+  // false_alarm_interval_s = 1e-3 / 86400, as the decision is taken again every tick), the
+  // standard error sigma_x / sqrt(sum (t - mean t)^2), sigma_x = 2 N. After n readings,
+  // sqrt(sum (t - mean t)^2) = T sqrt(n (n^2 - 1) / 12): at n = 100 (tick 321), 40 N/s x 0.2887 s
+  // = 11.55 N > 5.71 x 2 N = 11.42 N (n = 99: 11.37 N). Before, a drift needed 0.3 s of air
+  // readings, and this one stayed an offset.
+  int drift_from = 0;
+  double estimate = 0.0;
+  EXPECT_EQ(fault_in_a_short_swing(40.0, drift_from, estimate), FaultType::drift);
+  EXPECT_EQ(drift_from, 321);
+  // Extrapolated through the landing: 10 + 40 x 0.249 N, 50 ticks after it.
+  EXPECT_NEAR(estimate, 10.0 + 40.0 * 0.249, 1.0);
+  // 2 N/s: raised on tick 267, 83 readings to the landing, 0.44 N: no slope to tell, an offset.
+  EXPECT_EQ(fault_in_a_short_swing(2.0, drift_from, estimate), FaultType::offset);
+  EXPECT_EQ(drift_from, -1);
+  EXPECT_EQ(fault_in_a_short_swing(0.0, drift_from, estimate), FaultType::offset);
+  EXPECT_EQ(drift_from, -1);
+  EXPECT_NEAR(estimate, 10.0, 0.5);
+}
+
 // Both feet down for the whole trace, every pad carrying 100 N; l_foot/p1 (and, with `twin` N,
 // r_foot/p1 by that much) steps +60 N at tick 200 (an offset, raised by the jump test) and, unless
 // `ends` is false, l_foot/p1's offset fades out over ticks [1200, 1300) at 0.6 N per tick (no

@@ -243,7 +243,9 @@
 // also trips the spike test). A foot touches down when all its pads come below
 // touchdown_height_m. Offset and drift are
 // told apart by a line fitted to the fault's direct measurements (airborne means, onset jump):
-// a drift when, over at least 0.3 s of them, the line moves by more than airborne_clear_N;
+// a drift when, once the air's mean has settled (three of its windows), the line's slope s
+// stands out of the readings' noise: |s| sqrt(sum (t - mean t)^2) > z sigma_x, z the two-sided
+// normal quantile of alpha = T / false_alarm_interval_s (the decision is taken every tick);
 // a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
 // a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
@@ -376,6 +378,9 @@ class ContactForceFdi {
     void clear(double origin) noexcept { *this = LineFit{}; t0 = origin; }
     void add(double t, double b, double weight) noexcept;
     [[nodiscard]] double span() const noexcept;
+    // sqrt(sum w (t - mean t)^2) [s]: a slope fitted under white noise sigma has standard error
+    // sigma / slope_scale().
+    [[nodiscard]] double slope_scale() const noexcept;
     void solve(double& a, double& s) const noexcept;
   };
 
@@ -671,6 +676,7 @@ class ContactForceFdi {
   std::vector<double> relation_step_square_;  // feet x relations
   std::vector<double> relation_step_count_;   // per foot
   double relation_z_ = 6.0;  // the two-sided normal quantile of alpha = T / false_alarm_interval_s
+  double reading_sigma_N_ = 2.0;  // sigma_x = sqrt(noise_std_N^2 + resolution_N^2 / 12)
 };
 
 }  // namespace ftsense::biped
