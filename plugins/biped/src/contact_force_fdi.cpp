@@ -337,6 +337,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_stance_.assign(n, StanceSums{});
   gain_raw_rr_.assign(n, 0.0);
   gain_held_ticks_.assign(n, 0);
+  joint_gain_set_.assign(n, 0);
   gain_held_rr_.assign(n, 0.0);
   stance_powers_.assign(n, StancePowers{});
   stance_cusum_.assign(n, StancePowers{});
@@ -1659,6 +1660,30 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     restart_gain_window();
     return;
   }
+  // Every channel held as a gain, read as it is together with the others (the joint test below).
+  {
+    double joint_raw = residual;
+    int gains = 0;
+    bool same_set = true;
+    for (std::size_t j = 0; j < channels_.size(); ++j) {
+      const bool gain = channels_[j].type == FaultType::gain;
+      if (gain) {
+        joint_raw += measured[j] - recovered[j];
+        ++gains;
+      }
+      same_set = same_set && (joint_gain_set_[j] != 0) == gain;
+      joint_gain_set_[j] = gain ? 1 : 0;
+    }
+    if (!same_set || gains < 2) {
+      joint_raw_rr_ = joint_held_rr_ = 0.0;
+      joint_gain_ticks_ = 0;
+    }
+    if (gains >= 2) {
+      joint_raw_rr_ = f * joint_raw_rr_ + joint_raw * joint_raw;
+      joint_held_rr_ = f * joint_held_rr_ + residual * residual;
+      joint_gain_ticks_ = std::min(joint_gain_ticks_ + 1, kCountCap);
+    }
+  }
   // What the residual would be if a channel held as a gain fault were read as it is, against what
   // it is with the correction, both over the ticks since the correction was last set.
   // In stance, the same comparison for a gain and for an offset: an offset whose end stepped
@@ -1740,6 +1765,24 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       readmitted = true;
     }
   }
+  // Two or more gains, none of which wins alone: each is judged with the others' corrections
+  // still in the residual, so two wrong ones hold each other (a heel's chatter at 200 Hz swapped
+  // load between two pads within a tick; taken for two jumps, they were typed gains once their
+  // pads read zero in the air, and held for 15 s). Taken as they are together, their readings
+  // leave no more residual power than all their corrections: every one is healthy again. Right
+  // corrections leave less than the readings, so a pair of true gains stays held.
+  if (!readmitted && joint_gain_ticks_ >= gain_window_ticks_ && joint_raw_rr_ <= joint_held_rr_) {
+    bool loaded = true;
+    for (std::size_t j = 0; j < channels_.size(); ++j) {
+      if (joint_gain_set_[j] != 0) loaded = loaded && gain_xx_[j] >= min_power;
+    }
+    for (std::size_t j = 0; j < channels_.size() && loaded; ++j) {
+      if (joint_gain_set_[j] != 0) {
+        clear(channels_[j]);
+        readmitted = true;
+      }
+    }
+  }
   if (readmitted) {
     restart_gain_window();
     return;
@@ -1812,6 +1855,9 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
 }
 
 void ContactForceFdi::restart_gain_window() noexcept {
+  std::fill(joint_gain_set_.begin(), joint_gain_set_.end(), 0);
+  joint_raw_rr_ = joint_held_rr_ = 0.0;
+  joint_gain_ticks_ = 0;
   std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
   std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
   std::fill(gain_x_.begin(), gain_x_.end(), 0.0);

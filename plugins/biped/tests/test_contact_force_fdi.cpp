@@ -833,6 +833,53 @@ TEST(ContactForceFdi, AGainThatEndedInTheAirIsDroppedWithinTheNextStance) {
   EXPECT_EQ(doubling_gain_cleared_at(false, recovered), -1);
 }
 
+// As doubling_gain_cleared_at, for two pads of the left foot at once: from tick 100 to the lift
+// at 300, l_foot/p1 reads +100 N and l_foot/p2 -30 N off their 100 N (taken in the air for gains
+// of 2 and 0.7). They land at tick 500 on 300 N each and read it (healthy) or 2 and 0.7 times it.
+// Returns the first tick from 500 on where neither is a gain fault (-1: none).
+int two_gains_cleared_at(bool healthy) {
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 4000; ++k) {
+    const bool lifted = k >= 300 && k < 500;
+    feet.left_foot_at(lifted ? 0.1 : 0.0);
+    const double load = lifted ? 0.0 : k < 300 ? 100.0 : 300.0;
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = j < 4 ? load + (k % 2) : moving(j, k, 0.0);
+    double truth = 0.0;
+    for (double x : feet.measured) truth += x;
+    if (k >= 100 && k < 300) {
+      feet.measured[0] += 100.0;
+      feet.measured[1] -= 30.0;
+    }
+    if (k >= 500 && !healthy) {
+      feet.measured[0] *= 2.0;
+      feet.measured[1] *= 0.7;
+    }
+    feet.step(truth);
+    if (k == 499) {
+      EXPECT_EQ(feet.type(0), FaultType::gain) << "l_foot/p1: the jump, read 0 in the air, is a gain";
+      EXPECT_EQ(feet.type(1), FaultType::gain) << "l_foot/p2: the jump, read 0 in the air, is a gain";
+    }
+    if (k >= 500 && feet.type(0) != FaultType::gain && feet.type(1) != FaultType::gain) return k;
+  }
+  return -1;
+}
+
+TEST(ContactForceFdi, TwoGainsThatEndedTogetherAreDroppedTogether) {
+  // Healthy on 300 N, the corrections x / k take +150 N and -128.6 N off the readings, and leave
+  // the residual at -21.4 N. Each gain judged alone leaves the other's correction in it (128.6 N
+  // and 150 N: worse than -21.4 N), and the one-correction stance comparison does not judge two,
+  // so neither was ever dropped. Taken as they are together, the readings leave the residual at
+  // 0.5 N: both are dropped once the joint sums hold the gain window (2 s of usable ticks: from
+  // when both were typed gains in the air, the touchdown guard left out), within 2 s of the
+  // guard's end.
+  const int cleared = two_gains_cleared_at(true);
+  std::printf("two gains healthy after landing at tick 500: dropped at tick %d\n", cleared);
+  EXPECT_GT(cleared, 500);
+  EXPECT_LT(cleared, 500 + 150 + 2000);
+  // Still faulty: their corrections are what lower the residual, and they stay.
+  EXPECT_EQ(two_gains_cleared_at(false), -1);
+}
+
 // The left foot swings over ticks [100, land); l_foot/p1 reads an offset of `before` N from tick
 // 150, raised in the air, which becomes `after` N at tick 400, still in the air. Returns the tick
 // the channel is re-admitted (-1: never) and its fault estimate 50 ticks after the landing.

@@ -171,7 +171,11 @@
 //             and re-admits the channel when k comes back within gain_threshold / 2 of 1, or, by
 //             model comparison (no isolation needed), when it carried load (RMS above
 //             gain_min_load_N) and its reading taken as it is leaves no more residual power than
-//             its correction does over the gain window since the correction was set; and
+//             its correction does over the gain window since the correction was set (two or
+//             more gains, none of which wins alone as each keeps the others' corrections in the
+//             residual: all of them together, when their readings taken as they are leave no
+//             more power than all their corrections over the window since the set last changed,
+//             each having carried load); and
 //             within one stance, once it has clear_s of usable ticks, when the correction leaves
 //             4 times the residual power the reading leaves as it is, and moved the reading by
 //             gain_min_load_N RMS or more: the two explanations of that stance, compared (for an
@@ -607,6 +611,11 @@ class ContactForceFdi {
   std::vector<int> gain_held_ticks_;
   std::vector<double> gain_raw_rr_;
   std::vector<double> gain_held_rr_;
+  // The same for every channel held as a gain together, while two or more are and the set has
+  // not changed: r_joint = r + sum over them of (N_j - N^_j); which channels the sums are for.
+  std::vector<char> joint_gain_set_;
+  int joint_gain_ticks_ = 0;
+  double joint_raw_rr_ = 0.0, joint_held_rr_ = 0.0;
   // The same powers summed (not weighted) over usable ticks on the ground while held as a gain or
   // an offset, for a correction gone wrong in a stance: <r_raw, r_raw>, <r, r>, the correction's
   // own power <N_j - N^_j, N_j - N^_j>, and, for an offset raised by a jump under load and not
