@@ -230,6 +230,7 @@ constexpr double kJumpSigmas = 10.0, kJumpConfirmSigmas = 12.5, kSpikeSigmas = 3
 // dynamics, about 20 N RMS, 1.8 % of W, on the simulated SURALP) and the load a channel must carry for the
 // gain regression.
 constexpr double kSumThresholdWeight = 0.07, kGainMinLoadWeight = 0.025;
+
 }  // namespace
 
 ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& context)
@@ -273,7 +274,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   // every level change for a jump.
   const double sigma =
       std::sqrt(params.noise_std_N * params.noise_std_N + params.resolution_N * params.resolution_N / 12.0);
-  reading_sigma_N_ = sigma;
+  slope_sigma_N_ = sigma;
   const auto derive = [](double& value, double derived) {
     if (value == 0.0) value = derived;
   };
@@ -1149,7 +1150,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           c.fit.solve(a, s);
           // A drift when the slope stands out of the readings' noise: beyond relation_z_ of its
           // standard errors (the decision is taken again every tick: alpha = T / interval).
-          const bool drifting = settled && std::abs(s) * c.fit.slope_scale() > relation_z_ * reading_sigma_N_;
+          // Until the swing's mean has settled, the type stays as it is (the fit spans the
+          // swings before: a drift stays a drift at the start of the next).
+          const bool drifting = settled ? std::abs(s) * c.fit.slope_scale() > relation_z_ * slope_sigma_N_
+                                        : c.type == FaultType::drift;
           c.type = drifting ? FaultType::drift : FaultType::offset;
           c.offset = drifting ? a : c.fit.sb / c.fit.n;
           c.slope = drifting ? s : 0.0;
@@ -1769,9 +1773,11 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // still in the residual, so two wrong ones hold each other (a heel's chatter at 200 Hz swapped
   // load between two pads within a tick; taken for two jumps, they were typed gains once their
   // pads read zero in the air, and held for 15 s). Taken as they are together, their readings
-  // leave no more residual power than all their corrections: every one is healthy again. Right
-  // corrections leave less than the readings, so a pair of true gains stays held.
-  if (!readmitted && joint_gain_ticks_ >= gain_window_ticks_ && joint_raw_rr_ <= joint_held_rr_) {
+  // leave a quarter of the residual power of all their corrections (the stance comparison's
+  // margin): every one is healthy again. Not at equal powers: a true gain among them may leave
+  // less than the wrong ones' corrections, and true gains whose errors cancel in the sum leave
+  // the two alike.
+  if (!readmitted && joint_gain_ticks_ >= gain_window_ticks_ && joint_held_rr_ > 4.0 * joint_raw_rr_) {
     bool loaded = true;
     for (std::size_t j = 0; j < channels_.size(); ++j) {
       if (joint_gain_set_[j] != 0) loaded = loaded && gain_xx_[j] >= min_power;

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -982,6 +983,67 @@ TEST(ContactForceFdi, ADriftIsToldFromAnOffsetInAShortSwingWhereItsSlopeStandsOu
   EXPECT_EQ(fault_in_a_short_swing(0.0, drift_from, estimate), FaultType::offset);
   EXPECT_EQ(drift_from, -1);
   EXPECT_NEAR(estimate, 10.0, 0.5);
+}
+
+TEST(ContactForceFdi, ADriftStaysADriftAtTheStartOfItsNextSwing) {
+  // As fault_in_a_short_swing at 40 N/s, with a second swing over ticks [600, 850): the line
+  // spans both swings, and the type stays drift through the stance and the second swing's first
+  // readings (its swing mean settles only after three of the air test's windows). Before, those
+  // readings typed it an offset at the fits' mean level until they had settled.
+  Feet feet(suralp(), 1e-3);
+  int drift_from = -1;
+  for (int k = 0; k < 900; ++k) {
+    const bool swinging = (k >= 100 && k < 350) || (k >= 600 && k < 850);
+    feet.left_foot_at(swinging ? 0.03 : 0.0);
+    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + wiggle;
+    }
+    if (k >= 150) feet.measured[0] += 10.0 + 40.0 * (k - 150) * 1e-3;
+    feet.step(800.0);
+    if (drift_from < 0 && feet.type(0) == FaultType::drift) drift_from = k;
+    if (drift_from >= 0) {
+      ASSERT_EQ(feet.type(0), FaultType::drift) << "tick " << k << ", a drift since tick " << drift_from;
+    }
+  }
+  EXPECT_EQ(drift_from, 321);
+  // Its estimate at the end: 10 + 40 x 0.749 N (the line through both swings).
+  EXPECT_NEAR(feet.outs[ContactForceFdi::kFaultEstimate][0], 10.0 + 40.0 * 0.749, 1.0);
+}
+
+TEST(ContactForceFdi, AnOffsetOnAQuantisersLevelBoundaryIsNoDrift) {
+  // 10 N steps under 0.7 N of noise (a coarse ADC the noise cannot dither): an offset of 15 N in
+  // the air lies on the boundary of two levels, and its readings toggle between 10 and 20 N at
+  // random, a standard deviation of 5 N where the drift test assumes sigma_x = sqrt(0.7^2 +
+  // 10^2 / 12) = 2.97 N. Its line's slope must still not pass z = 5.71 of its standard errors
+  // on any of these 20 swings of 0.5 s: the test is repeated every tick, but on fits whose ticks
+  // are correlated, so z is conservative by more than that factor (measured, not derived).
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    std::printf("seed %u\n", seed);
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 0.7);
+    const auto quantised = [](double x) { return 10.0 * std::round(x / 10.0); };
+    Feet feet(suralp(10.0), 1e-3);
+    feet.fdi = ContactForceFdi([] {
+      ContactForceFdi::Params p = suralp(10.0);
+      p.noise_std_N = 0.7;
+      return p;
+    }(), StageContext(1e-3, "fdi"));
+    feet.fdi.reset();
+    for (int k = 0; k < 650; ++k) {
+      const bool swinging = k >= 100 && k < 600;
+      feet.left_foot_at(swinging ? 0.03 : 0.0);
+      for (std::size_t j = 0; j < kChannels; ++j) {
+        feet.measured[j] = quantised((j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + noise(rng));
+      }
+      if (swinging && k >= 150) feet.measured[0] = quantised(15.0 + noise(rng));
+      feet.step(800.0);
+      ASSERT_NE(feet.type(0), FaultType::drift) << "seed " << seed << ", tick " << k;
+      if (k == 599) {
+        EXPECT_EQ(feet.type(0), FaultType::offset) << "seed " << seed << ": raised by the air test";
+      }
+    }
+  }
 }
 
 // Both feet down for the whole trace, every pad carrying 100 N; l_foot/p1 (and, with `twin` N,

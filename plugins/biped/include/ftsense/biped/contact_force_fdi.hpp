@@ -173,9 +173,9 @@
 //             gain_min_load_N) and its reading taken as it is leaves no more residual power than
 //             its correction does over the gain window since the correction was set (two or
 //             more gains, none of which wins alone as each keeps the others' corrections in the
-//             residual: all of them together, when their readings taken as they are leave no
-//             more power than all their corrections over the window since the set last changed,
-//             each having carried load); and
+//             residual: all of them together, when their readings taken as they are leave a
+//             quarter of the power of all their corrections, over the ticks since the set last
+//             changed (a gain window at least), each having carried load over the window); and
 //             within one stance, once it has clear_s of usable ticks, when the correction leaves
 //             4 times the residual power the reading leaves as it is, and moved the reading by
 //             gain_min_load_N RMS or more: the two explanations of that stance, compared (for an
@@ -247,9 +247,11 @@
 // also trips the spike test). A foot touches down when all its pads come below
 // touchdown_height_m. Offset and drift are
 // told apart by a line fitted to the fault's direct measurements (airborne means, onset jump):
-// a drift when, once the air's mean has settled (three of its windows), the line's slope s
-// stands out of the readings' noise: |s| sqrt(sum (t - mean t)^2) > z sigma_x, z the two-sided
-// normal quantile of alpha = T / false_alarm_interval_s (the decision is taken every tick);
+// a drift when, once the swing's air mean has settled (three of its windows), the line's slope
+// s stands out of the readings' noise: |s| sqrt(sum (t - mean t)^2) > z sigma_x, z the
+// two-sided normal quantile of alpha = T / false_alarm_interval_s (the decision is taken every
+// tick, on fits whose ticks are correlated: conservative); until then the type stays (the line
+// spans the swings before);
 // a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
 // a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
@@ -685,7 +687,7 @@ class ContactForceFdi {
   std::vector<double> relation_step_square_;  // feet x relations
   std::vector<double> relation_step_count_;   // per foot
   double relation_z_ = 6.0;  // the two-sided normal quantile of alpha = T / false_alarm_interval_s
-  double reading_sigma_N_ = 2.0;  // sigma_x = sqrt(noise_std_N^2 + resolution_N^2 / 12)
+  double slope_sigma_N_ = 2.0;  // the drift test's reading sigma: sigma_x
 };
 
 }  // namespace ftsense::biped
