@@ -230,7 +230,6 @@ constexpr double kJumpSigmas = 10.0, kJumpConfirmSigmas = 12.5, kSpikeSigmas = 3
 // dynamics, about 20 N RMS, 1.8 % of W, on the simulated SURALP) and the load a channel must carry for the
 // gain regression.
 constexpr double kSumThresholdWeight = 0.07, kGainMinLoadWeight = 0.025;
-
 }  // namespace
 
 ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& context)
@@ -274,7 +273,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   // every level change for a jump.
   const double sigma =
       std::sqrt(params.noise_std_N * params.noise_std_N + params.resolution_N * params.resolution_N / 12.0);
-  slope_sigma_N_ = sigma;
+  reading_sigma_N_ = sigma;
   const auto derive = [](double& value, double derived) {
     if (value == 0.0) value = derived;
   };
@@ -1152,7 +1151,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           // standard errors (the decision is taken again every tick: alpha = T / interval).
           // Until the swing's mean has settled, the type stays as it is (the fit spans the
           // swings before: a drift stays a drift at the start of the next).
-          const bool drifting = settled ? std::abs(s) * c.fit.slope_scale() > relation_z_ * slope_sigma_N_
+          const bool drifting = settled ? std::abs(s) * c.fit.slope_scale() > relation_z_ * reading_sigma_N_
                                         : c.type == FaultType::drift;
           c.type = drifting ? FaultType::drift : FaultType::offset;
           c.offset = drifting ? a : c.fit.sb / c.fit.n;

@@ -687,7 +687,7 @@ class ContactForceFdi {
   std::vector<double> relation_step_square_;  // feet x relations
   std::vector<double> relation_step_count_;   // per foot
   double relation_z_ = 6.0;  // the two-sided normal quantile of alpha = T / false_alarm_interval_s
-  double slope_sigma_N_ = 2.0;  // the drift test's reading sigma: sigma_x
+  double reading_sigma_N_ = 2.0;  // sigma_x = sqrt(noise_std_N^2 + resolution_N^2 / 12)
 };
 
 }  // namespace ftsense::biped
