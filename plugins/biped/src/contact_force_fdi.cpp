@@ -403,6 +403,7 @@ void ContactForceFdi::reset() noexcept {
   residual_smoothed_ = 0.0;
   residual_smoothed_started_ = false;
   still_window_active_ = false;
+  unread_candidate_ = channels_.size();
   still_window_settle_until_s_ = -1e300;
   started_ = false;
   group_pending_ = false;
@@ -1294,6 +1295,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
   }
   still_reading_test(measured, height, residual, fz_ok && all_finite_readings, any_step, t);
+  unread_load_test(height, fz_ok && all_finite_readings && std::isfinite(residual), t);
   gain_regression(measured, recovered, height, residual,
                   fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
   // The recovered value within what the physics allows, before (or while) the tests decide. Only
@@ -1546,6 +1548,57 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
     c.following = false;
   }
   still_window_active_ = false;  // a fresh window (a raise restarts it with a settle, too)
+}
+
+void ContactForceFdi::unread_load_test(std::span<const double> height, bool usable, double t) noexcept {
+  // The pads read short of the total force by more than a reading at the air level can hide
+  // (zero_evidence_above_N_: the total force's error bound, plus a driver's zero clamp), and on
+  // one foot one healthy pad on the ground reads its air level while another healthy one carries
+  // load: under "that pad reads nothing of its load" it carries the shortfall. Substituted or
+  // gain-corrected loaded channels absorb or scale the residual: judged only without them.
+  bool judged = usable && residual_smoothed_started_ && residual_smoothed_ < -zero_evidence_above_N_;
+  for (std::size_t j = 0; j < channels_.size() && judged; ++j) {
+    const Channel& c = channels_[j];
+    const bool additive = c.type == FaultType::offset || c.type == FaultType::drift || c.type == FaultType::spikes;
+    judged = c.type == FaultType::none || additive || height[j] > params_.airborne_height_m;
+  }
+  std::size_t candidates = 0, culprit = channels_.size();
+  for (std::size_t f = 0; f < feet_ && judged; ++f) {
+    bool loaded = false;
+    std::size_t at_air_level = 0, last = channels_.size();
+    for (std::size_t i = 0; i < feet_points_; ++i) {
+      const std::size_t j = f * feet_points_ + i;
+      const Channel& c = channels_[j];
+      if (c.type != FaultType::none || height[j] > params_.airborne_height_m) continue;
+      if (c.smoothed > params_.airborne_threshold_N) {
+        loaded = true;
+      } else if (c.smoothed > -params_.airborne_threshold_N) {
+        ++at_air_level;
+        last = j;
+      }
+    }
+    if (loaded && at_air_level > 0) {
+      candidates += at_air_level;
+      culprit = last;
+    }
+  }
+  // Two or more cannot be told apart (a sole landing on its heel leaves both toe pads unloaded).
+  if (candidates != 1) {
+    unread_candidate_ = channels_.size();
+    return;
+  }
+  if (culprit != unread_candidate_) {
+    unread_candidate_ = culprit;
+    unread_since_s_ = t;
+    return;
+  }
+  // Held for the smoother's settling: an impact's transient in the total force dies out in it.
+  if (t - unread_since_s_ < smoother_settle_s_) return;
+  Channel& c = channels_[culprit];
+  raise(c, FaultType::frozen, t);
+  c.frozen_by_follow = true;  // re-admitted when its reading follows the load again
+  c.following = false;
+  unread_candidate_ = channels_.size();
 }
 
 void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_force, double t) noexcept {

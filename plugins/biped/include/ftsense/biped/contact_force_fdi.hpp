@@ -225,6 +225,17 @@
 //             The decision needs the tick's residual, known with its outputs: the flag shows
 //             from the next tick. Its known limit: with the reference itself moving and one
 //             reading still (steadily loaded), that reading is taken as stuck.
+//   unread    (no flag yet) a pad that reads nothing of the load it lands on: a dead sensor at its
+//             air level, whose landing steps restart the still test's window. While the smoothed
+//             residual r (as above) stays below -(sum_threshold_N + zero_clamp_N) (the pads read
+//             short of F_z by more than its error and a clamped zero can hide) and exactly one pad of the robot is on the ground, not
+//             flagged, with its smoothed reading within +-airborne_threshold_N while a healthy
+//             neighbour on its foot reads above it, that pad is the candidate; held for the
+//             smoother's settling (five time constants: an impact's error in F_z dies out in it),
+//             it is raised frozen (re-admitted by the follow test). Two such pads (a sole on its
+//             heel) cannot be told apart, and neither is blamed. Not judged while a loaded
+//             channel is flagged as anything but offset, drift or spikes (a substituted share
+//             absorbs r). Point feet (one channel per foot) have no neighbour and are not judged.
 //   offset or gain  a jump on a loaded pad (load L0 > gain_min_load_N before it) is an offset
 //             b or a gain k = 1 + b / L0 alike at its onset; as the load moves they part. Over the
 //             follow test's span, the corrected sum residual r (the channel taken as x - b) and
@@ -511,6 +522,9 @@ class ContactForceFdi {
   // The still-reading test (header comment), once the corrected sum residual of this tick is known.
   void still_reading_test(std::span<const double> measured, std::span<const double> height, double residual,
                           bool usable, bool stepped, double t) noexcept;
+  // The unread-load test (header comment), after the still-reading test has smoothed this tick's
+  // residual.
+  void unread_load_test(std::span<const double> height, bool usable, double t) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
   void follow_test(Channel& c, double reading, double virtual_force, double t) noexcept;
   // The offset-or-gain test (header comment), once the corrected sum residual of this tick is known.
@@ -558,6 +572,9 @@ class ContactForceFdi {
   double still_window_start_s_ = 0.0;
   double still_window_settle_until_s_ = -1e300;
   double still_residual_lo_ = 0.0, still_residual_hi_ = 0.0;
+  // The unread-load test: its one candidate (channels_.size(): none) and since when it has been.
+  std::size_t unread_candidate_ = 0;
+  double unread_since_s_ = 0.0;
   bool started_ = false;
   double residual_before_touchdown_ = 0.0;  // its mean over the jump window before the guard
   bool residual_before_known_ = false;     // the ring held a whole window then
