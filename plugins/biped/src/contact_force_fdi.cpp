@@ -351,6 +351,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
   last_touchdown_s_.assign(feet_, -1e9);
   foot_airborne_.assign(feet_, 0);
+  foot_shows_load_.assign(feet_, 0);
+  foot_reads_unloaded_.assign(feet_, 0);
   foot_sum_.assign(feet_, {0.0, 0.0});
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
@@ -1232,6 +1234,33 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // The plane holds in full contact only: every pad on the ground, every known one loaded.
       if (airborne || (!unknown && !(recovered[j] > params_.airborne_threshold_N))) {
         plane_usable_[j / feet_points_] = 0;
+      }
+    }
+    // A foot whose readable pads on the ground all read their air level carries next to nothing
+    // (its sole is lifting or just landing): while a foot that shows load holds an unknown pad
+    // too, that pad takes what the total force leaves, and this foot's unknown pads (but a
+    // saturated one, which reads its load) carry 0. Without such a foot they share as before.
+    bool loaded_foot_unknown = false;
+    for (std::size_t f = 0; f < feet_; ++f) {
+      foot_shows_load_[f] = 0;
+      foot_reads_unloaded_[f] = 0;
+      bool holds_unknown = false;
+      for (std::size_t i = 0; i < feet_points_; ++i) {
+        const std::size_t j = f * feet_points_ + i;
+        if (unknown_[j] != 0) {
+          holds_unknown = true;
+        } else if (!(height[j] > params_.airborne_height_m)) {
+          if (recovered[j] > params_.airborne_threshold_N) foot_shows_load_[f] = 1;
+          foot_reads_unloaded_[f] = 1;
+        }
+      }
+      if (foot_shows_load_[f] != 0) foot_reads_unloaded_[f] = 0;
+      loaded_foot_unknown = loaded_foot_unknown || (holds_unknown && foot_reads_unloaded_[f] == 0);
+    }
+    for (std::size_t j = 0; j < channels_.size() && loaded_foot_unknown; ++j) {
+      if (unknown_[j] != 0 && foot_reads_unloaded_[j / feet_points_] != 0 && lower_bound_[j] == 0.0) {
+        unknown_[j] = 0;
+        recovered[j] = 0.0;
       }
     }
     unmeasured_.solve(recovered, unknown_, lower_bound_, plane_usable_, fz - known_sum);

@@ -1321,6 +1321,33 @@ TEST(ContactForceFdi, TwoFrozenPadsOnTwoFeetAreRecoveredFromTheirSolesPlanes) {
   EXPECT_GT(equal_shares, 50.0);
 }
 
+TEST(ContactForceFdi, AFrozenPadOnAFootWhoseOtherPadsReadNothingCarriesNothingOfAnotherFootsLoad) {
+  // Pads 3 (left) and 6 (right) stick at their readings from tick 300 (exact repeats: frozen and
+  // substituted). From tick 600 the left foot is about to lift: on the ground still, its loads 0,
+  // its healthy pads reading +-1 N. The right foot carries all of F_z; pad 6 carries what the
+  // right foot's other pads leave of it, and pad 3 nothing. No sole layout: no plane relation,
+  // the sum alone (equal shares gave each half of pad 6's 240 N).
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 800; ++k) {
+    const double noise = k % 2 == 0 ? 1.0 : -1.0;
+    double fz = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double load = j < 4 ? (k < 600 ? 150.0 + 10.0 * static_cast<double>(j) : 0.0)
+                                 : (k < 600 ? 200.0 : 240.0) + 10.0 * static_cast<double>(j - 4);
+      fz += load;
+      if (k < 300 || (j != 3 && j != 6)) feet.measured[j] = load + noise;
+    }
+    feet.step(fz);
+    if (k >= 700) {
+      ASSERT_EQ(feet.type(3), FaultType::frozen) << "tick " << k;
+      ASSERT_EQ(feet.type(6), FaultType::frozen) << "tick " << k;
+      // F_z less the readable pads as read: 260 N, less the noise of six pads (+-6 N).
+      EXPECT_NEAR(feet.outs[ContactForceFdi::kRecovered][6], 260.0 - 6.0 * noise, 1e-9) << "tick " << k;
+      EXPECT_EQ(feet.outs[ContactForceFdi::kRecovered][3], 0.0) << "tick " << k;
+    }
+  }
+}
+
 TEST(ContactForceFdi, PointsMustDescribeEveryChannelOfAFoot) {
   auto p = suralp();
   p.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}};

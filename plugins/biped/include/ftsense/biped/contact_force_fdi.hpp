@@ -290,7 +290,9 @@
 // channels are counted, apportioned among the substituted channels on the ground by least squares
 // on the sum and, when `points` gives the soles' layout and two or more are substituted, on the
 // plane a rigid sole's loads lie on in full contact (unmeasured_contact_loads.hpp; without it,
-// equal shares), each at least 0 and a saturated pad at least its reading, its ceiling),
+// equal shares), each at least 0 and a saturated pad at least its reading, its ceiling; a
+// substituted pad on a foot whose readable pads on the ground all read their air level carries 0
+// while a foot that shows load holds a substituted pad too: that sole is lifting or landing),
 // virtual (leave-one-out: 0 when airborne, else F_z - sum of the other channels' recovered
 // values; NaN while F_z is not finite, the virtual sensor not ready), virtual_ready (1 while F_z
 // is finite; while it is not, the sum residual holds and no channel is judged on it).
@@ -572,6 +574,9 @@ class ContactForceFdi {
   double still_window_start_s_ = 0.0;
   double still_window_settle_until_s_ = -1e300;
   double still_residual_lo_ = 0.0, still_residual_hi_ = 0.0;
+  // Per foot, for the substituted loads' split: a readable pad on the ground carries load; all
+  // of them read their air level.
+  std::vector<char> foot_shows_load_, foot_reads_unloaded_;
   // The unread-load test: its one candidate (channels_.size(): none) and since when it has been.
   std::size_t unread_candidate_ = 0;
   double unread_since_s_ = 0.0;
