@@ -406,6 +406,7 @@ void ContactForceFdi::reset() noexcept {
   residual_smoothed_started_ = false;
   still_window_active_ = false;
   unread_candidate_ = channels_.size();
+  residual_within_bound_s_ = -1e300;
   still_window_settle_until_s_ = -1e300;
   started_ = false;
   group_pending_ = false;
@@ -1236,10 +1237,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         plane_usable_[j / feet_points_] = 0;
       }
     }
-    // A foot whose readable pads on the ground all read their air level carries next to nothing
-    // (its sole is lifting or just landing): while a foot that shows load holds an unknown pad
-    // too, that pad takes what the total force leaves, and this foot's unknown pads (but a
-    // saturated one, which reads its load) carry 0. Without such a foot they share as before.
+    // A foot whose readable pads on the ground all read their air level, past its landing's
+    // guard, carries next to nothing (its sole is lifting): while another foot not seen unloaded
+    // holds an unknown pad too, that pad takes what the total force leaves, and this foot's
+    // unknown pads (but a saturated one, which reads its load) carry 0. Else they share as before.
     bool loaded_foot_unknown = false;
     for (std::size_t f = 0; f < feet_; ++f) {
       foot_shows_load_[f] = 0;
@@ -1254,7 +1255,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           foot_reads_unloaded_[f] = 1;
         }
       }
-      if (foot_shows_load_[f] != 0) foot_reads_unloaded_[f] = 0;
+      // A sole landing may stand on its substituted pad alone (a heel first): lifting ones only.
+      if (foot_shows_load_[f] != 0 || t - last_touchdown_s_[f] < params_.touchdown_guard_s) foot_reads_unloaded_[f] = 0;
       loaded_foot_unknown = loaded_foot_unknown || (holds_unknown && foot_reads_unloaded_[f] == 0);
     }
     for (std::size_t j = 0; j < channels_.size() && loaded_foot_unknown; ++j) {
@@ -1584,8 +1586,16 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
   // (zero_evidence_above_N_: the total force's error bound, plus a driver's zero clamp), and on
   // one foot one healthy pad on the ground reads its air level while another healthy one carries
   // load: under "that pad reads nothing of its load" it carries the shortfall. Substituted or
-  // gain-corrected loaded channels absorb or scale the residual: judged only without them.
-  bool judged = usable && residual_smoothed_started_ && residual_smoothed_ < -zero_evidence_above_N_;
+  // gain-corrected loaded channels absorb or scale the residual: judged only without them, and
+  // not while the gain test has a fit it cannot isolate (a gain elsewhere short of the load).
+  if (usable && residual_smoothed_started_ && std::abs(residual_smoothed_) <= params_.sum_threshold_N) {
+    residual_within_bound_s_ = t;
+  }
+  for (Channel& c : channels_) {
+    if (c.smoothed > params_.airborne_threshold_N) c.loaded_at_s = t;
+  }
+  bool judged = usable && residual_smoothed_started_ && residual_smoothed_ < -zero_evidence_above_N_ &&
+                !gain_unisolated_;
   for (std::size_t j = 0; j < channels_.size() && judged; ++j) {
     const Channel& c = channels_[j];
     const bool additive = c.type == FaultType::offset || c.type == FaultType::drift || c.type == FaultType::spikes;
@@ -1601,12 +1611,16 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
       if (c.type != FaultType::none || height[j] > params_.airborne_height_m) continue;
       if (c.smoothed > params_.airborne_threshold_N) {
         loaded = true;
-      } else if (c.smoothed > -params_.airborne_threshold_N) {
+      } else if (c.smoothed > -params_.airborne_threshold_N && c.loaded_at_s < last_touchdown_s_[f]) {
         ++at_air_level;
         last = j;
       }
     }
-    if (loaded && at_air_level > 0) {
+    // The shortfall began after this foot landed (the residual was within its bound since), and
+    // the landing's guard is over (an impact's error in F_z outlasts the smoother's settling).
+    const bool landed = residual_within_bound_s_ >= last_touchdown_s_[f] &&
+                        t - last_touchdown_s_[f] >= params_.touchdown_guard_s;
+    if (loaded && at_air_level > 0 && landed) {
       candidates += at_air_level;
       culprit = last;
     }
@@ -1621,7 +1635,7 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
     unread_since_s_ = t;
     return;
   }
-  // Held for the smoother's settling: an impact's transient in the total force dies out in it.
+  // Held for the smoother's settling, past the guard: the residual's lag is not the evidence.
   if (t - unread_since_s_ < smoother_settle_s_) return;
   Channel& c = channels_[culprit];
   raise(c, FaultType::frozen, t);

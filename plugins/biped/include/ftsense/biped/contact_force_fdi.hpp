@@ -230,12 +230,19 @@
 //             residual r (as above) stays below -(sum_threshold_N + zero_clamp_N) (the pads read
 //             short of F_z by more than its error and a clamped zero can hide) and exactly one pad of the robot is on the ground, not
 //             flagged, with its smoothed reading within +-airborne_threshold_N while a healthy
-//             neighbour on its foot reads above it, that pad is the candidate; held for the
-//             smoother's settling (five time constants: an impact's error in F_z dies out in it),
+//             neighbour on its foot reads above it, that pad is the candidate, if r was within
+//             +-sum_threshold_N at some tick since its foot landed (a shortfall from before is
+//             another fault's, a gain elsewhere), the pad has not read above the air level since
+//             (a lifting sole's pads, which read their loads, unload one by one), and that
+//             landing's touchdown_guard_s is over
+//             (an impact's error in F_z); held for the smoother's settling (five time constants),
 //             it is raised frozen (re-admitted by the follow test). Two such pads (a sole on its
-//             heel) cannot be told apart, and neither is blamed. Not judged while a loaded
-//             channel is flagged as anything but offset, drift or spikes (a substituted share
-//             absorbs r). Point feet (one channel per foot) have no neighbour and are not judged.
+//             heel) cannot be told apart, and neither is blamed. Not judged while a channel on
+//             the ground is flagged as anything but offset, drift or spikes (a substituted share
+//             absorbs r), nor while the gain test's fit stands unisolated. Point feet (one
+//             channel per foot) have no neighbour and are not judged. Its known limit: a shortfall
+//             that begins after the landing from another cause (the reference, a fault not yet
+//             seen) lasting the settling is taken as that pad's.
 //   offset or gain  a jump on a loaded pad (load L0 > gain_min_load_N before it) is an offset
 //             b or a gain k = 1 + b / L0 alike at its onset; as the load moves they part. Over the
 //             follow test's span, the corrected sum residual r (the channel taken as x - b) and
@@ -291,8 +298,9 @@
 // on the sum and, when `points` gives the soles' layout and two or more are substituted, on the
 // plane a rigid sole's loads lie on in full contact (unmeasured_contact_loads.hpp; without it,
 // equal shares), each at least 0 and a saturated pad at least its reading, its ceiling; a
-// substituted pad on a foot whose readable pads on the ground all read their air level carries 0
-// while a foot that shows load holds a substituted pad too: that sole is lifting or landing),
+// substituted pad on a foot whose readable pads on the ground all read their air level, past its
+// landing's touchdown_guard_s (a lifting sole; a landing one may stand on that pad alone), carries
+// 0 while another foot not seen so holds a substituted pad too),
 // virtual (leave-one-out: 0 when airborne, else F_z - sum of the other channels' recovered
 // values; NaN while F_z is not finite, the virtual sensor not ready), virtual_ready (1 while F_z
 // is finite; while it is not, the sum residual holds and no channel is judged on it).
@@ -496,6 +504,7 @@ class ContactForceFdi {
     // force since the channel was raised as offset or drift (or re-typed frozen).
     bool following = false;  // ranges being tracked
     bool frozen_by_follow = false;
+    double loaded_at_s = -1e300;  // the last tick its smoothed reading was above airborne_threshold_N
     double reading_lo = 0.0, reading_hi = 0.0, virtual_lo = 0.0, virtual_hi = 0.0;
     double virtual_smoothed = 0.0;  // the same 10 Hz low-pass as `smoothed`: both lag alike
     // The still-reading test's window: the smoothed reading's range, on the ground and not
@@ -578,8 +587,9 @@ class ContactForceFdi {
   // of them read their air level.
   std::vector<char> foot_shows_load_, foot_reads_unloaded_;
   // The unread-load test: its one candidate (channels_.size(): none) and since when it has been.
-  std::size_t unread_candidate_ = 0;
+  std::size_t unread_candidate_ = static_cast<std::size_t>(-1);
   double unread_since_s_ = 0.0;
+  double residual_within_bound_s_ = -1e300;  // the last tick its smoothed residual was within sum_threshold_N
   bool started_ = false;
   double residual_before_touchdown_ = 0.0;  // its mean over the jump window before the guard
   bool residual_before_known_ = false;     // the ring held a whole window then
