@@ -228,21 +228,21 @@
 //   unread    (no flag yet) a pad that reads nothing of the load it lands on: a dead sensor at its
 //             air level, whose landing steps restart the still test's window. While the smoothed
 //             residual r (as above) stays below -(sum_threshold_N + zero_clamp_N) (the pads read
-//             short of F_z by more than its error and a clamped zero can hide) and exactly one pad of the robot is on the ground, not
-//             flagged, with its smoothed reading within +-airborne_threshold_N while a healthy
-//             neighbour on its foot reads above it, that pad is the candidate, if r was within
-//             +-sum_threshold_N at some tick since its foot landed (a shortfall from before is
-//             another fault's, a gain elsewhere), the pad has not read above the air level since
-//             (a lifting sole's pads, which read their loads, unload one by one), and that
-//             landing's touchdown_guard_s is over
-//             (an impact's error in F_z); held for the smoother's settling (five time constants),
-//             it is raised frozen (re-admitted by the follow test). Two such pads (a sole on its
-//             heel) cannot be told apart, and neither is blamed. Not judged while a channel on
-//             the ground is flagged as anything but offset, drift or spikes (a substituted share
-//             absorbs r), nor while the gain test's fit stands unisolated. Point feet (one
-//             channel per foot) have no neighbour and are not judged. Its known limit: a shortfall
-//             that begins after the landing from another cause (the reference, a fault not yet
-//             seen) lasting the settling is taken as that pad's.
+//             short of F_z by more than its error and a clamped zero can hide), and exactly one
+//             pad of the robot is on the ground, not flagged, with its smoothed reading within
+//             +-airborne_threshold_N while a healthy neighbour on its foot reads above it, that
+//             pad is the candidate, if r was within +-sum_threshold_N at some tick since its foot
+//             landed (a shortfall from before is another fault's, a gain elsewhere), the pad has
+//             not read above the air level since (a lifting sole's pads, which read their loads,
+//             unload one by one), and that landing's touchdown_guard_s is over (an impact's error
+//             in F_z); held for the smoother's settling (five time constants), it is raised
+//             frozen (re-admitted by the follow test). Two such pads (a sole on its heel) cannot
+//             be told apart, and neither is blamed. Not judged while a channel on the ground is
+//             flagged as anything but offset, drift or spikes (a substituted share absorbs r),
+//             nor while the gain test's fit stands unisolated. Point feet (one channel per foot)
+//             have no neighbour and are not judged. Its known limit: a shortfall that begins
+//             after the landing from another cause (the reference, a fault not yet seen) and
+//             lasts the settling is taken as that pad's.
 //   offset or gain  a jump on a loaded pad (load L0 > gain_min_load_N before it) is an offset
 //             b or a gain k = 1 + b / L0 alike at its onset; as the load moves they part. Over the
 //             follow test's span, the corrected sum residual r (the channel taken as x - b) and
@@ -586,7 +586,7 @@ class ContactForceFdi {
   // Per foot, for the substituted loads' split: a readable pad on the ground carries load; all
   // of them read their air level.
   std::vector<char> foot_shows_load_, foot_reads_unloaded_;
-  // The unread-load test: its one candidate (channels_.size(): none) and since when it has been.
+  // The unread-load test: its one candidate (channels_.size() or more: none) and since when.
   std::size_t unread_candidate_ = static_cast<std::size_t>(-1);
   double unread_since_s_ = 0.0;
   double residual_within_bound_s_ = -1e300;  // the last tick its smoothed residual was within sum_threshold_N
