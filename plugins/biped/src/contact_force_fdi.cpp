@@ -351,7 +351,6 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   residual_ring_.assign(static_cast<std::size_t>(2 * jump_window_ticks_), 0.0);
   last_touchdown_s_.assign(feet_, -1e9);
   foot_airborne_.assign(feet_, 0);
-  foot_shows_load_.assign(feet_, 0);
   foot_reads_unloaded_.assign(feet_, 0);
   foot_sum_.assign(feet_, {0.0, 0.0});
   foot_sum_ticks_.assign(feet_, 0);
@@ -1243,20 +1242,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     // unknown pads (but a saturated one, which reads its load) carry 0. Else they share as before.
     bool loaded_foot_unknown = false;
     for (std::size_t f = 0; f < feet_; ++f) {
-      foot_shows_load_[f] = 0;
       foot_reads_unloaded_[f] = 0;
-      bool holds_unknown = false;
+      bool holds_unknown = false, shows_load = false;
       for (std::size_t i = 0; i < feet_points_; ++i) {
         const std::size_t j = f * feet_points_ + i;
         if (unknown_[j] != 0) {
           holds_unknown = true;
         } else if (!(height[j] > params_.airborne_height_m)) {
-          if (recovered[j] > params_.airborne_threshold_N) foot_shows_load_[f] = 1;
+          if (recovered[j] > params_.airborne_threshold_N) shows_load = true;
           foot_reads_unloaded_[f] = 1;
         }
       }
       // A sole landing may stand on its substituted pad alone (a heel first): lifting ones only.
-      if (foot_shows_load_[f] != 0 || t - last_touchdown_s_[f] < params_.touchdown_guard_s) foot_reads_unloaded_[f] = 0;
+      if (shows_load || t - last_touchdown_s_[f] < params_.touchdown_guard_s) foot_reads_unloaded_[f] = 0;
       loaded_foot_unknown = loaded_foot_unknown || (holds_unknown && foot_reads_unloaded_[f] == 0);
     }
     for (std::size_t j = 0; j < channels_.size() && loaded_foot_unknown; ++j) {
@@ -1574,9 +1572,7 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
   }
   if (candidates == 1) {
     Channel& c = channels_[culprit];
-    raise(c, FaultType::frozen, t);
-    c.frozen_by_follow = true;  // re-admitted when its reading follows the load again
-    c.following = false;
+    raise_stuck(c, t);
   }
   still_window_active_ = false;  // a fresh window (a raise restarts it with a settle, too)
 }
@@ -1637,11 +1633,14 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
   }
   // Held for the smoother's settling, past the guard: the residual's lag is not the evidence.
   if (t - unread_since_s_ < smoother_settle_s_) return;
-  Channel& c = channels_[culprit];
-  raise(c, FaultType::frozen, t);
-  c.frozen_by_follow = true;  // re-admitted when its reading follows the load again
-  c.following = false;
+  raise_stuck(channels_[culprit], t);
   unread_candidate_ = channels_.size();
+}
+
+void ContactForceFdi::raise_stuck(Channel& c, double t) noexcept {
+  raise(c, FaultType::frozen, t);
+  c.frozen_by_follow = true;
+  c.following = false;
 }
 
 void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_force, double t) noexcept {
@@ -1872,7 +1871,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // margin): every one is healthy again. Not at equal powers: a true gain among them may leave
   // less than the wrong ones' corrections, and true gains whose errors cancel in the sum leave
   // the two alike.
-  if (!readmitted && joint_gain_ticks_ >= gain_window_ticks_ && joint_held_rr_ > 4.0 * joint_raw_rr_) {
+  if (!readmitted && joint_gain_ticks_ >= gain_window_ticks_ && joint_held_rr_ > kReadingWinsPowerRatio * joint_raw_rr_) {
     bool loaded = true;
     for (std::size_t j = 0; j < channels_.size(); ++j) {
       if (joint_gain_set_[j] != 0) loaded = loaded && gain_xx_[j] >= min_power;

@@ -536,6 +536,9 @@ class ContactForceFdi {
   // The unread-load test (header comment), after the still-reading test has smoothed this tick's
   // residual.
   void unread_load_test(std::span<const double> height, bool usable, double t) noexcept;
+  // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
+  // re-admits it when its reading follows the load again.
+  void raise_stuck(Channel& c, double t) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
   void follow_test(Channel& c, double reading, double virtual_force, double t) noexcept;
   // The offset-or-gain test (header comment), once the corrected sum residual of this tick is known.
@@ -583,9 +586,9 @@ class ContactForceFdi {
   double still_window_start_s_ = 0.0;
   double still_window_settle_until_s_ = -1e300;
   double still_residual_lo_ = 0.0, still_residual_hi_ = 0.0;
-  // Per foot, for the substituted loads' split: a readable pad on the ground carries load; all
-  // of them read their air level.
-  std::vector<char> foot_shows_load_, foot_reads_unloaded_;
+  // Per foot, for the substituted loads' split: its readable pads on the ground all read their
+  // air level (a lifting sole).
+  std::vector<char> foot_reads_unloaded_;
   // The unread-load test: its one candidate (channels_.size() or more: none) and since when.
   std::size_t unread_candidate_ = static_cast<std::size_t>(-1);
   double unread_since_s_ = 0.0;
@@ -650,6 +653,9 @@ class ContactForceFdi {
   std::vector<char> joint_gain_set_;
   int joint_gain_ticks_ = 0;
   double joint_raw_rr_ = 0.0, joint_held_rr_ = 0.0;
+  // The margin by which the reading as it is must beat a correction to drop it: the correction
+  // leaves this many times its residual power (twice its RMS).
+  static constexpr double kReadingWinsPowerRatio = 4.0;
   // The same powers summed (not weighted) over usable ticks on the ground while held as a gain or
   // an offset, for a correction gone wrong in a stance: <r_raw, r_raw>, <r, r>, the correction's
   // own power <N_j - N^_j, N_j - N^_j>, and, for an offset raised by a jump under load and not
@@ -675,7 +681,7 @@ class ContactForceFdi {
     }
     // The reading as it is leaves a quarter of the residual power of every other explanation.
     [[nodiscard]] bool reading_leads() const noexcept {
-      return held_rr > 4.0 * raw_rr && (!gain_model || gain_rr > 4.0 * raw_rr);
+      return held_rr > kReadingWinsPowerRatio * raw_rr && (!gain_model || gain_rr > kReadingWinsPowerRatio * raw_rr);
     }
     // ... over at least min_ticks, and each other explanation moved the reading by sqrt(bound_sq)
     // RMS or more (one that moved it less is within what the residual's error can mimic: a gain
