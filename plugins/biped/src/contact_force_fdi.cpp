@@ -379,6 +379,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   relation_step_square_.assign(feet_ * relations, 0.0);
   relation_step_count_.assign(feet_, 0.0);
   relation_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s));
+  // One decision per landing, and landings are at least a guard apart.
+  guard_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, params.touchdown_guard_s / params.false_alarm_interval_s));
 }
 
 void ContactForceFdi::reset() noexcept {
@@ -399,6 +401,11 @@ void ContactForceFdi::reset() noexcept {
   residual_count_ = 0;
   residual_before_touchdown_ = 0.0;
   residual_before_known_ = was_touching_down_ = false;
+  guard_onsets_clear_ticks_ = 0;
+  guard_began_s_ = last_flag_change_s_ = last_tick_s_ = -1e300;
+  guard_step_ticks_ = -1;
+  guard_step_square_ = 0.0;
+  guard_step_count_ = 0;
   group_before_ = 0.0;
   sum_filtered_ = 0.0;
   residual_smoothed_ = 0.0;
@@ -430,6 +437,7 @@ void ContactForceFdi::reset() noexcept {
 void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
   if (c.type == FaultType::none) {
     c.flagged_since = t;
+    last_flag_change_s_ = t;
     c.type = type;
   } else if (priority(type) > priority(c.type)) {
     c.type = type;
@@ -438,6 +446,7 @@ void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
 }
 
 void ContactForceFdi::clear(Channel& c) noexcept {
+  if (c.type != FaultType::none) last_flag_change_s_ = last_tick_s_;
   c.type = FaultType::none;
   c.end_pending = false;
   c.offset = c.slope = 0.0;
@@ -503,6 +512,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   const double fz = io.in(kTotalForce)[2];
   const bool fz_ok = std::isfinite(fz);
   if (!started_) start_time_s_ = t;
+  last_tick_s_ = t;
   const int ticks_since_start = started_ ? 2 : 0;
 
   // Pad heights from kinematics (unknown, NaN, is taken as on the ground: every test below
@@ -526,6 +536,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   if (touching_down && !was_touching_down_) {
     residual_before_known_ = residual_count_ >= static_cast<std::size_t>(jump_window_ticks_);
     residual_before_touchdown_ = recent_residual_mean();
+    guard_began_s_ = t;
   }
   was_touching_down_ = touching_down;
   // The second difference of each foot's summed reading: load moving between the pads of a foot
@@ -987,6 +998,88 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (residual_steps_by(recent_residual_mean() - c.end_before, c.end_jump, confirm_N)) clear(c);
   }
 
+  // Onset jumps inside a touchdown guard that their foot's plane could not judge: once the guard
+  // is over and the residual has had a jump window to settle, it must have stepped from its mean
+  // before the guard by one of them, as an end seen there must, and by more than a landing moves
+  // it on a healthy walk (z times the RMS of that step over the walk's healthy guards so far:
+  // the total force's error before and after a landing differs by tens of newtons, where within
+  // a jump window it barely moves). A pad's step in the guard is often load shifting with its
+  // foot's other pads on the same tick: such a group is judged by its net step, and a group of
+  // two or more cannot name its pad. One match alone is raised; two (or an end pending beside)
+  // cannot be told apart, and none is.
+  bool onsets_pending = false;
+  for (const auto& c : channels_) onsets_pending = onsets_pending || c.onset_after_guard;
+  if (onsets_pending) {
+    bool expired = false;
+    for (const auto& c : channels_) {
+      expired = expired || (c.onset_after_guard && t - c.guard_onset_since_s >
+                                                       4.0 * params_.touchdown_guard_s + 2.0 * jump_window_ticks_ * period_s_);
+    }
+    if (touching_down) guard_onsets_clear_ticks_ = 0;
+    if (!touching_down && fz_ok && !expired) ++guard_onsets_clear_ticks_;
+    // A channel raised or re-admitted since the guard began has moved the residual (offsets are
+    // in it as read), so its step no longer measures these jumps alone.
+    for (const auto& c : channels_) {
+      expired = expired || (c.onset_after_guard && last_flag_change_s_ >= c.guard_onset_guard_began_s);
+    }
+    if (expired || guard_onsets_clear_ticks_ >= jump_window_ticks_) {
+      int matches = 0;
+      std::size_t match = channels_.size();
+      for (std::size_t j = 0; j < channels_.size() && !expired; ++j) {
+        const Channel& c = channels_[j];
+        if (!c.onset_after_guard) continue;
+        const std::size_t foot = j / feet_points_;
+        double net = 0.0;
+        int members = 0;
+        bool first_of_group = true;
+        for (std::size_t i = 0; i < feet_points_; ++i) {
+          const std::size_t k = foot * feet_points_ + i;
+          const Channel& o = channels_[k];
+          if (!o.onset_after_guard || o.guard_onset_since_s != c.guard_onset_since_s) continue;
+          first_of_group = first_of_group && k >= j;
+          net += o.guard_onset_jump;
+          ++members;
+        }
+        if (!first_of_group) continue;  // its group is judged once
+        if (guard_step_count_ < kMinGuardSteps) continue;  // a landing's own step not known yet
+        const double bar = std::max(confirm_N, guard_z_ * std::sqrt(guard_step_square_ / guard_step_count_));
+        if (std::abs(net) >= bar && residual_steps_by(recent_residual_mean() - c.guard_onset_before, net, bar)) {
+          ++matches;
+          match = members == 1 ? j : channels_.size();
+        }
+      }
+      // The bar was learnt on guards with no channel flagged; a substituted, gain-corrected or
+      // noisy channel moves the residual by what it does not read, an offset or drift does not.
+      bool comparable = true;
+      for (const auto& c : channels_) {
+        comparable = comparable && (c.type == FaultType::none || c.type == FaultType::offset || c.type == FaultType::drift);
+      }
+      if (matches == 1 && match < channels_.size() && ends_pending == 0 && comparable) {
+        Channel& c = channels_[match];
+        if (c.type == FaultType::none && !(height[match] > params_.airborne_height_m)) {
+          raise_jump_onset(c, c.guard_onset_jump, c.guard_onset_load, t);
+        }
+      }
+      for (auto& c : channels_) c.onset_after_guard = false;
+      guard_onsets_clear_ticks_ = 0;
+    }
+  }
+  // The residual's step across each guard, a jump window after it, counted when no channel is
+  // flagged and none was raised or re-admitted since the guard began (an onset judged there, or
+  // found by another test, is no healthy landing).
+  if (touching_down) {
+    guard_step_ticks_ = 0;
+  } else if (guard_step_ticks_ >= 0 && fz_ok && ++guard_step_ticks_ >= jump_window_ticks_) {
+    guard_step_ticks_ = -1;
+    bool healthy = residual_before_known_ && last_flag_change_s_ < guard_began_s_;
+    for (const auto& c : channels_) healthy = healthy && c.type == FaultType::none;
+    if (healthy) {
+      const double step = recent_residual_mean() - residual_before_touchdown_;
+      guard_step_square_ += step * step;
+      ++guard_step_count_;
+    }
+  }
+
   // The feet's plane verdicts, taken before any member is raised (a raise sets the offset the
   // verdict's level check corrects by).
   for (std::size_t f = 0; f < relation_verdict_.size(); ++f) {
@@ -1012,12 +1105,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         // readings after the step decides: the air test, below).
         if (!(in_air && c.fit_has_air) || std::abs(x) < params_.airborne_threshold_N) clear(c);
       } else if (c.type == FaultType::none && !from_flagged) {
-        c.onset_load = load_before;  // the load the onset jump left (onset_gain)
-        raise(c, FaultType::offset, t);
-        c.fit.clear(t);
-        c.fit.add(t, jump, 1.0);
-        c.offset = jump;
-        c.slope = 0.0;
+        raise_jump_onset(c, jump, load_before, t);
       }
     };
     const bool first_member = group_decided && c.jump_member;
@@ -1036,7 +1124,23 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const std::size_t foot = j / feet_points_;
     if (c.relation_member && relation_group_[foot] == 2) {
       c.relation_member = false;
-      if (relation_verdict_[foot] != 0) decide(c.relation_jump_size, c.relation_load_before, c.relation_from_flagged);
+      if (relation_verdict_[foot] != 0) {
+        decide(c.relation_jump_size, c.relation_load_before, c.relation_from_flagged);
+      } else if (relation_step_known_[foot] == 0 && c.type == FaultType::none && !c.relation_from_flagged &&
+                 residual_before_known_ && c.relation_load_before > params_.airborne_threshold_N &&
+                 x > params_.airborne_threshold_N) {
+        // The plane could not judge it (the foot was not in full contact over the windows): the
+        // sum residual does, once the guard is over, against its mean before the guard. Only a
+        // step between two loads: one from or to the pad's zero level is its contact coming or
+        // going (a sole rolling off or onto it as the feet trade load).
+        c.onset_after_guard = true;
+        c.guard_onset_jump = c.relation_jump_size;
+        c.guard_onset_load = c.relation_load_before;
+        c.guard_onset_before = residual_before_touchdown_;
+        c.guard_onset_guard_began_s = guard_began_s_;
+        c.guard_onset_since_s = t;  // the group's stamp: its foot's candidates decided this tick
+        guard_onsets_clear_ticks_ = 0;
+      }
     }
     // Frozen / saturation.
     if (repeat_test_off_ && params_.upper_limit_N > 0.0 && x >= params_.upper_limit_N - repeat_band_N_) {
@@ -1641,6 +1745,15 @@ void ContactForceFdi::raise_stuck(Channel& c, double t) noexcept {
   raise(c, FaultType::frozen, t);
   c.frozen_by_follow = true;
   c.following = false;
+}
+
+void ContactForceFdi::raise_jump_onset(Channel& c, double jump, double load_before, double t) noexcept {
+  c.onset_load = load_before;  // the load the onset jump left (onset_gain)
+  raise(c, FaultType::offset, t);
+  c.fit.clear(t);
+  c.fit.add(t, jump, 1.0);
+  c.offset = jump;
+  c.slope = 0.0;
 }
 
 void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_force, double t) noexcept {

@@ -124,7 +124,24 @@
 //             stepping by sum_j w_j jump_j within max(z sigma, 50 %), and the step and that
 //             expectation both beyond z sigma in the relations' norm; sigma the window step's
 //             RMS measured on the log's healthy full-contact ticks (at least 100), z the
-//             two-sided normal quantile of alpha = T / false_alarm_interval_s.
+//             two-sided normal quantile of alpha = T / false_alarm_interval_s. A jump the plane
+//             cannot judge (its foot not in full contact over both windows: a heel rocking on
+//             and off as the foot lands) is judged by the sum residual once the guard is over and
+//             a jump window has passed: the residual's step from its mean over the jump window
+//             before the guard must match the net jump of the pad's foot's candidates of that
+//             tick (as a group's must, within max(jump_confirm_N, 50 %)), beyond
+//             max(jump_confirm_N, z_g s_g), s_g the RMS of that step over the walk's healthy
+//             guards so far (at least 5; a landing moves the total force's error by tens of
+//             newtons, where a jump window barely does), z_g the two-sided normal quantile of
+//             alpha = touchdown_guard_s / false_alarm_interval_s (one decision per landing).
+//             Only a step between two loads (above airborne_threshold_N before it and a jump
+//             window after): one from or to the zero level is the pad's contact coming or going.
+//             Raised as an offset of its jump only when that group is the pad alone and the one
+//             group that matches, no end is pending, no flag changed since the guard began (an
+//             offset is in the residual as read: one raised meanwhile moved it), and every
+//             channel is unflagged or an offset or drift (s_g is learnt on guards with none
+//             flagged; a substituted, gain-corrected or noisy channel moves the residual by what
+//             it does not read). Point feet have no plane relation, and none of this.
 //             Inside another foot's touchdown guard, a pad not landing itself that steps back by
 //             its fault's size (|jump + b| < 0.4 |b| + jump_confirm_N, b the fault's size now),
 //             where that size is settled (measured in the air, or a gain), may be the fault's
@@ -468,6 +485,12 @@ class ContactForceFdi {
     double end_jump = 0.0, end_before = 0.0, end_since_s = 0.0;
     int end_clear_ticks = 0;  // ticks judged since the guard ended (or since the step)
     std::uint64_t end_group = 0;  // the pending group it was seen beside (not after a guard)
+    // A jump inside a touchdown guard that its foot's plane could not judge (the foot not in full
+    // contact): judged, as an end is, by the sum residual's step once the guard is over (its
+    // jump, the reading before it, the residual's mean before the guard).
+    bool onset_after_guard = false;
+    double guard_onset_jump = 0.0, guard_onset_load = 0.0, guard_onset_before = 0.0, guard_onset_since_s = 0.0;
+    double guard_onset_guard_began_s = 0.0;  // when the guard whose residual it is judged against began
     // A healthy channel's step while a group is pending: a member of the late group, decided with
     // it (its jump, the reading before it).
     bool late_candidate = false;  // a candidate this tick
@@ -539,6 +562,8 @@ class ContactForceFdi {
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
   void raise_stuck(Channel& c, double t) noexcept;
+  // Raises a confirmed onset jump as an offset of its size (the load before it kept for onset_gain).
+  void raise_jump_onset(Channel& c, double jump, double load_before, double t) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
   void follow_test(Channel& c, double reading, double virtual_force, double t) noexcept;
   // The offset-or-gain test (header comment), once the corrected sum residual of this tick is known.
@@ -594,6 +619,21 @@ class ContactForceFdi {
   double unread_since_s_ = 0.0;
   double residual_within_bound_s_ = -1e300;  // the last tick its smoothed residual was within sum_threshold_N
   bool started_ = false;
+  int guard_onsets_clear_ticks_ = 0;  // ticks judged since the last guard (or candidate) ended
+  // The sum residual's step across a healthy touchdown guard (its mean a jump window after the
+  // guard less its mean before): its sum of squares and count, learnt as the walk goes, and the
+  // ticks since the last guard ended (-1: measured, or no guard yet). Judged from five landings
+  // on (an RMS within about 30 %, chi-square with 5 degrees of freedom), against guard_z_ times
+  // it: the two-sided normal quantile of alpha = touchdown_guard_s / false_alarm_interval_s, one
+  // decision per landing (landings are at least a guard apart).
+  static constexpr int kMinGuardSteps = 5;
+  int guard_step_ticks_ = -1;
+  double guard_step_square_ = 0.0;
+  double guard_z_ = 5.0;
+  int guard_step_count_ = 0;
+  double guard_began_s_ = -1e300;       // when the current (or last) touchdown guard began
+  double last_flag_change_s_ = -1e300;  // the last tick a channel was raised or re-admitted
+  double last_tick_s_ = -1e300;         // this tick's time (clear() has no time of its own)
   double residual_before_touchdown_ = 0.0;  // its mean over the jump window before the guard
   bool residual_before_known_ = false;     // the ring held a whole window then
   bool was_touching_down_ = false;
