@@ -376,6 +376,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   relation_before_.assign(feet_ * relations, 0.0);
   relation_step_known_.assign(feet_, 0);
   relation_verdict_.assign(relations > 0 ? feet_ : 0, 0);
+  relation_group_size_.assign(relations > 0 ? feet_ : 0, 0);
   relation_step_square_.assign(feet_ * relations, 0.0);
   relation_step_count_.assign(feet_, 0.0);
   relation_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s));
@@ -537,6 +538,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     residual_before_known_ = residual_count_ >= static_cast<std::size_t>(jump_window_ticks_);
     residual_before_touchdown_ = recent_residual_mean();
     guard_began_s_ = t;
+    // A jump still pending from the guard before would be judged across two landings, against a
+    // bar learnt on one: dropped.
+    for (auto& c : channels_) c.onset_after_guard = false;
   }
   was_touching_down_ = touching_down;
   // The second difference of each foot's summed reading: load moving between the pads of a foot
@@ -1045,11 +1049,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         const double bar = std::max(confirm_N, guard_z_ * std::sqrt(guard_step_square_ / guard_step_count_));
         if (std::abs(net) >= bar && residual_steps_by(recent_residual_mean() - c.guard_onset_before, net, bar)) {
           ++matches;
-          match = members == 1 ? j : channels_.size();
+          match = members == 1 && c.guard_onset_plane_group == 1 ? j : channels_.size();
         }
       }
       // The bar was learnt on guards with no channel flagged; a substituted, gain-corrected or
-      // noisy channel moves the residual by what it does not read, an offset or drift does not.
+      // noisy channel moves the residual by what it does not read, an offset not at all and a
+      // drift by its slope over the guard (a few newtons). Re-typed channels (an offset taken
+      // for a gain or a frozen output) fall here too: raise() records only new flags.
       bool comparable = true;
       for (const auto& c : channels_) {
         comparable = comparable && (c.type == FaultType::none || c.type == FaultType::offset || c.type == FaultType::drift);
@@ -1074,16 +1080,26 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     bool healthy = residual_before_known_ && last_flag_change_s_ < guard_began_s_;
     for (const auto& c : channels_) healthy = healthy && c.type == FaultType::none;
     if (healthy) {
-      const double step = recent_residual_mean() - residual_before_touchdown_;
+      // Clipped at the bar once it is known: a fault not raised on this guard (ambiguous, or its
+      // judgment still to come) would otherwise raise the bar for the rest of the walk; a
+      // healthy step beyond z_g of the RMS is rare enough that the clip barely lowers it.
+      double step = std::abs(recent_residual_mean() - residual_before_touchdown_);
+      if (guard_step_count_ >= kMinGuardSteps) {
+        step = std::min(step, std::max(params_.jump_confirm_N, guard_z_ * std::sqrt(guard_step_square_ / guard_step_count_)));
+      }
       guard_step_square_ += step * step;
       ++guard_step_count_;
     }
   }
 
   // The feet's plane verdicts, taken before any member is raised (a raise sets the offset the
-  // verdict's level check corrects by).
+  // verdict's level check corrects by), and the size of each group decided this tick.
   for (std::size_t f = 0; f < relation_verdict_.size(); ++f) {
     relation_verdict_[f] = relation_group_[f] == 2 && relation_confirmed(f, t) ? 1 : 0;
+    relation_group_size_[f] = 0;
+    for (std::size_t i = 0; i < feet_points_ && relation_group_[f] == 2; ++i) {
+      relation_group_size_[f] += channels_[f * feet_points_ + i].relation_member ? 1 : 0;
+    }
   }
   // Decisions.
   const int min_airborne_samples = min_airborne_samples_;
@@ -1139,6 +1155,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.guard_onset_before = residual_before_touchdown_;
         c.guard_onset_guard_began_s = guard_began_s_;
         c.guard_onset_since_s = t;  // the group's stamp: its foot's candidates decided this tick
+        c.guard_onset_plane_group = relation_group_size_[foot];  // every member, qualifying or not
         guard_onsets_clear_ticks_ = 0;
       }
     }

@@ -132,12 +132,16 @@
 //             tick (as a group's must, within max(jump_confirm_N, 50 %)), beyond
 //             max(jump_confirm_N, z_g s_g), s_g the RMS of that step over the walk's healthy
 //             guards so far (at least 5; a landing moves the total force's error by tens of
-//             newtons, where a jump window barely does), z_g the two-sided normal quantile of
-//             alpha = touchdown_guard_s / false_alarm_interval_s (one decision per landing).
+//             newtons, where a jump window barely does; each step counted clipped at the bar once
+//             five are, so that a fault not raised there cannot lift the bar for the rest of the
+//             walk), z_g the two-sided normal quantile of alpha = touchdown_guard_s /
+//             false_alarm_interval_s (one decision per landing). A jump still pending when the
+//             next guard begins is dropped (it would be judged across two landings).
 //             Only a step between two loads (above airborne_threshold_N before it and a jump
 //             window after): one from or to the zero level is the pad's contact coming or going.
-//             Raised as an offset of its jump only when that group is the pad alone and the one
-//             group that matches, no end is pending, no flag changed since the guard began (an
+//             Raised as an offset of its jump only when its plane group is the pad alone (a
+//             neighbour stepping on that tick, qualifying or not, makes it unnameable) and it is
+//             the one group that matches, no end is pending, no flag changed since the guard began (an
 //             offset is in the residual as read: one raised meanwhile moved it), and every
 //             channel is unflagged or an offset or drift (s_g is learnt on guards with none
 //             flagged; a substituted, gain-corrected or noisy channel moves the residual by what
@@ -491,6 +495,7 @@ class ContactForceFdi {
     bool onset_after_guard = false;
     double guard_onset_jump = 0.0, guard_onset_load = 0.0, guard_onset_before = 0.0, guard_onset_since_s = 0.0;
     double guard_onset_guard_began_s = 0.0;  // when the guard whose residual it is judged against began
+    int guard_onset_plane_group = 0;  // the size of the plane group it was decided in (all members)
     // A healthy channel's step while a group is pending: a member of the late group, decided with
     // it (its jump, the reading before it).
     bool late_candidate = false;  // a candidate this tick
@@ -756,6 +761,7 @@ class ContactForceFdi {
   std::size_t relation_next_ = 0;
   std::size_t relation_filled_ = 0;
   std::vector<char> relation_group_;      // per foot: 0 none, 1 pending, 2 decided this tick
+  std::vector<int> relation_group_size_;  // per foot: the members of the group decided this tick
   std::vector<int> relation_group_age_;
   std::vector<double> relation_expect_;   // feet x relations: sum of w_j x jump_j over the group
   std::vector<double> relation_step_;     // feet x relations: this tick's window step
