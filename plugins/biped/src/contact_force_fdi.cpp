@@ -263,6 +263,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * kSmoothingHz * period_s_);
   // Five time constants of that low-pass: a step has settled to within e^-5 (under 1 %).
   smoother_settle_s_ = 5.0 / (2.0 * 3.141592653589793 * kSmoothingHz);
+  guard_pending_limit_s_ = 4.0 * params.touchdown_guard_s + 2.0 * jump_window_ticks_ * period_s_;
   spike_rule_ = {params_.spike_hold_s, std::min(params_.clear_s, params_.spike_hold_s),
                  std::log(1.0 / params_.spike_gap_probability)};
   min_airborne_samples_ = std::max(10, static_cast<int>(std::lround(kAirborneMeanWindow_s / context.sample_period_s())));
@@ -987,7 +988,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   for (auto& c : channels_) {
     if (!c.end_pending) continue;
     if (!corrects(c.type) ||
-        t - c.end_since_s > 4.0 * params_.touchdown_guard_s + 2.0 * jump_window_ticks_ * period_s_) {
+        t - c.end_since_s > guard_pending_limit_s_) {
       c.end_pending = false;  // re-typed, or the guards kept coming: left to the other tests
       continue;
     }
@@ -1014,18 +1015,16 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   bool onsets_pending = false;
   for (const auto& c : channels_) onsets_pending = onsets_pending || c.onset_after_guard;
   if (onsets_pending) {
+    // Dropped unjudged when the guards kept coming, or when a channel was raised or re-admitted
+    // since the guard began: that moved the residual (offsets are in it as read), so its step no
+    // longer measures these jumps alone.
     bool expired = false;
     for (const auto& c : channels_) {
-      expired = expired || (c.onset_after_guard && t - c.guard_onset_since_s >
-                                                       4.0 * params_.touchdown_guard_s + 2.0 * jump_window_ticks_ * period_s_);
+      expired = expired || (c.onset_after_guard && (t - c.guard_onset_since_s > guard_pending_limit_s_ ||
+                                                    last_flag_change_s_ >= c.guard_onset_guard_began_s));
     }
     if (touching_down) guard_onsets_clear_ticks_ = 0;
     if (!touching_down && fz_ok && !expired) ++guard_onsets_clear_ticks_;
-    // A channel raised or re-admitted since the guard began has moved the residual (offsets are
-    // in it as read), so its step no longer measures these jumps alone.
-    for (const auto& c : channels_) {
-      expired = expired || (c.onset_after_guard && last_flag_change_s_ >= c.guard_onset_guard_began_s);
-    }
     if (expired || guard_onsets_clear_ticks_ >= jump_window_ticks_) {
       int matches = 0;
       std::size_t match = channels_.size();
@@ -1034,7 +1033,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         if (!c.onset_after_guard) continue;
         const std::size_t foot = j / feet_points_;
         double net = 0.0;
-        int members = 0;
         bool first_of_group = true;
         for (std::size_t i = 0; i < feet_points_; ++i) {
           const std::size_t k = foot * feet_points_ + i;
@@ -1042,14 +1040,15 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           if (!o.onset_after_guard || o.guard_onset_since_s != c.guard_onset_since_s) continue;
           first_of_group = first_of_group && k >= j;
           net += o.guard_onset_jump;
-          ++members;
         }
         if (!first_of_group) continue;  // its group is judged once
         if (guard_step_count_ < kMinGuardSteps) continue;  // a landing's own step not known yet
-        const double bar = std::max(confirm_N, guard_z_ * std::sqrt(guard_step_square_ / guard_step_count_));
+        const double bar = landing_step_bar(confirm_N);
         if (std::abs(net) >= bar && residual_steps_by(recent_residual_mean() - c.guard_onset_before, net, bar)) {
           ++matches;
-          match = members == 1 && c.guard_onset_plane_group == 1 ? j : channels_.size();
+          // Nameable only when its whole plane group of that tick is the pad alone (the
+          // qualifying members are among that group's).
+          match = c.guard_onset_plane_group == 1 ? j : channels_.size();
         }
       }
       // The bar was learnt on guards with no channel flagged; a substituted, gain-corrected or
@@ -1085,7 +1084,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // healthy step beyond z_g of the RMS is rare enough that the clip barely lowers it.
       double step = std::abs(recent_residual_mean() - residual_before_touchdown_);
       if (guard_step_count_ >= kMinGuardSteps) {
-        step = std::min(step, std::max(params_.jump_confirm_N, guard_z_ * std::sqrt(guard_step_square_ / guard_step_count_)));
+        step = std::min(step, landing_step_bar(params_.jump_confirm_N));
       }
       guard_step_square_ += step * step;
       ++guard_step_count_;
@@ -1756,6 +1755,10 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
   if (t - unread_since_s_ < smoother_settle_s_) return;
   raise_stuck(channels_[culprit], t);
   unread_candidate_ = channels_.size();
+}
+
+double ContactForceFdi::landing_step_bar(double floor_N) const noexcept {
+  return std::max(floor_N, guard_z_ * std::sqrt(guard_step_square_ / std::max(guard_step_count_, 1)));
 }
 
 void ContactForceFdi::raise_stuck(Channel& c, double t) noexcept {

@@ -567,6 +567,9 @@ class ContactForceFdi {
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
   void raise_stuck(Channel& c, double t) noexcept;
+  // The bar a landing's residual step must clear: z_g times the RMS of the healthy landings' steps,
+  // at least floor_N.
+  [[nodiscard]] double landing_step_bar(double floor_N) const noexcept;
   // Raises a confirmed onset jump as an offset of its size (the load before it kept for onset_gain).
   void raise_jump_onset(Channel& c, double jump, double load_before, double t) noexcept;
   // The follow test (header comment), after the leave-one-out force of this tick is known.
@@ -674,6 +677,8 @@ class ContactForceFdi {
   static constexpr double kSmoothingHz = 10.0;  // cutoff of `smoothed` and `virtual_smoothed`
   double smoothing_ = 1.0;  // gain of that low-pass per tick
   double smoother_settle_s_ = 0.0;  // its settling time (five time constants)
+  // How long an end or onset seen inside a guard may wait for its judgment (the guards keep coming).
+  double guard_pending_limit_s_ = 0.0;
   generic::SpikeHoldRule spike_rule_;  // spike_hold_s, min(clear_s, spike_hold_s), ln(1 / spike_gap_probability)
   // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.
   std::vector<double> gain_xx_;
