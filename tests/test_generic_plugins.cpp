@@ -225,7 +225,7 @@ TEST(RandomWalkFaultFilter, SteadyStateGainSolvesTheDiscreteRiccatiEquation) {
     const double S = (H * prior * H.transpose())(0, 0) + p.measurement_noise;
     K = prior * H.transpose() / S;
     P = (Eigen::Matrix2d::Identity() - K * H) * prior;
-    P = 0.5 * (P + P.transpose());
+    P = (0.5 * (P + P.transpose())).eval();  // evaluated first: in place, P^T would read written entries
   }
   EXPECT_NEAR(rig.filter.fault_gain(0), K(0), 1e-9 * std::abs(K(0)));
   EXPECT_NEAR(rig.filter.steady_state_fault_gain(), K(0), 1e-9 * std::abs(K(0)));

@@ -61,6 +61,15 @@ bool own_estimate(FaultType type) {
 // taken corrected (x / k), any other as read.
 double in_residual(FaultType type, double gain, double step) { return type == FaultType::gain ? step / gain : step; }
 
+// Ring buffers without an integer division per access (a 64-bit division costs tens of cycles;
+// the window sums read two jump windows of each ring every tick): the slot `back` ticks before
+// the newest of a ring of `size` whose next write goes to slot `next` (back < size), and the
+// slot after `i`.
+std::size_t ring_back(std::size_t next, std::size_t size, std::size_t back) noexcept {
+  return next > back ? next - 1 - back : next + size - 1 - back;
+}
+std::size_t ring_after(std::size_t i, std::size_t size) noexcept { return i + 1 == size ? 0 : i + 1; }
+
 }  // namespace
 
 void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
@@ -246,6 +255,10 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   // The frozen test's run length n_f (header): the probability p that healthy noise leaves a
   // reading on its quantisation level, and alpha, the false-alarm probability per tick.
   repeat_band_N_ = 0.5 * params.resolution_N;
+  // The noise test's bars (step): a pad's second difference, and its foot's summed reading's.
+  tick_noise_N_ = std::sqrt(6.0 * (params_.noise_std_N * params_.noise_std_N + repeat_band_N_ * repeat_band_N_)) *
+                  params_.noise_factor;
+  foot_noise_N_ = tick_noise_N_ * std::sqrt(static_cast<double>(feet_points_));
   {
     const double stay = std::erf(params.resolution_N / (2.0 * std::sqrt(2.0) * params.noise_std_N));
     const double alpha = std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s);
@@ -357,6 +370,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
   foot_unread_.assign(feet_, 0);
+  channel_foot_.resize(n);
+  for (std::size_t j = 0; j < n; ++j) channel_foot_[j] = j / feet_points_;
   if (!params.points.empty() && params.points.size() != feet_points_) {
     throw ConfigError("/params/points", "has " + std::to_string(params.points.size()) +
                                             " points, not points_per_foot = " + std::to_string(feet_points_) +
@@ -369,7 +384,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   const std::size_t relations = unmeasured_.relations_per_foot();
   const std::size_t ring = static_cast<std::size_t>(2 * jump_window_ticks_);
   relation_ring_.assign(feet_ * relations * ring, 0.0);
-  full_contact_ring_.assign(feet_ * ring, 0);
+  full_contact_run_.assign(feet_, 0);
   relation_group_.assign(feet_, 0);
   relation_group_age_.assign(feet_, 0);
   relation_expect_.assign(feet_ * relations, 0.0);
@@ -427,7 +442,7 @@ void ContactForceFdi::reset() noexcept {
   restart_gain_window();
   gain_unisolated_ = false;
   unmeasured_.reset();
-  std::fill(full_contact_ring_.begin(), full_contact_ring_.end(), 0);
+  std::fill(full_contact_run_.begin(), full_contact_run_.end(), 0);
   relation_next_ = 0;
   relation_filled_ = 0;
   std::fill(relation_group_.begin(), relation_group_.end(), 0);
@@ -484,9 +499,7 @@ bool ContactForceFdi::residual_steps_by(double step, double expected, double con
 double ContactForceFdi::recent_residual_mean(std::size_t skip) const noexcept {
   const std::size_t w = static_cast<std::size_t>(jump_window_ticks_);
   double sum = 0.0;
-  for (std::size_t i = skip; i < w + skip; ++i) {
-    sum += residual_ring_[(residual_next_ + residual_ring_.size() - 1 - i) % residual_ring_.size()];
-  }
+  for (std::size_t i = skip; i < w + skip; ++i) sum += residual_ring_[ring_back(residual_next_, residual_ring_.size(), i)];
   return sum / static_cast<double>(w);
 }
 
@@ -522,8 +535,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   const auto height = io.in(kPointHeight);
 
   // Evidence, channel by channel.
-  const double tick_noise =
-      std::sqrt(6.0 * (params_.noise_std_N * params_.noise_std_N + repeat_band_N_ * repeat_band_N_)) * params_.noise_factor;
+  const double tick_noise = tick_noise_N_;
   double last_touchdown_s = -1e9;  // of any foot
   for (std::size_t f = 0; f < feet_; ++f) {
     bool any = false;
@@ -566,7 +578,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     foot_unread_[f] = 0;
     for (std::size_t l = 0; l < feet_points_; ++l) foot_unread_[f] += unread(f * feet_points_ + l, height) ? 1 : 0;
   }
-  const double foot_noise = tick_noise * std::sqrt(static_cast<double>(feet_points_));
+  const double foot_noise = foot_noise_N_;
   int jump_candidates = 0;
   bool group_emptied = false;  // every member of the pending group was a one-tick spike
   bool any_step = false;  // a channel stepped this tick (the still-reading test's window restarts)
@@ -648,14 +660,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // heel chattering on and off), so this pad's roughness is no verdict of noise, nor its
       // one-tick excursion one of a spike: not judged then.
       // (A channel flagged already keeps being judged, so that it can be cleared.)
-      const bool neighbour_unread = foot_unread_[j / feet_points_] > (unread(j, height) ? 1 : 0);
+      const bool neighbour_unread = foot_unread_[channel_foot_[j]] > (unread(j, height) ? 1 : 0);
       const double spike = c.previous - 0.5 * (x + c.previous2);
       const bool spikes_seen = !touching_down && !pad_landing;
       if (spikes_seen) c.spikes.see(period_s_);
       // A sensor's spike is in its foot's summed reading too (the sum's own spike, -d2 / 2, at
       // least half the pad's, same sign); load that rocks between the pads of a foot for a tick
       // (a pad chattering on and off the ground) is not. Unknown (a pad without a value): counted.
-      const double foot_spike = -0.5 * foot_d2_[j / feet_points_];
+      const double foot_spike = -0.5 * foot_d2_[channel_foot_[j]];
       const bool in_foot_sum = !std::isfinite(foot_spike) || foot_spike * spike >= 0.5 * spike * spike;
       if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
           std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum &&
@@ -666,13 +678,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
       c.second_diff[c.second_diff_next] = std::abs(innovation);
       c.noisy_tick[c.second_diff_next] = std::abs(innovation) > tick_noise &&
-                                         std::abs(foot_d2_[j / feet_points_]) > foot_noise &&
+                                         std::abs(foot_d2_[channel_foot_[j]]) > foot_noise &&
                                                  (!neighbour_unread || c.type == FaultType::noise)
                                              ? 1
                                              : 0;
       c.noisy_count += c.noisy_tick[c.second_diff_next];
       c.first_diff[c.second_diff_next] = std::abs(change);
-      c.second_diff_next = (c.second_diff_next + 1) % c.second_diff.size();
+      c.second_diff_next = ring_after(c.second_diff_next, c.second_diff.size());
       c.jump_pending = false;
       c.late_candidate = false;
       c.relation_pending = false;
@@ -697,14 +709,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         --late_size_;
       }
       // Likewise a member of its foot's plane group (inside a touchdown guard).
-      const std::size_t foot = j / feet_points_;
+      const std::size_t foot = channel_foot_[j];
       if (c.relation_member && relation_group_[foot] == 1 && relation_group_age_[foot] == 1 &&
           back(c.relation_jump_size)) {
         c.relation_member = false;
         const std::size_t relations = unmeasured_.relations_per_foot();
         const double jump = in_residual(c.type, c.gain, c.relation_jump_size);
         for (std::size_t r = 0; r < relations; ++r) {
-          relation_expect_[foot * relations + r] -= unmeasured_.relation_weight(j % feet_points_, r) * jump;
+          relation_expect_[foot * relations + r] -= unmeasured_.relation_weight(j - foot * feet_points_, r) * jump;
         }
         bool members = false;
         for (std::size_t i = 0; i < feet_points_; ++i) members = members || channels_[foot * feet_points_ + i].relation_member;
@@ -759,7 +771,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           c.end_clear_ticks = 0;
         }
       } else if (steps && touching_down && !pad_landing && unmeasured_.relations_per_foot() > 0 &&
-                 relation_group_[j / feet_points_] != 1) {  // 2: decided last tick, free again
+                 relation_group_[channel_foot_[j]] != 1) {  // 2: decided last tick, free again
         // Inside a touchdown guard the sum residual carries the impact; the foot's plane does not.
         c.relation_pending = true;
         c.relation_jump = change;
@@ -767,7 +779,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.candidate_flagged = c.type != FaultType::none;
       } else if (steps && touching_down && !pad_landing && !c.end_pending && corrects(c.type) &&
                  (c.type == FaultType::gain || c.fit_has_air) &&
-                 t - last_touchdown_s_[j / feet_points_] >= params_.touchdown_guard_s && fz_ok &&
+                 t - last_touchdown_s_[channel_foot_[j]] >= params_.touchdown_guard_s && fz_ok &&
                  residual_before_known_) {
         // A step back by the fault's size on a foot that is not landing, while another foot is:
         // the fault may have ended. Only a fault whose model is settled (measured in the air, or
@@ -837,10 +849,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // Sum residual history for the jump confirmation.
   const double raw_residual = fz_ok ? raw_sum - fz : 0.0;
   if (median_lag_correction != 0.0 && residual_count_ > 0) {
-    residual_ring_[(residual_next_ + residual_ring_.size() - 1) % residual_ring_.size()] += median_lag_correction;
+    residual_ring_[ring_back(residual_next_, residual_ring_.size(), 0)] += median_lag_correction;
   }
   residual_ring_[residual_next_] = raw_residual;
-  residual_next_ = (residual_next_ + 1) % residual_ring_.size();
+  residual_next_ = ring_after(residual_next_, residual_ring_.size());
   residual_count_ = std::min(residual_count_ + 1, residual_ring_.size());
   if (jump_candidates > 0 && fz_ok) {
     group_pending_ = true;
@@ -890,7 +902,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const bool noisy_loaded = type == FaultType::noise && !airborne;
     unmeasured_in_residual = unmeasured_in_residual || substituted || noisy_loaded;
     substituted_loaded = substituted_loaded || substituted;
-    substituting_rolling = substituting_rolling || (substituted && foot_airborne_[j / feet_points_] != 0);
+    substituting_rolling = substituting_rolling || (substituted && foot_airborne_[channel_foot_[j]] != 0);
   }
   bool group_dropped = false;
   if (group_emptied && group_pending_) {
@@ -1031,7 +1043,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       for (std::size_t j = 0; j < channels_.size() && !expired; ++j) {
         const Channel& c = channels_[j];
         if (!c.onset_after_guard) continue;
-        const std::size_t foot = j / feet_points_;
+        const std::size_t foot = channel_foot_[j];
         double net = 0.0;
         bool first_of_group = true;
         for (std::size_t i = 0; i < feet_points_; ++i) {
@@ -1136,7 +1148,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     } else if (late_member && late_confirmed) {
       decide(c.late_jump, c.late_load_before, false);  // a healthy channel's (flagged: above)
     }
-    const std::size_t foot = j / feet_points_;
+    const std::size_t foot = channel_foot_[j];
     if (c.relation_member && relation_group_[foot] == 2) {
       c.relation_member = false;
       if (relation_verdict_[foot] != 0) {
@@ -1353,7 +1365,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
                             : 0.0;
       // The plane holds in full contact only: every pad on the ground, every known one loaded.
       if (airborne || (!unknown && !(recovered[j] > params_.airborne_threshold_N))) {
-        plane_usable_[j / feet_points_] = 0;
+        plane_usable_[channel_foot_[j]] = 0;
       }
     }
     // A foot whose readable pads on the ground all read their air level, past its landing's
@@ -1378,7 +1390,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       loaded_foot_unknown = loaded_foot_unknown || (holds_unknown && foot_reads_unloaded_[f] == 0);
     }
     for (std::size_t j = 0; j < channels_.size() && loaded_foot_unknown; ++j) {
-      if (unknown_[j] != 0 && foot_reads_unloaded_[j / feet_points_] != 0 && lower_bound_[j] == 0.0) {
+      if (unknown_[j] != 0 && foot_reads_unloaded_[channel_foot_[j]] != 0 && lower_bound_[j] == 0.0) {
         unknown_[j] = 0;
         recovered[j] = 0.0;
       }
@@ -1502,7 +1514,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
                                      double t) noexcept {
   const std::size_t relations = unmeasured_.relations_per_foot();
   if (relations == 0) return;
-  const std::size_t ring = full_contact_ring_.size() / feet_;
+  const std::size_t ring = static_cast<std::size_t>(2 * jump_window_ticks_);
   const std::size_t w = static_cast<std::size_t>(jump_window_ticks_);
   for (std::size_t f = 0; f < feet_; ++f) {
     if (relation_group_[f] == 2) {  // decided on the last tick
@@ -1522,7 +1534,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
       full = full && std::isfinite(x) && !(height[j] > params_.airborne_height_m) &&
              load > params_.airborne_threshold_N && (c.type == FaultType::none || corrects(c.type));
     }
-    full_contact_ring_[f * ring + relation_next_] = full ? 1 : 0;
+    full_contact_run_[f] = full ? std::min(full_contact_run_[f] + 1, ring) : 0;
     for (std::size_t r = 0; r < relations; ++r) {
       double value = 0.0;
       for (std::size_t i = 0; i < feet_points_ && full; ++i) {
@@ -1534,11 +1546,10 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
       relation_ring_[(f * relations + r) * ring + relation_next_] = value;
     }
   }
-  relation_next_ = (relation_next_ + 1) % ring;
+  relation_next_ = ring_after(relation_next_, ring);
   relation_filled_ = std::min(relation_filled_ + 1, ring);
   for (std::size_t f = 0; f < feet_; ++f) {
-    bool known = relation_filled_ == ring;
-    for (std::size_t k = 0; k < ring && known; ++k) known = full_contact_ring_[f * ring + k] != 0;
+    const bool known = relation_filled_ == ring && full_contact_run_[f] == ring;
     relation_step_known_[f] = known ? 1 : 0;
     bool healthy = true, candidates = false;
     for (std::size_t i = 0; i < feet_points_; ++i) {
@@ -1551,8 +1562,8 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
         const double* values = &relation_ring_[(f * relations + r) * ring];
         double before = 0.0, after = 0.0;
         for (std::size_t i = 0; i < w; ++i) {
-          after += values[(relation_next_ + ring - 1 - i) % ring];
-          before += values[(relation_next_ + ring - 1 - w - i) % ring];
+          after += values[ring_back(relation_next_, ring, i)];
+          before += values[ring_back(relation_next_, ring, w + i)];
         }
         relation_step_[f * relations + r] = (after - before) / static_cast<double>(w);
         relation_before_[f * relations + r] = before / static_cast<double>(w);
@@ -1934,7 +1945,9 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     const bool judged = (c.type == FaultType::gain || c.type == FaultType::offset) && on_ground;
     StancePowers& stance = stance_powers_[j];
     StancePowers& run = stance_cusum_[j];
-    if (!judged || stance.type != c.type) {  // a new stance, or sums taken for another correction
+    // A new stance, or sums taken for another correction (not rewritten when already fresh: most
+    // channels most ticks).
+    if ((!judged || stance.type != c.type) && !(stance.fresh_for(c.type) && run.fresh_for(c.type))) {
       stance = run = StancePowers{.type = c.type};
     }
     const double raw = residual + measured[j] - recovered[j];

@@ -1,11 +1,10 @@
 #include "ftsense/biped/lipm_com_estimator.hpp"
 
-#include <Eigen/Cholesky>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "ftsense/biped/cholesky_pivots.hpp"
 #include "ftsense/biped/frames.hpp"
 
 namespace ftsense::biped {
@@ -102,17 +101,47 @@ void LipmComEstimator::reset() noexcept {
   initialised_ = false;
 }
 
+namespace {
+// h x with h's zero entries skipped. The filter's rows are sparse ((0, 0, 1), (1, 0, -1/omega0^2),
+// (1, 0, 0)); for a finite x a skipped term is an exact zero, so the value is the dense product's,
+// in two multiplications instead of three. (A non-finite P fails the health check at the end of
+// the tick either way.)
+double sparse_dot(const Eigen::RowVector3d& h, const double* x) noexcept {
+  double sum = 0.0;
+  bool any = false;
+  for (int m = 0; m < 3; ++m) {
+    if (h[m] == 0.0) continue;
+    sum = any ? sum + h[m] * x[m] : h[m] * x[m];
+    any = true;
+  }
+  return sum;
+}
+}  // namespace
+
 void LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept {
-  const Eigen::Vector3d ph = axis.P * h.transpose();
-  const double s = h.dot(ph) + variance;
+  // Written out in scalars, each value computed as the Eigen expressions
+  // ph = P h^T, s = h ph + r, k = ph / s, x += k nu, P -= k ph^T, P = (P + P^T) / 2 compute it
+  // (the same operations per element), without their packed loads and stores.
+  double ph[3];
+  for (int i = 0; i < 3; ++i) {
+    const double row[3] = {axis.P(i, 0), axis.P(i, 1), axis.P(i, 2)};
+    ph[i] = sparse_dot(h, row);
+  }
+  const double s = sparse_dot(h, ph) + variance;
   if (!(s > 0.0) || !std::isfinite(z)) return;
-  const double innovation = z - h.dot(axis.s);
+  const double innovation = z - sparse_dot(h, axis.s.data());
   // Gate: an innovation beyond 100 standard deviations is a broken reading, not information.
   if (!(innovation * innovation <= kGateSigma2 * s)) return;
-  const Eigen::Vector3d k = ph / s;
-  axis.s += k * innovation;
-  axis.P -= k * ph.transpose();
-  axis.P = 0.5 * (axis.P + axis.P.transpose());
+  double k[3];
+  for (int i = 0; i < 3; ++i) k[i] = ph[i] / s;
+  for (int i = 0; i < 3; ++i) axis.s(i) += k[i] * innovation;
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) axis.P(i, j) -= k[i] * ph[j];
+  }
+  for (int j = 0; j < 3; ++j) {
+    for (int i = j + 1; i < 3; ++i) axis.P(i, j) = axis.P(j, i) = 0.5 * (axis.P(i, j) + axis.P(j, i));
+  }
+  for (int i = 0; i < 3; ++i) axis.P(i, i) = 0.5 * (axis.P(i, i) + axis.P(i, i));
 }
 
 double LipmComEstimator::solve_steady_state_com_variance() const noexcept {
@@ -124,7 +153,7 @@ double LipmComEstimator::solve_steady_state_com_variance() const noexcept {
     const Eigen::Vector3d ph = p * h.transpose();
     const double s = h.dot(ph) + variance;
     p -= ph * ph.transpose() / s;
-    p = 0.5 * (p + p.transpose());
+    p = (0.5 * (p + p.transpose())).eval();  // evaluated first: assigned in place, p^T would read written entries
   };
   Eigen::Matrix3d p = initial_covariance();
   double previous = p(0, 0);
@@ -219,7 +248,7 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
   bool ready = true;
   for (int i = 0; i < 2; ++i) {
     Axis& a = axes_[i];
-    const bool healthy = a.s.allFinite() && a.P.allFinite() && Eigen::LLT<Eigen::Matrix3d>(a.P).info() == Eigen::Success;
+    const bool healthy = a.s.allFinite() && a.P.allFinite() && cholesky_pivots_positive(a.P);
     if (!healthy) {
       // Hostile data overflowed the filter: restart this axis at its last good CoM, with the
       // initial covariance, and take the ZMP rate afresh on the next tick.

@@ -3,13 +3,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "ftsense/biped/biped_plugins.hpp"
+#include "ftsense/biped/cholesky_pivots.hpp"
 #include "ftsense/testing/plugin_contract.hpp"
 
 namespace {
@@ -222,6 +225,33 @@ TEST(LipmComEstimator, ConvergesOnASyntheticLipmTrajectoryWithKnownZmp) {
   EXPECT_LT(noisy, 0.004);
 }
 
+TEST(LipmComEstimator, TheCovarianceIsExactlySymmetricAfterEveryTick) {
+  // Each update ends by P = (P + P^T) / 2. Written in place as one Eigen expression, P^T read
+  // entries already written: a P left asymmetric in its last bits by the prediction F P F^T
+  // stayed so. A swaying CoM whose ZMP is missing a third of the time (IMU updates alone then),
+  // IMU noise from a fixed seed.
+  constexpr std::uint64_t kSeed = 9;
+  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  PluginHarness<LipmComEstimator> h;
+  h.plugin().reset();
+  for (int k = 0; k < 6000; ++k) {
+    const double t = k * 1e-3;
+    auto& in = h.inputs();
+    in[0] = {std::sin(3.0 * t) + 0.1 * noise(rng), std::cos(2.0 * t), 9.806};
+    in[1] = {0.0, 0.0, 0.0};
+    const bool zmp_missing = (k / 300) % 3 == 0;
+    in[2] = {zmp_missing ? std::nan("") : 0.05 * std::sin(3.0 * t),
+             zmp_missing ? std::nan("") : ((k / 500) % 2 != 0 ? 0.08 : -0.08)};
+    h.step(t);
+    for (std::size_t axis = 0; axis < 2; ++axis) {
+      const Eigen::Matrix3d& p = h.plugin().covariance(axis);
+      ASSERT_TRUE(p == p.transpose()) << "tick " << k << ", axis " << axis << "\n" << p;
+    }
+  }
+}
+
 TEST(LipmComEstimator, BrokenReadingsAreGatedAndALostFilterRestartsAndSaysSo) {
   PluginHarness<LipmComEstimator> h;
   h.plugin().reset();
@@ -269,6 +299,44 @@ TEST(LipmComEstimator, SteadyStateVarianceIsTheRiccatiFixedPoint) {
   EXPECT_GT(p_inf, 0.0);
   EXPECT_NEAR(h.outputs()[LipmComEstimator::kComVariance][0], p_inf, 1e-6 * p_inf);
   EXPECT_NEAR(h.outputs()[LipmComEstimator::kComVariance][1], p_inf, 1e-6 * p_inf);
+}
+
+TEST(CholeskyPivots, AnswerAsEigensLltOnEveryKindOfMatrix) {
+  // Oracle: Eigen::LLT itself. Covariances as the filter holds them (positive definite, badly
+  // scaled, nearly singular), indefinite and singular ones, and hostile entries (NaN, inf,
+  // overflowing and underflowing squares); the upper triangle differs from the lower (only the
+  // lower is read).
+  constexpr std::uint64_t kSeed = 20261128;
+  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> kind(0, 7);
+  std::uniform_int_distribution<int> entry(0, 8);
+  const double specials[] = {0.0, -0.0, 1e-300, 1e200, -1e200, std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+  int positive = 0, not_positive = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    Eigen::Matrix3d b;
+    for (int i = 0; i < 9; ++i) b(i / 3, i % 3) = unit(rng);
+    Eigen::Matrix3d a = b * b.transpose();  // positive semi-definite
+    switch (kind(rng)) {
+      case 0: break;
+      case 1: a += 1e-12 * Eigen::Matrix3d::Identity(); break;
+      case 2: a = Eigen::Vector3d(1e-6, 1.0, 1e6).asDiagonal() * a * Eigen::Vector3d(1e-6, 1.0, 1e6).asDiagonal(); break;
+      case 3: a(2, 2) -= std::abs(unit(rng)); break;  // often indefinite
+      case 4: a.col(2) = a.col(0) + a.col(1); a.row(2) = a.row(0) + a.row(1); break;  // singular
+      case 5: a(entry(rng) / 3, entry(rng) % 3) = specials[static_cast<std::size_t>(entry(rng)) % 8]; break;
+      case 6: a *= 1e160; break;  // squares overflow
+      case 7: a = -a; break;
+    }
+    a(0, 2) = unit(rng);  // the upper triangle is not read
+    const bool eigen = Eigen::LLT<Eigen::Matrix3d>(a).info() == Eigen::Success;
+    ASSERT_EQ(cholesky_pivots_positive(a), eigen) << "trial " << trial << "\n" << a;
+    (eigen ? positive : not_positive) += 1;
+  }
+  // Both answers were exercised.
+  EXPECT_GT(positive, 50000);
+  EXPECT_GT(not_positive, 50000);
 }
 
 TEST(LipmComEstimator, WithoutTheZmpTheCoMIsNotReadyAndReacquiresWhenItReturns) {

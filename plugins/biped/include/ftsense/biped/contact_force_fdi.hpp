@@ -607,6 +607,7 @@ class ContactForceFdi {
   std::size_t feet_points_;
   std::size_t feet_ = 2;
   std::vector<Channel> channels_;
+  std::vector<std::size_t> channel_foot_;  // per channel j: its foot, j / feet_points_ (divided once)
   std::vector<double> residual_ring_;  // sum residual history, 2 * jump window
   std::size_t residual_next_ = 0;
   std::size_t residual_count_ = 0;
@@ -671,6 +672,8 @@ class ContactForceFdi {
   int frozen_ticks_ = 2;        // n_f, the frozen test's run length (INT_MAX: never reached)
   bool repeat_test_off_ = false;  // no bounded n_f: the quantiser is coarser than the noise dithers
   double repeat_band_N_ = 0.0;  // q / 2
+  double tick_noise_N_ = 0.0;   // the noise test's bar on a pad's second difference: sqrt(6 (sigma^2 + (q/2)^2)) x noise_factor
+  double foot_noise_N_ = 0.0;   // ... and on its foot's summed reading's: tick_noise_N_ sqrt(points_per_foot)
   double zero_evidence_above_N_ = 0.0;  // a zero reading is frozen evidence above this load
   int jump_window_ticks_;
   int min_airborne_samples_ = 10;
@@ -717,6 +720,9 @@ class ContactForceFdi {
     int ticks = 0;
     double raw_rr = 0.0, held_rr = 0.0, correction_cc = 0.0, gain_rr = 0.0, gain_cc = 0.0;
     bool gain_model = false;  // some tick had the gain explanation
+    // As constructed for `t`: every sum grows only through add (which counts a tick) or
+    // add_gain_model (which sets gain_model), so these three say it.
+    [[nodiscard]] bool fresh_for(FaultType t) const noexcept { return ticks == 0 && !gain_model && type == t; }
     void add(double raw, double held, double correction) noexcept {
       raw_rr += raw * raw;
       held_rr += held * held;
@@ -758,11 +764,11 @@ class ContactForceFdi {
   std::vector<char> plane_usable_;    // per foot, this tick
   // Jumps inside a touchdown guard, confirmed by the foot's plane relations (the impact, which the
   // trunk IMU does not see, leaves a rigid sole's loads on a plane). Per foot: the relations of the
-  // readings (as the jump test's sum takes them) over 2 jump windows, whether the foot was in full
-  // contact at each tick, the pending group's age and expected step, and the fault-free mean square
+  // readings (as the jump test's sum takes them) over 2 jump windows, how long the foot has been in
+  // full contact, the pending group's age and expected step, and the fault-free mean square
   // of the relations' window steps.
   std::vector<double> relation_ring_;     // feet x relations x 2 W
-  std::vector<char> full_contact_ring_;   // feet x 2 W
+  std::vector<std::size_t> full_contact_run_;  // per foot: ticks in a row in full contact, at most 2 W
   std::size_t relation_next_ = 0;
   std::size_t relation_filled_ = 0;
   std::vector<char> relation_group_;      // per foot: 0 none, 1 pending, 2 decided this tick

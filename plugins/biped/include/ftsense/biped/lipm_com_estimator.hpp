@@ -86,6 +86,9 @@ class LipmComEstimator {
   // P_inf: the steady-state posterior variance of c [m^2] with every measurement present.
   [[nodiscard]] double steady_state_com_variance() const noexcept { return steady_state_com_variance_; }
 
+  // The state covariance P of axis 0 (x) or 1 (y) after the last tick [m^2, m^2/s, ...].
+  [[nodiscard]] const Eigen::Matrix3d& covariance(std::size_t axis) const noexcept { return axes_[axis].P; }
+
   LipmComEstimator(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
   void reset() noexcept;
