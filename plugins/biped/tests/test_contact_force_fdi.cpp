@@ -1482,6 +1482,10 @@ struct GuardCase {
   bool toe_off_seen = false;    // r_foot/p2 rolls off on the onset tick, the total force with it
   double onset_after_landing_s = 0.04;
   std::size_t watched = 4;  // the channel whose first flag's tick is returned
+  double relanding_after_s = 0.0;  // > 0: the left foot's kinematics lift it 5 ms before this
+                                   // long after the last landing and land it again (its loads as
+                                   // they were: a glitch the pads do not feel), and the trace
+                                   // runs 0.4 s past the last landing
 };
 int offset_in_a_guard_off_full_contact_flagged_at(const GuardCase& g) {
   auto p = suralp();
@@ -1492,7 +1496,9 @@ int offset_in_a_guard_off_full_contact_flagged_at(const GuardCase& g) {
   constexpr double kWeight = 1100.0;
   const auto tick = [&](double s) { return static_cast<int>(std::lround(s / period_s)); };
   const int last_land = tick(0.5 + 0.4 * (g.landings - 1));
-  const int onset = last_land + tick(g.onset_after_landing_s), ticks = last_land + tick(0.25);
+  const int onset = last_land + tick(g.onset_after_landing_s);
+  const int ticks = last_land + tick(g.relanding_after_s > 0.0 ? 0.4 : 0.25);
+  const int relanding = g.relanding_after_s > 0.0 ? last_land + tick(g.relanding_after_s) : -1;
   const double ramp_ticks = 0.05 / period_s;
   int flagged = -1;
   double onset_change = 0.0;  // pad 4's reading's change on the onset tick, but for the step
@@ -1511,7 +1517,7 @@ int offset_in_a_guard_off_full_contact_flagged_at(const GuardCase& g) {
       }
     }
     if (swinging) left_share = 0.0;
-    feet.left_foot_at(swinging ? 0.03 : 0.0);
+    feet.left_foot_at(swinging || (k >= relanding - tick(0.005) && k < relanding) ? 0.03 : 0.0);
     const double pitch = 400.0 * std::sin(2 * kPi * 0.8 * t), roll = 150.0 * std::cos(2 * kPi * 0.5 * t);
     double sum = 0.0, unseen_N = 0.0;
     for (std::size_t j = 0; j < kChannels; ++j) {
@@ -1632,6 +1638,17 @@ TEST(ContactForceFdi, AStepInsideAGuardIsNotJudgedOnAResidualThatAFlagRaisedSinc
   // guard. That step is l_foot/p1's, not r_foot/p1's: a flag raised since the guard began voids
   // the judgment.
   EXPECT_EQ(offset_in_a_guard_off_full_contact_flagged_at({.fault_N = 0.0, .left_fault_N = 50.0}), -1);
+}
+
+TEST(ContactForceFdi, AStepInsideAGuardStillUnjudgedWhenTheNextGuardBeginsIsDropped) {
+  // The left foot lands again 155 ms after the last landing, 5 ms after that guard ended and 5 ms
+  // before the +80 N step would have been judged (tick 2660): the step is dropped unjudged, not
+  // judged after the second guard against a landing's bar learnt on one guard at a time (that
+  // would flag it at tick 2655 + 150 + 10).
+  EXPECT_EQ(offset_in_a_guard_off_full_contact_flagged_at({.relanding_after_s = 0.155}), -1);
+  // Landing again 165 ms after (the step judged 5 ms before): flagged as without the glitch.
+  EXPECT_EQ(offset_in_a_guard_off_full_contact_flagged_at({.relanding_after_s = 0.165}),
+            first_tick_past_guard(1e-3, 2500) + 9);
 }
 
 }  // namespace
