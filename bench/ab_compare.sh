@@ -22,7 +22,7 @@ for _ in $(seq "$rounds"); do
     run=$((run + 1))
     echo "$bin" > "$out/$run.binary"
     taskset -c 1 "$bin" --benchmark_filter="$filter" --benchmark_repetitions=10 --benchmark_min_time=0.1 \
-      --benchmark_format=csv > "$out/$run.csv" 2> /dev/null
+      --benchmark_format=csv > "$out/$run.csv" 2> "$out/$run.err" || { cat "$out/$run.err" >&2; exit 1; }
   done
 done
 /usr/bin/python3 - "$out" "$run" <<'PY'
@@ -31,9 +31,11 @@ times = collections.defaultdict(list)
 for run in range(1, int(sys.argv[2]) + 1):
     binary = open(f"{sys.argv[1]}/{run}.binary").read().strip()
     for row in csv.DictReader(open(f"{sys.argv[1]}/{run}.csv")):
-        if row["name"].endswith(("_mean", "_median", "_stddev", "_cv")):
+        if row["name"].endswith(("_mean", "_median", "_stddev", "_cv")) or not row["cpu_time"]:
             continue
         times[(row["name"], binary)].append(float(row["cpu_time"]))
+if not times:
+    sys.exit("ab_compare.sh: no benchmark matched the filter")
 for (name, binary), v in sorted(times.items()):
     v.sort()
     print(f"{name}  {binary}: n={len(v)} min={v[0]:.0f} p25={v[len(v) // 4]:.0f} median={statistics.median(v):.0f} ns (CPU time)")

@@ -1641,7 +1641,7 @@ TEST(ContactForceFdi, AStepInsideAGuardIsNotJudgedOnAResidualThatAFlagRaisedSinc
 }
 
 TEST(ContactForceFdi, AStepInsideAGuardStillUnjudgedWhenTheNextGuardBeginsIsDropped) {
-  // The left foot lands again 155 ms after the last landing, 5 ms after that guard ended and 5 ms
+  // The left foot lands again 155 ms after the last landing, 4 ms after that guard's last tick and 5 ms
   // before the +80 N step would have been judged (tick 2660): the step is dropped unjudged, not
   // judged after the second guard against a landing's bar learnt on one guard at a time (that
   // would flag it at tick 2655 + 150 + 10).

@@ -10,7 +10,9 @@
 // order (Eigen/src/Cholesky/LLT.h, llt_inplace::unblocked), so the answer is the same as
 // `Eigen::LLT<Eigen::Matrix3d>(a).info() == Eigen::Success` for every input, NaN included (a NaN
 // pivot is not "<= 0": it passes, as in Eigen), without the factor's stores and loop: in a 1 kHz
-// tick the general routine cost a third of the filter's update.
+// tick the general routine cost a third of the filter's update. (On a build that fuses
+// multiply-adds, e.g. -march=native, either side may be contracted differently: the identity is
+// for the default x86-64 target.)
 
 #include <cmath>
 
