@@ -444,7 +444,6 @@ void ContactForceFdi::reset() noexcept {
   unmeasured_.reset();
   std::fill(full_contact_run_.begin(), full_contact_run_.end(), 0);
   relation_next_ = 0;
-  relation_filled_ = 0;
   std::fill(relation_group_.begin(), relation_group_.end(), 0);
   std::fill(relation_step_known_.begin(), relation_step_known_.end(), 0);
   std::fill(relation_step_square_.begin(), relation_step_square_.end(), 0.0);
@@ -1547,9 +1546,9 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
     }
   }
   relation_next_ = ring_after(relation_next_, ring);
-  relation_filled_ = std::min(relation_filled_ + 1, ring);
   for (std::size_t f = 0; f < feet_; ++f) {
-    const bool known = relation_filled_ == ring && full_contact_run_[f] == ring;
+    // A run of 2 W full ticks also means the ring holds 2 W values written since the reset.
+    const bool known = full_contact_run_[f] == ring;
     relation_step_known_[f] = known ? 1 : 0;
     bool healthy = true, candidates = false;
     for (std::size_t i = 0; i < feet_points_; ++i) {

@@ -770,7 +770,6 @@ class ContactForceFdi {
   std::vector<double> relation_ring_;     // feet x relations x 2 W
   std::vector<std::size_t> full_contact_run_;  // per foot: ticks in a row in full contact, at most 2 W
   std::size_t relation_next_ = 0;
-  std::size_t relation_filled_ = 0;
   std::vector<char> relation_group_;      // per foot: 0 none, 1 pending, 2 decided this tick
   std::vector<int> relation_group_size_;  // per foot: the members of the group decided this tick
   std::vector<int> relation_group_age_;
