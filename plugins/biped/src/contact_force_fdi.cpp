@@ -276,6 +276,12 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * kSmoothingHz * period_s_);
   // Five time constants of that low-pass: a step has settled to within e^-5 (under 1 %).
   smoother_settle_s_ = 5.0 / (2.0 * 3.141592653589793 * kSmoothingHz);
+  // Half a settling, less half a tick (a window a tick late on a rounded sum skips no turn).
+  short_window_stagger_s_ = 0.5 * smoother_settle_s_ - 0.5 * period_s_;
+  // A stuck reading's noise through the low-pass y += a (x - y): std sigma sqrt(a / (2 - a)); its
+  // range stays within +-4 of those, and a quantised one moves by a level more.
+  still_band_N_ = params_.resolution_N +
+                  8.0 * params_.noise_std_N * std::sqrt(smoothing_ / (2.0 - smoothing_));
   guard_pending_limit_s_ = 4.0 * params.touchdown_guard_s + 2.0 * jump_window_ticks_ * period_s_;
   spike_rule_ = {params_.spike_hold_s, std::min(params_.clear_s, params_.spike_hold_s),
                  std::log(1.0 / params_.spike_gap_probability)};
@@ -303,6 +309,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   derive(params_.sum_threshold_N, kSumThresholdWeight * params.weight_N);
   derive(params_.gain_min_load_N, kGainMinLoadWeight * params.weight_N);
   zero_evidence_above_N_ = std::max(params_.airborne_threshold_N, params_.zero_clamp_N + params_.sum_threshold_N);
+  residual_near_N_ = params_.follow_ratio * params_.sum_threshold_N;
   if (params_.airborne_clear_N >= params_.airborne_threshold_N) {
     const auto shown = [](double given, double used) {
       return format_number(used) + (given == 0.0 ? " (derived from noise_std_N and resolution_N)" : "");
@@ -370,6 +377,14 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
   foot_unread_.assign(feet_, 0);
+  still_lo_.assign(still_windows_.size() * n, 0.0);
+  for (auto* range : {&since_low_min_, &since_low_max_, &since_high_min_, &since_high_max_}) {
+    range->assign(still_windows_.size() * n, 0.0);
+  }
+  smoothed_.assign(n, 0.0);
+  judgeable_.assign(n, 0);
+  still_hi_.assign(still_windows_.size() * n, 0.0);
+  still_grounded_.assign(still_windows_.size() * n, 0);
   channel_foot_.resize(n);
   for (std::size_t j = 0; j < n; ++j) channel_foot_[j] = j / feet_points_;
   if (!params.points.empty() && params.points.size() != feet_points_) {
@@ -427,7 +442,9 @@ void ContactForceFdi::reset() noexcept {
   sum_filtered_ = 0.0;
   residual_smoothed_ = 0.0;
   residual_smoothed_started_ = false;
-  still_window_active_ = false;
+  for (StillWindow& w : still_windows_) w = StillWindow{};
+  next_short_window_ = 0;
+  next_short_window_s_ = -1e300;
   unread_candidate_ = channels_.size();
   residual_within_bound_s_ = -1e300;
   still_window_settle_until_s_ = -1e300;
@@ -1642,7 +1659,7 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
                                                     : residual;
     residual_smoothed_started_ = true;
   }
-  // The window restarts, once the smoothers have settled, when the residual is unknown, a channel
+  // The windows restart, once the smoothers have settled, when the residual is unknown, a channel
   // steps (a jump is the jump test's), a flag changes (the corrected residual changes meaning), or
   // a loaded channel's correction follows its load (gain) or replaces it (substituted, noise): a
   // wrong k or share moves the residual as that load moves, which a still neighbour would take.
@@ -1656,55 +1673,118 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
     restart = restart || (c.type != FaultType::none && !additive && !airborne);
   }
   if (restart) {
-    still_window_active_ = false;
+    for (StillWindow& w : still_windows_) w.active = false;
     still_window_settle_until_s_ = t + smoother_settle_s_;
+    next_short_window_s_ = still_window_settle_until_s_ + short_window_stagger_s_;
     return;
   }
   if (t < still_window_settle_until_s_) return;
-  if (!still_window_active_) {
-    still_window_active_ = true;
-    still_window_start_s_ = t;
-    still_residual_lo_ = still_residual_hi_ = residual_smoothed_;
-    for (std::size_t j = 0; j < channels_.size(); ++j) {
-      Channel& c = channels_[j];
-      c.still_lo = c.still_hi = c.smoothed;
-      c.still_grounded = c.type == FaultType::none && !(height[j] > params_.airborne_height_m);
-    }
-    return;
-  }
-  still_residual_lo_ = std::min(still_residual_lo_, residual_smoothed_);
-  still_residual_hi_ = std::max(still_residual_hi_, residual_smoothed_);
-  for (std::size_t j = 0; j < channels_.size(); ++j) {
-    Channel& c = channels_[j];
-    c.still_lo = std::min(c.still_lo, c.smoothed);
-    c.still_hi = std::max(c.still_hi, c.smoothed);
-    c.still_grounded = c.still_grounded && c.type == FaultType::none && !(height[j] > params_.airborne_height_m) &&
-                       std::isfinite(measured[j]);
-  }
-  const double residual_span = still_residual_hi_ - still_residual_lo_;
-  // A window shorter than the smoother's settling measures the smoother, not the signals.
-  if (residual_span < params_.sum_threshold_N || t - still_window_start_s_ < smoother_settle_s_) return;
-  // The residual has moved beyond the total force's error: one still reading explains it (its
-  // load moved by that much unread); two or more cannot be told apart (cannot judge), none: some
-  // other fault or the reference, left to the other tests.
-  std::size_t candidates = 0, culprit = 0;
-  for (std::size_t j = 0; j < channels_.size(); ++j) {
+  const std::size_t n = channels_.size();
+  for (std::size_t j = 0; j < n; ++j) {
     const Channel& c = channels_[j];
-    // Under "j is stuck" its load is its leave-one-out force, x_j - r (both smoothed): a pad only
-    // pushes, so one that would carry less than -airborne_threshold_N cannot be the one (a pad
-    // reading 0 while the pads' sum reads too much); one stuck where its load came to 0 (a foot
-    // about to lift) can.
-    if (c.still_grounded && c.still_hi - c.still_lo < params_.follow_ratio * residual_span &&
-        c.smoothed - residual_smoothed_ > -params_.airborne_threshold_N) {
-      ++candidates;
-      culprit = j;
+    smoothed_[j] = c.smoothed;
+    judgeable_[j] = c.type == FaultType::none && !(height[j] > params_.airborne_height_m) && std::isfinite(measured[j]);
+  }
+  // A window opened on this tick holds this tick's values only: judged from the next.
+  const auto open = [&](std::size_t w) {
+    StillWindow& window = still_windows_[w];
+    window.active = true;
+    window.opened_now = true;
+    window.start_s = t;
+    window.residual_lo = window.residual_hi = residual_smoothed_;
+    for (std::size_t j = 0; j < n; ++j) {
+      const Channel& c = channels_[j];
+      still_lo_[w * n + j] = still_hi_[w * n + j] = c.smoothed;
+      since_low_min_[w * n + j] = since_low_max_[w * n + j] = c.smoothed;
+      since_high_min_[w * n + j] = since_high_max_[w * n + j] = c.smoothed;
+      still_grounded_[w * n + j] = c.type == FaultType::none && !(height[j] > params_.airborne_height_m);
+    }
+  };
+  if (!still_windows_[kLongStillWindow].active) open(kLongStillWindow);
+  if (t >= next_short_window_s_) {
+    open(next_short_window_);
+    next_short_window_ = next_short_window_ + 1 == kShortStillWindows ? 0 : next_short_window_ + 1;
+    next_short_window_s_ = t + short_window_stagger_s_;
+  }
+  for (std::size_t w = 0; w < still_windows_.size(); ++w) {
+    StillWindow& window = still_windows_[w];
+    if (!window.active || window.opened_now) continue;
+    window.residual_lo = std::min(window.residual_lo, residual_smoothed_);
+    window.residual_hi = std::max(window.residual_hi, residual_smoothed_);
+    double* lo = still_lo_.data() + w * n;
+    double* hi = still_hi_.data() + w * n;
+    char* grounded = still_grounded_.data() + w * n;
+    for (std::size_t j = 0; j < n; ++j) {
+      lo[j] = std::min(lo[j], smoothed_[j]);
+      hi[j] = std::max(hi[j], smoothed_[j]);
+      grounded[j] = static_cast<char>(grounded[j] & judgeable_[j]);
+    }
+    if (w == kLongStillWindow) continue;  // judged by the whole range alone
+    // Each reading's range since the residual was last near each extreme (within a quarter of
+    // its bound: its noise does not take the start back into what happened before it moved).
+    const bool near_low = residual_smoothed_ <= window.residual_lo + residual_near_N_;
+    const bool near_high = residual_smoothed_ >= window.residual_hi - residual_near_N_;
+    const auto track = [&](std::vector<double>& min, std::vector<double>& max, bool restart_range) {
+      double* const lo_since = min.data() + w * n;
+      double* const hi_since = max.data() + w * n;
+      if (restart_range) {
+        std::copy_n(smoothed_.data(), n, lo_since);
+        std::copy_n(smoothed_.data(), n, hi_since);
+        return;
+      }
+      for (std::size_t j = 0; j < n; ++j) {
+        lo_since[j] = std::min(lo_since[j], smoothed_[j]);
+        hi_since[j] = std::max(hi_since[j], smoothed_[j]);
+      }
+    };
+    track(since_low_min_, since_low_max_, near_low);
+    track(since_high_min_, since_high_max_, near_high);
+  }
+  // The long window first, then the short ones; a raise restarts them all on the next tick.
+  for (std::size_t k = 0; k < still_windows_.size(); ++k) {
+    const std::size_t w = k == 0 ? kLongStillWindow : k - 1;
+    StillWindow& window = still_windows_[w];
+    if (!window.active || window.opened_now) continue;
+    const double residual_span = window.residual_hi - window.residual_lo;
+    // A window shorter than the smoother's settling measures the smoother, not the signals.
+    if (residual_span < params_.sum_threshold_N || t - window.start_s < smoother_settle_s_) continue;
+    // The residual has moved beyond the total force's error: one still reading explains it (its
+    // load moved by that much unread); two or more cannot be told apart (cannot judge), none: some
+    // other fault or the reference, left to the other tests.
+    // A short window is a tenth of a second: slow loads barely move in it, and a reading that
+    // sticks inside it (a saturation's ceiling reached) moved before the residual did. So it rules
+    // a reading out only when it spanned beyond twice what a stuck one shows (still_band_N_) since
+    // the residual was last near the extreme it moved away from (while it moved), and it names
+    // one only when that one stayed within the band over the whole window.
+    const bool short_window = w != kLongStillWindow;
+    const double bar = short_window ? std::max(params_.follow_ratio * residual_span, 2.0 * still_band_N_)
+                                    : params_.follow_ratio * residual_span;
+    std::size_t candidates = 0, culprit = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const Channel& c = channels_[j];
+      const std::size_t i = w * n + j;
+      const bool fell = residual_smoothed_ - window.residual_lo < window.residual_hi - residual_smoothed_;
+      const double moved = !short_window ? still_hi_[i] - still_lo_[i]
+                           : fell        ? since_high_max_[i] - since_high_min_[i]   // from its high
+                                         : since_low_max_[i] - since_low_min_[i];    // from its low
+      // Under "j is stuck" its load is its leave-one-out force, x_j - r (both smoothed): a pad only
+      // pushes, so one that would carry less than -airborne_threshold_N cannot be the one (a pad
+      // reading 0 while the pads' sum reads too much); one stuck where its load came to 0 (a foot
+      // about to lift) can.
+      if (still_grounded_[w * n + j] != 0 && moved < bar &&
+          c.smoothed - residual_smoothed_ > -params_.airborne_threshold_N) {
+        ++candidates;
+        culprit = j;
+      }
+    }
+    window.active = false;  // judged: the long one opens afresh, a short one waits for its turn
+    if (candidates == 1 &&
+        (!short_window || still_hi_[w * n + culprit] - still_lo_[w * n + culprit] <= still_band_N_)) {
+      raise_stuck(channels_[culprit], t);
+      break;
     }
   }
-  if (candidates == 1) {
-    Channel& c = channels_[culprit];
-    raise_stuck(c, t);
-  }
-  still_window_active_ = false;  // a fresh window (a raise restarts it with a settle, too)
+  for (StillWindow& window : still_windows_) window.opened_now = false;
 }
 
 void ContactForceFdi::unread_load_test(std::span<const double> height, bool usable, double t) noexcept {

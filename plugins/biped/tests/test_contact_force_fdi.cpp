@@ -11,6 +11,7 @@
 #include <random>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -2005,6 +2006,176 @@ TEST(ContactForceFdi, AReferenceThatDriftsBlamesNoReadingThatFollowsItsLoad) {
   // blaming it is the test's known limit (one still reading is taken as stuck): it is flagged on
   // the same tick as a stuck one would be.
   EXPECT_EQ(first[2], residual_moves_beyond_its_bound_at({{2}, false, -400.0}, 900));
+}
+
+// The still-reading test's short windows. Pad 2's load rises from 100 to 300 N over ticks 300-500
+// (1000 N/s, read right); from tick 500 its output sticks at 300 N while its load falls at
+// 1000 N/s to 0. The other pads ramp at 400 N/s (0, 3, 5, 7 up from 100 N; 1, 4, 6 down from 500 N), so
+// in any window a settling long each moves by 32 N, more than a quarter of the residual's move
+// when a window is judged. Every reading alternates +-1 N; F_z is the loads' true sum.
+double ramping_load(std::size_t j, int k) {
+  const double t = k * 1e-3;
+  if (j == 2) return k < 300 ? 100.0 : k < 500 ? 100.0 + (k - 300) : std::max(0.0, 300.0 - 1000.0 * (t - 0.5));
+  const bool up = j == 0 || j == 3 || j == 5 || j == 7;
+  return up ? 100.0 + 400.0 * t : 500.0 - 400.0 * t;
+}
+double ramping_reading(std::size_t j, int k) {
+  return (j == 2 && k >= 500 ? 300.0 : ramping_load(j, k)) + (k % 2 == 0 ? 1.0 : -1.0);
+}
+
+// The header's windows, run on that trace: the readings and the residual sum(x) - F_z low-passed
+// at 10 Hz; the long window opened on the first tick and again on the tick after each judgment;
+// a short one on the first tick and then every half settling less half a tick (39.29 ms: every
+// 40 ticks), each replacing the oldest of four. A window is judged on a later tick once it is a
+// settling long (79.6 ms) and its residual spans sum_threshold_N (80 N): the candidates are the
+// readings spanning under a quarter of that (in a short window: spanning, since r was last within
+// a quarter of 80 N of the extreme it moved away from, under that and under twice the stuck band
+// b, b = 8 sigma sqrt(a / (2 - a)) = 2.84 N for sigma = 2 N) with x - r above
+// -airborne_threshold_N (-8 N); the long window first; a short window names its one candidate
+// only if it spans at most b over the whole window. Returns the tick that one shows flagged (the tick after its window
+// names it), and the channel; -1 if none by `ticks`.
+template <class Load, class Reading>
+std::pair<int, std::size_t> still_windows_oracle(Load load, Reading reading_of, int ticks, bool short_windows) {
+  const double a = -std::expm1(-2.0 * std::numbers::pi * 10.0 * 1e-3);
+  const double settle = 5.0 / (2.0 * std::numbers::pi * 10.0);
+  const double band = 8.0 * 2.0 * std::sqrt(a / (2.0 - a));
+  struct Window {
+    bool active = false;
+    int start = 0;
+    double lo_r = 0.0, hi_r = 0.0;
+    std::array<double, kChannels> lo{}, hi{};
+    // Each reading's range since r was last within 20 N of lo_r, and of hi_r.
+    std::array<double, kChannels> since_lo_min{}, since_lo_max{}, since_hi_min{}, since_hi_max{};
+  };
+  std::array<Window, 5> windows{};  // 0-3 short, 4 long
+  std::array<double, kChannels> x{};
+  double r = 0.0, next_short_s = -1e300;
+  int next_slot = 0;
+  for (int k = 0; k < ticks; ++k) {
+    double residual = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double reading = reading_of(j, k);
+      x[j] = k == 0 ? reading : x[j] + a * (reading - x[j]);
+      residual += reading - load(j, k);
+    }
+    r = k == 0 ? residual : r + a * (residual - r);
+    std::array<bool, 5> opened{};
+    const auto open = [&](int w) {
+      windows[w] = Window{true, k, r, r, x, x, x, x, x, x};
+      opened[w] = true;
+    };
+    if (!windows[4].active) open(4);
+    if (short_windows && k * 1e-3 >= next_short_s) {
+      open(next_slot);
+      next_slot = (next_slot + 1) % 4;
+      next_short_s = k * 1e-3 + 0.5 * settle - 0.5e-3;
+    }
+    for (int w = 0; w < 5; ++w) {
+      if (!windows[w].active || opened[w]) continue;
+      windows[w].lo_r = std::min(windows[w].lo_r, r);
+      windows[w].hi_r = std::max(windows[w].hi_r, r);
+      for (std::size_t j = 0; j < kChannels; ++j) {
+        Window& v = windows[w];
+        const bool near_lo = r <= v.lo_r + 20.0, near_hi = r >= v.hi_r - 20.0;
+        v.since_lo_min[j] = near_lo ? x[j] : std::min(v.since_lo_min[j], x[j]);
+        v.since_lo_max[j] = near_lo ? x[j] : std::max(v.since_lo_max[j], x[j]);
+        v.since_hi_min[j] = near_hi ? x[j] : std::min(v.since_hi_min[j], x[j]);
+        v.since_hi_max[j] = near_hi ? x[j] : std::max(v.since_hi_max[j], x[j]);
+      }
+      for (std::size_t j = 0; j < kChannels; ++j) {
+        windows[w].lo[j] = std::min(windows[w].lo[j], x[j]);
+        windows[w].hi[j] = std::max(windows[w].hi[j], x[j]);
+      }
+    }
+    for (int w : {4, 0, 1, 2, 3}) {
+      Window& window = windows[w];
+      const double span = window.hi_r - window.lo_r;
+      if (!window.active || opened[w] || span < 80.0 || (k - window.start) * 1e-3 < settle) continue;
+      window.active = false;
+      const double bar = w == 4 ? 0.25 * span : std::max(0.25 * span, 2.0 * band);
+      int candidates = 0;
+      std::size_t culprit = 0;
+      for (std::size_t j = 0; j < kChannels; ++j) {
+        const bool fell = r - window.lo_r < window.hi_r - r;
+        const double moved = w == 4 ? window.hi[j] - window.lo[j]
+                             : fell ? window.since_hi_max[j] - window.since_hi_min[j]
+                                    : window.since_lo_max[j] - window.since_lo_min[j];
+        if (moved < bar && x[j] - r > -8.0) {
+          ++candidates;
+          culprit = j;
+        }
+      }
+      if (candidates == 1 && (w == 4 || window.hi[culprit] - window.lo[culprit] <= band)) return {k + 1, culprit};
+    }
+  }
+  return {-1, kChannels};
+}
+
+// The detector on such a trace (F_z the loads' true sum): the tick each channel was first
+// flagged (-1: never), and pad 2's type at the end.
+template <class Load, class Reading>
+std::vector<int> first_flags_of(Load load, Reading reading, int ticks, FaultType* pad2_type = nullptr) {
+  Feet feet(suralp(), 1e-3);
+  std::vector<int> first(kChannels, -1);
+  for (int k = 0; k < ticks; ++k) {
+    double fz = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      fz += load(j, k);
+      feet.measured[j] = reading(j, k);
+    }
+    feet.step(fz);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (first[j] < 0 && feet.outs[ContactForceFdi::kFault][j] != 0.0) first[j] = k;
+    }
+  }
+  if (pad2_type != nullptr) *pad2_type = feet.type(2);
+  return first;
+}
+
+TEST(ContactForceFdi, AReadingStuckAtTheLoadItJustRoseToIsFoundByAShortStillWindow) {
+  // The long window holds pad 2's rise before it stuck, so it names no one when the residual has
+  // moved; a short window opened once pad 2's low-pass has caught up with its stuck reading names
+  // it on tick 642 (the long window alone: on tick 679, a settling after its reopening).
+  const auto [expected, culprit] = still_windows_oracle(ramping_load, ramping_reading, 900, true);
+  ASSERT_EQ(culprit, 2u);
+  EXPECT_GT(expected, 500);
+  EXPECT_LE(expected, 650);
+  EXPECT_GT(still_windows_oracle(ramping_load, ramping_reading, 900, false).first, expected + 30);
+  FaultType type_at_end = FaultType::none;
+  const std::vector<int> first = first_flags_of(ramping_load, ramping_reading, 900, &type_at_end);
+  EXPECT_EQ(first[2], expected);
+  EXPECT_EQ(type_at_end, FaultType::frozen);
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 2) {
+      EXPECT_EQ(first[j], -1) << "channel " << j;
+    }
+  }
+}
+
+// A reading that reaches a ceiling inside a short window: pad 5's load rises at 1000 N/s from
+// tick 300 (100 N) and its output stops at 200 N (tick 400) while the load goes on to 400 N; pad 2,
+// healthy, moves from 150 to 180 N over ticks 100-200 (so the long window, open since tick 0, rules
+// it out) and then stays; the others ramp as above. The residual falls only once pad 5 is stuck,
+// so pad 5's rise is no move of its own while the residual moved: both still readings explain
+// it, and neither is named (taking pad 5's rise as its move, as a window's span does, a short
+// window flagged pad 2 from tick 496). Pad 5 is left to the other tests.
+double ceiling_load(std::size_t j, int k) {
+  if (j == 2) return 150.0 + 0.3 * std::clamp(k - 100, 0, 100);
+  if (j == 5) return k < 300 ? 100.0 : std::min(400.0, 100.0 + (k - 300));
+  return ramping_load(j, k);
+}
+double ceiling_reading(std::size_t j, int k) {
+  return (j == 5 ? std::min(200.0, ceiling_load(j, k)) : ceiling_load(j, k)) + (k % 2 == 0 ? 1.0 : -1.0);
+}
+
+TEST(ContactForceFdi, AStillNeighbourOfAReadingThatJustStuckIsNotNamedByAShortWindow) {
+  EXPECT_EQ(still_windows_oracle(ceiling_load, ceiling_reading, 700, true).first, -1);
+  const std::vector<int> first = first_flags_of(ceiling_load, ceiling_reading, 700);
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 5) {
+      EXPECT_EQ(first[j], -1) << "channel " << j;
+    }
+  }
 }
 
 // The unread-load test: the right foot's pads carry 200 + 10 j N (pad 5 read `gain5` times its

@@ -243,6 +243,14 @@
 //             when F_z or a reading is unknown, a channel steps (the jump test's), a flag changes,
 //             or a loaded channel is flagged as anything but offset, drift or spikes (a gain's
 //             wrong k or a substituted share moves r with its load, as a stuck neighbour would).
+//             That window holds what the stuck reading did before it stuck (a pad frozen at the
+//             load it had just risen to spans that rise), and names no one. So beside it, short
+//             windows open in turn every half settling, four at a time (each lives two
+//             settlings): one begins within half a settling of any onset. Judged alike, but a
+//             tenth of a second is short for slow loads: a reading is ruled out there only if it
+//             spans at least twice the stuck band b as well, and the one candidate is named only
+//             if it spans at most b, b = q + 8 sigma sqrt(a / (2 - a)) (a stuck reading's noise
+//             after the low-pass y += a (x - y), +-4 sigma, and a quantisation level).
 //             The decision needs the tick's residual, known with its outputs: the flag shows
 //             from the next tick. Its known limit: with the reference itself moving and one
 //             reading still (steadily loaded), that reading is taken as stuck.
@@ -535,11 +543,7 @@ class ContactForceFdi {
     double loaded_at_s = -1e300;  // the last tick its smoothed reading was above airborne_threshold_N
     double reading_lo = 0.0, reading_hi = 0.0, virtual_lo = 0.0, virtual_hi = 0.0;
     double virtual_smoothed = 0.0;  // the same 10 Hz low-pass as `smoothed`: both lag alike
-    // The still-reading test's window: the smoothed reading's range, on the ground and not
-    // flagged throughout; the type the window last saw.
-    double still_lo = 0.0, still_hi = 0.0;
-    bool still_grounded = false;
-    FaultType still_window_type = FaultType::none;
+    FaultType still_window_type = FaultType::none;  // the type the still-reading test last saw
     // Offset or gain? Over the same span, the corrected sum residual's power with the offset's
     // correction and with the gain k = 1 + jump / load that the same onset jump implies.
     double offset_power = 0.0, gain_power = 0.0;
@@ -613,13 +617,39 @@ class ContactForceFdi {
   std::size_t residual_count_ = 0;
   double sum_filtered_ = 0.0;
   // The still-reading test: the corrected sum residual low-passed as the readings' `smoothed`, and
-  // its window (shared by every channel: one residual move, judged against every still reading).
+  // its windows (each shared by every channel: one residual move, judged against every still
+  // reading). The long one opens once the smoothers have settled and lasts until judged; the
+  // short ones open in turn every half settling, each replacing the oldest (so each lives two
+  // settlings): one begins within half a settling after any onset, free of the motion the stuck
+  // reading made before it stuck, which keeps the long window from naming it.
+  struct StillWindow {
+    bool active = false;
+    bool opened_now = false;  // opened on this tick: judged from the next
+    double start_s = 0.0;
+    double residual_lo = 0.0, residual_hi = 0.0;
+  };
+  static constexpr std::size_t kShortStillWindows = 4;
+  static constexpr std::size_t kLongStillWindow = kShortStillWindows;  // the last slot
   double residual_smoothed_ = 0.0;
   bool residual_smoothed_started_ = false;
-  bool still_window_active_ = false;
-  double still_window_start_s_ = 0.0;
+  std::array<StillWindow, kShortStillWindows + 1> still_windows_{};
+  // Per window and channel (window after window): the smoothed reading's range, and whether the
+  // channel was on the ground and not flagged throughout.
+  std::vector<double> still_lo_, still_hi_;
+  std::vector<char> still_grounded_;
+  // ... and the smoothed reading's range since the residual was last within residual_near_N_ of
+  // its window's low, and of its high (short windows).
+  std::vector<double> since_low_min_, since_low_max_, since_high_min_, since_high_max_;
+  std::vector<double> smoothed_;  // this tick's smoothed readings, gathered (work space)
+  std::vector<char> judgeable_;   // this tick: on the ground, not flagged, read (work space)
+  std::size_t next_short_window_ = 0;  // the slot the next short window takes
+  double next_short_window_s_ = -1e300;
+  double short_window_stagger_s_ = 0.0;
+  // What a stuck reading's smoothed value spans: its noise, +-4 sigma after the low-pass, and a
+  // quantisation level [N].
+  double still_band_N_ = 0.0;
+  double residual_near_N_ = 0.0;  // follow_ratio x sum_threshold_N: a residual move smaller is no move
   double still_window_settle_until_s_ = -1e300;
-  double still_residual_lo_ = 0.0, still_residual_hi_ = 0.0;
   // Per foot, for the substituted loads' split: its readable pads on the ground all read their
   // air level (a lifting sole).
   std::vector<char> foot_reads_unloaded_;
