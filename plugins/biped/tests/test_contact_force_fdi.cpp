@@ -429,13 +429,52 @@ TEST(ContactForceFdi, AJumpMustBeASurpriseNotAFastRamp) {
   EXPECT_NEAR(step.outs[ContactForceFdi::kFaultEstimate][2], 29.0, 1e-9);
 }
 
+// Pad 3 is dead at its air level (+-1 N) while it carries 150 N, so the sum residual sits at
+// -150 N, beyond its 80 N bound, with no pad named yet. On tick 500, 100 N of pad 3's load moves to
+// pad 2 (read right: +100 N in one tick). The residual steps by +100 N, as pad 2's own step: with
+// `sum_held` false the step is no evidence (without the rule, pad 2 was raised a +100 N offset on
+// tick 509, when its jump window completes). `fz_error_N`: F_z's error, which moves the residual too.
+std::vector<int> transfer_flags(double fz_error_N) {
+  Feet feet(suralp(), 1e-3);
+  std::vector<int> first(kChannels, -1);
+  for (int k = 0; k < 800; ++k) {
+    const double noise = k % 2 == 0 ? 1.0 : -1.0;
+    double fz = fz_error_N;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      double load = j == 3 ? 150.0 : 200.0 + 10.0 * static_cast<double>(j);
+      if (k >= 500 && j == 3) load -= 100.0;
+      if (k >= 500 && j == 2) load += 100.0;
+      fz += load;
+      feet.measured[j] = (j == 3 ? 0.0 : load) + noise;
+    }
+    feet.step(fz);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (first[j] < 0 && feet.outs[ContactForceFdi::kFault][j] != 0.0) first[j] = k;
+    }
+  }
+  return first;
+}
+
+TEST(ContactForceFdi, AStepIsNoEvidenceWhileTheSumIsAlreadyOffWithNoPadNamed) {
+  const auto first = transfer_flags(0.0);
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 3) {
+      EXPECT_EQ(first[j], -1) << "channel " << j;
+    }
+  }
+  // The same step with the residual within its bound (F_z reading 150 N more: pad 3's missing
+  // load hidden from the sum) is a step of pad 2's sensor, as before.
+  EXPECT_EQ(transfer_flags(-150.0)[2], 509);
+}
+
 TEST(ContactForceFdi, APadTakingItsLoadBackIsALandingNotAJumpOrASpike) {
-  // 200 Hz, both feet flat, F_z steady (the trunk IMU does not see a pad's contact). Pad 2 sits on
-  // the ground with no load (the others carry F_z, its leave-one-out force is 0) and reads its
-  // zero level; at tick 20 it takes 45 N in one tick and chatters (45, -5, 70 N) before it
-  // settles at 80 N: the sum residual steps like a sensor's would, but a pad's own landing is
-  // not a jump and its ringing is not a spike. The same 60 N step on a loaded pad is an offset,
-  // as it is on the landed pad once touchdown_guard_s (0.15 s = 30 ticks) has passed.
+  // 200 Hz, both feet flat, F_z steady through the ring (the trunk IMU does not see a pad's
+  // contact). Pad 2 sits on the ground with no load (the others carry F_z, its leave-one-out
+  // force is 0) and reads its zero level; at tick 20 it takes 45 N in one tick and chatters (45,
+  // -5, 70 N) before it settles at 80 N, which F_z then carries too: the sum residual steps like
+  // a sensor's would, but a pad's own landing is not a jump and its ringing is not a spike. The
+  // same 60 N step on a loaded pad is an offset, as it is on the landed pad once
+  // touchdown_guard_s (0.15 s = 30 ticks) has passed.
   const std::array<double, 4> landing{45.0, -5.0, 70.0, 80.0};
   Feet landed(suralp(), 5e-3), loaded(suralp(), 5e-3);
   double fz = 0.0;
@@ -446,7 +485,7 @@ TEST(ContactForceFdi, APadTakingItsLoadBackIsALandingNotAJumpOrASpike) {
     landed.measured[2] = k < 20 ? alternation : k < 24 ? landing[static_cast<std::size_t>(k - 20)] : 80.0 + alternation;
     if (k >= 60) landed.measured[2] += 60.0;  // 0.2 s after its landing: a sensor step
     if (k >= 20) loaded.measured[2] += 60.0;
-    landed.step(fz);
+    landed.step(k < 24 ? fz : fz + 80.0);
     loaded.step(fz + moving(2, 0, 0.0));
     ASSERT_EQ(landed.type(2), k >= 61 ? FaultType::offset : FaultType::none) << "tick " << k;
     ASSERT_EQ(loaded.type(2), k >= 21 ? FaultType::offset : FaultType::none) << "tick " << k;
@@ -459,8 +498,8 @@ TEST(ContactForceFdi, APadTakingItsLoadBackIsALandingNotAJumpOrASpike) {
 }
 
 TEST(ContactForceFdi, ALandedPadIsJudgedAgainOnceItsRingHasDiedOut) {
-  // The landing of the test above (200 Hz: 45, -5, 70 N, then 80 N from tick 23), and a 60 N
-  // sensor step at tick 40: 0.1 s after the landing, inside touchdown_guard_s, but the ring ended
+  // The landing of the test above (200 Hz: 45, -5, 70 N, then 80 N from tick 23, in F_z from tick
+  // 24), and a 60 N sensor step at tick 40: 0.1 s after the landing, inside touchdown_guard_s, but the ring ended
   // at tick 22 (its last change above jump_threshold_N) and jump_window_s (2 ticks) has passed
   // since. The step is an offset on the next tick, as on any loaded pad; the ring is not.
   const std::array<double, 4> landing{45.0, -5.0, 70.0, 80.0};
@@ -472,7 +511,7 @@ TEST(ContactForceFdi, ALandedPadIsJudgedAgainOnceItsRingHasDiedOut) {
     const double alternation = k % 2 == 0 ? 0.0 : 1.0;
     landed.measured[2] = k < 20 ? alternation : k < 24 ? landing[static_cast<std::size_t>(k - 20)] : 80.0 + alternation;
     if (k >= 40) landed.measured[2] += 60.0;
-    landed.step(fz);
+    landed.step(k < 24 ? fz : fz + 80.0);
     ASSERT_EQ(landed.type(2), k >= 41 ? FaultType::offset : FaultType::none) << "tick " << k;
     for (std::size_t j = 0; j < kChannels; ++j) {
       if (j != 2) {

@@ -91,7 +91,9 @@
 //             and off): until its changes have stayed below jump_threshold_N for jump_window_s,
 //             at most touchdown_guard_s after the landing (a ring that has died out is over);
 //             a channel flagged as a noise burst is no candidate (its swings are that fault);
-//             confirmed when the sum
+//             no group forms while the corrected sum residual (low-passed at 10 Hz, last tick's)
+//             is beyond sum_threshold_N (a fault no test has named yet: loads moving into or out
+//             of it step the residual as a sensor would); confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
 //             each other): an abrupt fault, isolated at once. A member whose reading is back
@@ -247,10 +249,14 @@
 //             load it had just risen to spans that rise), and names no one. So beside it, short
 //             windows open in turn every half settling, four at a time (each lives two
 //             settlings): one begins within half a settling of any onset. Judged alike, but a
-//             tenth of a second is short for slow loads: a reading is ruled out there only if it
-//             spans at least twice the stuck band b as well, and the one candidate is named only
-//             if it spans at most b, b = q + 8 sigma sqrt(a / (2 - a)) (a stuck reading's noise
-//             after the low-pass y += a (x - y), +-4 sigma, and a quantisation level).
+//             tenth of a second is short for slow loads and may hold a reading's last move before
+//             it stuck (a saturation's ceiling reached): there a reading's span is taken only
+//             since the residual was last within follow_ratio x sum_threshold_N of the extreme it
+//             moved away from (its noise does not reset that start), a reading is ruled out only
+//             if that span is at least twice the stuck band b as well, and the one candidate is
+//             named only if its span over the whole window is at most b, b = q + 8 sigma
+//             sqrt(a / (2 - a)) (a stuck reading's noise after the low-pass y += a (x - y),
+//             +-4 sigma, and a quantisation level).
 //             The decision needs the tick's residual, known with its outputs: the flag shows
 //             from the next tick. Its known limit: with the reference itself moving and one
 //             reading still (steadily loaded), that reading is taken as stuck.
