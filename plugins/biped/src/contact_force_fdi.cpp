@@ -377,14 +377,12 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
   foot_unread_.assign(feet_, 0);
-  still_lo_.assign(still_windows_.size() * n, 0.0);
-  for (auto* range : {&since_low_min_, &since_low_max_, &since_high_min_, &since_high_max_}) {
+  for (auto* range : {&still_lo_, &still_hi_, &since_low_min_, &since_low_max_, &since_high_min_, &since_high_max_}) {
     range->assign(still_windows_.size() * n, 0.0);
   }
+  still_grounded_.assign(still_windows_.size() * n, 0);
   smoothed_.assign(n, 0.0);
   judgeable_.assign(n, 0);
-  still_hi_.assign(still_windows_.size() * n, 0.0);
-  still_grounded_.assign(still_windows_.size() * n, 0);
   channel_foot_.resize(n);
   for (std::size_t j = 0; j < n; ++j) channel_foot_[j] = j / feet_points_;
   if (!params.points.empty() && params.points.size() != feet_points_) {
@@ -1690,19 +1688,18 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
     smoothed_[j] = c.smoothed;
     judgeable_[j] = c.type == FaultType::none && !(height[j] > params_.airborne_height_m) && std::isfinite(measured[j]);
   }
-  // A window opened on this tick holds this tick's values only: judged from the next.
+  // A window opened on this tick (start_s == t) holds this tick's values only: judged from the next.
   const auto open = [&](std::size_t w) {
     StillWindow& window = still_windows_[w];
     window.active = true;
-    window.opened_now = true;
     window.start_s = t;
     window.residual_lo = window.residual_hi = residual_smoothed_;
     for (std::size_t j = 0; j < n; ++j) {
-      const Channel& c = channels_[j];
-      still_lo_[w * n + j] = still_hi_[w * n + j] = c.smoothed;
-      since_low_min_[w * n + j] = since_low_max_[w * n + j] = c.smoothed;
-      since_high_min_[w * n + j] = since_high_max_[w * n + j] = c.smoothed;
-      still_grounded_[w * n + j] = c.type == FaultType::none && !(height[j] > params_.airborne_height_m);
+      const double x = smoothed_[j];
+      still_lo_[w * n + j] = still_hi_[w * n + j] = x;
+      since_low_min_[w * n + j] = since_low_max_[w * n + j] = x;
+      since_high_min_[w * n + j] = since_high_max_[w * n + j] = x;
+      still_grounded_[w * n + j] = channels_[j].type == FaultType::none && !(height[j] > params_.airborne_height_m);
     }
   };
   if (!still_windows_[kLongStillWindow].active) open(kLongStillWindow);
@@ -1713,7 +1710,7 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
   }
   for (std::size_t w = 0; w < still_windows_.size(); ++w) {
     StillWindow& window = still_windows_[w];
-    if (!window.active || window.opened_now) continue;
+    if (!window.active || window.start_s == t) continue;
     window.residual_lo = std::min(window.residual_lo, residual_smoothed_);
     window.residual_hi = std::max(window.residual_hi, residual_smoothed_);
     double* lo = still_lo_.data() + w * n;
@@ -1749,7 +1746,7 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
   for (std::size_t k = 0; k < still_windows_.size(); ++k) {
     const std::size_t w = k == 0 ? kLongStillWindow : k - 1;
     StillWindow& window = still_windows_[w];
-    if (!window.active || window.opened_now) continue;
+    if (!window.active || window.start_s == t) continue;
     const double residual_span = window.residual_hi - window.residual_lo;
     // A window shorter than the smoother's settling measures the smoother, not the signals.
     if (residual_span < params_.sum_threshold_N || t - window.start_s < smoother_settle_s_) continue;
@@ -1764,11 +1761,11 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
     const bool short_window = w != kLongStillWindow;
     const double bar = short_window ? std::max(params_.follow_ratio * residual_span, 2.0 * still_band_N_)
                                     : params_.follow_ratio * residual_span;
+    const bool fell = residual_smoothed_ - window.residual_lo < window.residual_hi - residual_smoothed_;
     std::size_t candidates = 0, culprit = 0;
     for (std::size_t j = 0; j < n; ++j) {
       const Channel& c = channels_[j];
       const std::size_t i = w * n + j;
-      const bool fell = residual_smoothed_ - window.residual_lo < window.residual_hi - residual_smoothed_;
       const double moved = !short_window ? still_hi_[i] - still_lo_[i]
                            : fell        ? since_high_max_[i] - since_high_min_[i]   // from its high
                                          : since_low_max_[i] - since_low_min_[i];    // from its low
@@ -1776,7 +1773,7 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
       // pushes, so one that would carry less than -airborne_threshold_N cannot be the one (a pad
       // reading 0 while the pads' sum reads too much); one stuck where its load came to 0 (a foot
       // about to lift) can.
-      if (still_grounded_[w * n + j] != 0 && moved < bar &&
+      if (still_grounded_[i] != 0 && moved < bar &&
           c.smoothed - residual_smoothed_ > -params_.airborne_threshold_N) {
         ++candidates;
         culprit = j;
@@ -1789,7 +1786,6 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
       break;
     }
   }
-  for (StillWindow& window : still_windows_) window.opened_now = false;
 }
 
 void ContactForceFdi::unread_load_test(std::span<const double> height, bool usable, double t) noexcept {

@@ -630,8 +630,7 @@ class ContactForceFdi {
   // reading made before it stuck, which keeps the long window from naming it.
   struct StillWindow {
     bool active = false;
-    bool opened_now = false;  // opened on this tick: judged from the next
-    double start_s = 0.0;
+    double start_s = 0.0;  // a window opened on this tick (start_s == t) is judged from the next
     double residual_lo = 0.0, residual_hi = 0.0;
   };
   static constexpr std::size_t kShortStillWindows = 4;
