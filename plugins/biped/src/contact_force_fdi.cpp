@@ -873,7 +873,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // landing heel), and loads moving in or out of it step the residual like a sensor would: its
   // steps are no evidence, and the other tests name that fault first.
   const bool sum_held = !residual_smoothed_started_ || std::abs(residual_smoothed_) <= params_.sum_threshold_N;
-  if (jump_candidates > 0 && fz_ok && sum_held) {
+  if (jump_candidates > 0 && fz_ok && sum_held && !unread_landing_may_explain(height, jump_sum)) {
     group_pending_ = true;
     ++group_serial_;
     group_before_ = recent_residual_mean(1);  // the window before this tick's jump
@@ -1846,6 +1846,31 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
   if (t - unread_since_s_ < smoother_settle_s_) return;
   raise_stuck(channels_[culprit], t);
   unread_candidate_ = channels_.size();
+}
+
+bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept {
+  const bool fell = jump_sum < 0.0;  // the pads now read less than the total force
+  for (std::size_t f = 0; f < feet_; ++f) {
+    bool member = false, loaded = false, unread_load = false;
+    for (std::size_t i = 0; i < feet_points_; ++i) {
+      const std::size_t j = f * feet_points_ + i;
+      const Channel& c = channels_[j];
+      member = member || c.jump_pending;
+      if (height[j] > params_.airborne_height_m) continue;
+      if (c.type == FaultType::none) {
+        loaded = loaded || c.smoothed > params_.airborne_threshold_N;
+        // Its landing unread: on the ground at its air level, unloaded since the foot landed.
+        unread_load = unread_load || (fell && !c.jump_pending && std::abs(c.smoothed) <= params_.airborne_threshold_N &&
+                                      c.loaded_at_s < last_touchdown_s_[f]);
+      } else if (!own_estimate(c.type) && c.type != FaultType::invalid && !c.jump_pending) {
+        // A stuck reading (frozen, saturated, not named) in the residual as read: load coming onto
+        // it reads nothing, and load leaving it (while it carries some) nothing either.
+        unread_load = unread_load || fell || c.recovered > params_.airborne_threshold_N;
+      }
+    }
+    if (member && loaded && unread_load) return true;
+  }
+  return false;
 }
 
 double ContactForceFdi::landing_step_bar(double floor_N) const noexcept {

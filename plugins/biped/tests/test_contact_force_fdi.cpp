@@ -2316,6 +2316,67 @@ TEST(ContactForceFdi, AShortfallFromBeforeTheLandingIsNoUnreadLoadOfTheLandedFoo
   EXPECT_EQ(first[3], -1);
 }
 
+// A heel rolling onto a dead pad after its foot's guard: the left foot lands on tick 500 on pads
+// 0-2 (150 N each, read right) while pad 3 carries nothing; on tick `roll` 60 N of each of pads 0
+// and 1 moves onto pad 3 in one tick, and on tick 1100 another 45 N of each. Pad 3 reads its
+// load if `pad3_reads`, else its air level. Every reading alternates +-1 N, F_z is the true sum.
+// Returns the tick each channel was first flagged (-1: never).
+std::vector<int> heel_roll_flags(bool pad3_reads, int roll, int ticks) {
+  Feet feet(suralp(), 1e-3);
+  feet.left_foot_at(0.05);
+  std::vector<int> first(kChannels, -1);
+  for (int k = 0; k < ticks; ++k) {
+    if (k == 500) feet.left_foot_at(0.0);
+    const double noise = k % 2 == 0 ? 1.0 : -1.0;
+    double fz = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      double load = j >= 4 ? 200.0 + 10.0 * static_cast<double>(j) : 0.0;
+      if (j < 4 && k >= 500) load = j == 3 ? 0.0 : 150.0;
+      if (k >= roll && j < 2) load -= 60.0;
+      if (k >= roll && j == 3) load += 120.0;
+      if (k >= 1100 && j < 2) load -= 45.0;
+      if (k >= 1100 && j == 3) load += 90.0;
+      fz += load;
+      feet.measured[j] = (j == 3 && !pad3_reads ? 0.0 : load) + noise;
+    }
+    feet.step(fz);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (first[j] < 0 && feet.outs[ContactForceFdi::kFault][j] != 0.0) first[j] = k;
+    }
+  }
+  return first;
+}
+
+TEST(ContactForceFdi, NeighboursHandingLoadToADeadPadAreNotItsFaultAndTheDeadPadIsFound) {
+  // Tick 700, past the guard (650): pads 0 and 1 step by -60 N each and the sum falls by 120 N.
+  // That is their sensors' step, or pad 3's landing unread (it reads its air level and has
+  // carried nothing since its foot landed): the jump cannot tell, so it names no one (it named
+  // both offsets on tick 709 before). The unread-load test names pad 3 once the low-passed
+  // residual is below -80 N and the smoother has settled (the oracle of the test above).
+  int below = -1;
+  const double a = -std::expm1(-2.0 * std::numbers::pi * 10.0 * 1e-3);
+  double smoothed = 0.0;
+  for (int k = 0; k < 1000 && below < 0; ++k) {
+    const double residual = 8.0 * (k % 2 == 0 ? 1.0 : -1.0) - (k >= 700 ? 120.0 : 0.0);
+    smoothed = k == 0 ? residual : smoothed + a * (residual - smoothed);
+    if (smoothed < -80.0) below = k;
+  }
+  ASSERT_GT(below, 700);
+  const auto dead = heel_roll_flags(false, 700, 1400);
+  EXPECT_EQ(dead[3], below + 80 + 1);
+  // Flagged (substituted), pad 3 reads nothing of the next 90 N pads 0 and 1 hand it on tick 1100
+  // (beyond the 80 N a substituted pad's step must clear): a stuck reading's load moving is no
+  // step of its neighbours' either.
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 3) {
+      EXPECT_EQ(dead[j], -1) << "channel " << j;
+    }
+  }
+  // Read, the heel's landing is in the sum: nothing steps, no one is named.
+  const auto healthy = heel_roll_flags(true, 700, 1400);
+  for (std::size_t j = 0; j < kChannels; ++j) EXPECT_EQ(healthy[j], -1) << "channel " << j;
+}
+
 TEST(ContactForceFdi, LoadRockingBetweenTwoPadsForATickIsNoSpikeWhereItsFootsSumStaysSmooth) {
   // 1 kHz, 1 N of noise: the spike threshold is 30 N. Every 50 ticks from tick 100, 38 N moves from
   // pad 0 to pad 3 of the left foot for one tick and back (a sole rocking on its heel pad, as the

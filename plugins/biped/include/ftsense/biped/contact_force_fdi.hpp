@@ -93,7 +93,13 @@
 //             a channel flagged as a noise burst is no candidate (its swings are that fault);
 //             no group forms while the corrected sum residual (low-passed at 10 Hz, last tick's)
 //             is beyond sum_threshold_N (a fault no test has named yet: loads moving into or out
-//             of it step the residual as a sensor would); confirmed when the sum
+//             of it step the residual as a sensor would), nor when a pad of a member's loaded
+//             foot may have taken or given the load unread: a healthy pad on the ground at its
+//             air level that has carried nothing since its foot landed, while the pads' sum falls
+//             (its own landing, as a heel rolls onto a dead sensor: the neighbours' steps are the
+//             load they hand it), or a stuck reading (frozen, saturated) while the sum falls or
+//             while it carries load (the unread-load and still-reading tests judge that pad);
+//             confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
 //             each other): an abrupt fault, isolated at once. A member whose reading is back
@@ -574,6 +580,11 @@ class ContactForceFdi {
   // The unread-load test (header comment), after the still-reading test has smoothed this tick's
   // residual.
   void unread_load_test(std::span<const double> height, bool usable, double t) noexcept;
+  // A pending jump's fall of the sum may be a pad's landing that its sensor did not read: on a
+  // member's foot, a healthy pad on the ground reads its air level and has carried no load since
+  // the foot landed, while another carries load (the unread-load test's candidate). Then the
+  // members' steps are the load handed to it, not their sensors': no verdict from the jump.
+  [[nodiscard]] bool unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept;
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
   void raise_stuck(Channel& c, double t) noexcept;
