@@ -2233,20 +2233,22 @@ struct LandingTrace {
   int pad7_unloads_at = -1;  // from then pad 7 reads and carries 0, its load on pad 4 (a lifting sole)
 };
 
-std::vector<int> landing_flags(const LandingTrace& trace, int ticks) {
+// The left foot, lifted 0.05 m, lands on tick 500. `pad(k, j, noise)` returns pad j's true load and
+// its reading on tick k (noise: +-1 N alternating); F_z is the true sum plus `fz_error(k)`. Returns
+// the tick each channel was first flagged (-1: never).
+template <class Pad, class FzError>
+std::vector<int> left_landing_first_flags(int ticks, Pad pad, FzError fz_error) {
   Feet feet(suralp(), 1e-3);
   feet.left_foot_at(0.05);
   std::vector<int> first(kChannels, -1);
   for (int k = 0; k < ticks; ++k) {
     if (k == 500) feet.left_foot_at(0.0);
     const double noise = k % 2 == 0 ? 1.0 : -1.0;
-    double fz = k >= 500 && k < 500 + trace.impact_ticks ? trace.impact : 0.0;
+    double fz = fz_error(k);
     for (std::size_t j = 0; j < kChannels; ++j) {
-      double load = j >= 4 ? 200.0 + 10.0 * static_cast<double>(j) : 0.0;
-      if (j < 4 && k >= 500) load = j == 3 ? trace.pad3_load : (j == 2 && trace.heel_first) ? 0.0 : 150.0;
-      if (trace.pad7_unloads_at >= 0 && k >= trace.pad7_unloads_at && (j == 4 || j == 7)) load = j == 7 ? 0.0 : 470.0;
+      const auto [load, reading] = pad(k, j, noise);
       fz += load;
-      feet.measured[j] = (j == 3 ? 0.0 : j == 5 ? trace.gain5 * load : load) + noise;
+      feet.measured[j] = reading;
     }
     feet.step(fz);
     for (std::size_t j = 0; j < kChannels; ++j) {
@@ -2254,6 +2256,18 @@ std::vector<int> landing_flags(const LandingTrace& trace, int ticks) {
     }
   }
   return first;
+}
+
+std::vector<int> landing_flags(const LandingTrace& trace, int ticks) {
+  return left_landing_first_flags(
+      ticks,
+      [&](int k, std::size_t j, double noise) {
+        double load = j >= 4 ? 200.0 + 10.0 * static_cast<double>(j) : 0.0;
+        if (j < 4 && k >= 500) load = j == 3 ? trace.pad3_load : (j == 2 && trace.heel_first) ? 0.0 : 150.0;
+        if (trace.pad7_unloads_at >= 0 && k >= trace.pad7_unloads_at && (j == 4 || j == 7)) load = j == 7 ? 0.0 : 470.0;
+        return std::pair{load, (j == 3 ? 0.0 : j == 5 ? trace.gain5 * load : load) + noise};
+      },
+      [&](int k) { return k >= 500 && k < 500 + trace.impact_ticks ? trace.impact : 0.0; });
 }
 
 // The oracle of the header: the residual sum(x) - F_z low-passed at 10 Hz from tick 0 stays
@@ -2320,31 +2334,19 @@ TEST(ContactForceFdi, AShortfallFromBeforeTheLandingIsNoUnreadLoadOfTheLandedFoo
 // 0-2 (150 N each, read right) while pad 3 carries nothing; on tick `roll` 60 N of each of pads 0
 // and 1 moves onto pad 3 in one tick, and on tick 1100 another 45 N of each. Pad 3 reads its
 // load if `pad3_reads`, else its air level. Every reading alternates +-1 N, F_z is the true sum.
-// Returns the tick each channel was first flagged (-1: never).
 std::vector<int> heel_roll_flags(bool pad3_reads, int roll, int ticks) {
-  Feet feet(suralp(), 1e-3);
-  feet.left_foot_at(0.05);
-  std::vector<int> first(kChannels, -1);
-  for (int k = 0; k < ticks; ++k) {
-    if (k == 500) feet.left_foot_at(0.0);
-    const double noise = k % 2 == 0 ? 1.0 : -1.0;
-    double fz = 0.0;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      double load = j >= 4 ? 200.0 + 10.0 * static_cast<double>(j) : 0.0;
-      if (j < 4 && k >= 500) load = j == 3 ? 0.0 : 150.0;
-      if (k >= roll && j < 2) load -= 60.0;
-      if (k >= roll && j == 3) load += 120.0;
-      if (k >= 1100 && j < 2) load -= 45.0;
-      if (k >= 1100 && j == 3) load += 90.0;
-      fz += load;
-      feet.measured[j] = (j == 3 && !pad3_reads ? 0.0 : load) + noise;
-    }
-    feet.step(fz);
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      if (first[j] < 0 && feet.outs[ContactForceFdi::kFault][j] != 0.0) first[j] = k;
-    }
-  }
-  return first;
+  return left_landing_first_flags(
+      ticks,
+      [&](int k, std::size_t j, double noise) {
+        double load = j >= 4 ? 200.0 + 10.0 * static_cast<double>(j) : 0.0;
+        if (j < 4 && k >= 500) load = j == 3 ? 0.0 : 150.0;
+        if (k >= roll && j < 2) load -= 60.0;
+        if (k >= roll && j == 3) load += 120.0;
+        if (k >= 1100 && j < 2) load -= 45.0;
+        if (k >= 1100 && j == 3) load += 90.0;
+        return std::pair{load, (j == 3 && !pad3_reads ? 0.0 : load) + noise};
+      },
+      [](int) { return 0.0; });
 }
 
 TEST(ContactForceFdi, NeighboursHandingLoadToADeadPadAreNotItsFaultAndTheDeadPadIsFound) {
