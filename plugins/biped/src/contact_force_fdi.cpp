@@ -377,6 +377,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
   foot_unread_.assign(feet_, 0);
+  foot_landing_pads_.assign(feet_, 0);
   for (auto* range : {&still_lo_, &still_hi_, &since_low_min_, &since_low_max_, &since_high_min_, &since_high_max_}) {
     range->assign(still_windows_.size() * n, 0.0);
   }
@@ -484,7 +485,7 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.gain = 1.0;
   c.fit_has_air = c.air_refit = c.air_block_reads_zero = false;
   c.clear_since = -1.0;
-  c.following = c.frozen_by_follow = false;
+  c.following = c.frozen_by_follow = c.follows_load = false;
   c.sign_fault = false;
   c.negative_fit = SlopeFit{};
 }
@@ -591,6 +592,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     // cancel load moving between them and the others.
     foot_unread_[f] = 0;
     for (std::size_t l = 0; l < feet_points_; ++l) foot_unread_[f] += unread(f * feet_points_ + l, height) ? 1 : 0;
+    foot_landing_pads_[f] = 0;
+    for (std::size_t l = 0; l < feet_points_; ++l) {
+      const std::size_t j = f * feet_points_ + l;
+      foot_landing_pads_[f] += ticks_since_start > 0 && landing_step(channels_[j], measured[j], height[j], t) ? 1 : 0;
+    }
   }
   const double foot_noise = foot_noise_N_;
   int jump_candidates = 0;
@@ -660,14 +666,16 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // have stayed below jump_threshold_N for jump_window_s, at most touchdown_guard_s after the
       // landing (a ring that has died out is over; a step after it is judged like any other).
       // A fault that starts while it rings is left to the sum residual and the air test.
-      if (!airborne && std::isfinite(c.last_virtual) && c.last_virtual < params_.airborne_threshold_N &&
-          std::abs(c.previous) <= params_.airborne_threshold_N && x > params_.airborne_threshold_N) {
+      const bool lands = pad_lands(c, x, height[j]);
+      if (lands) {
         c.last_pad_landing_s = t;
         c.last_landing_ring_s = t;
       }
       // Rung until the tick before: this tick's change is what the tests below judge.
       const bool in_landing_guard = t - c.last_pad_landing_s < params_.touchdown_guard_s;
       const bool pad_landing = in_landing_guard && t - c.last_landing_ring_s < params_.jump_window_s;
+      // Its landing's own steps: the tick it lands, and its ring's jumps (chatter on and off).
+      const bool landing_step = lands || (pad_landing && std::abs(change) > params_.jump_threshold_N);
       if (pad_landing && std::abs(change) > params_.jump_threshold_N) c.last_landing_ring_s = t;
       // A neighbour of this pad whose reading is not its load (substituted under load, or a
       // noise burst): the foot's sum then misses the load that moves between it and this pad (a
@@ -738,7 +746,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       // Any time but a landing: a rolling foot's pads change a few newtons per tick, far below
       // jump_threshold_N, and the sum-residual confirmation rejects what is not a sensor step.
-      const bool may_jump = !touching_down && !pad_landing;
+      // Nor on a tick another pad of its foot lands or, ringing, jumps on or off: a heel landing
+      // late jolts its neighbours by tens of newtons on that tick, which F_z misses as it does a
+      // foot's impact (a 20 N jolt of a toe pad was confirmed an offset), and a pad chattering
+      // on and off trades its load with them on each of its jumps. Only those ticks: kept shut
+      // while the heel rang (10 ms and more), the test missed a gain that began 9 ms after such
+      // a landing.
+      const bool neighbour_landing = foot_landing_pads_[foot] > (landing_step ? 1 : 0);
+      const bool may_jump = !touching_down && !pad_landing && !neighbour_landing;
       // A noise burst's swings are the fault the channel is flagged for, not steps.
       const bool steps = std::abs(change) > params_.jump_threshold_N &&
                          std::abs(innovation) > params_.jump_threshold_N && c.type != FaultType::noise;
@@ -1848,6 +1863,20 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
   unread_candidate_ = channels_.size();
 }
 
+bool ContactForceFdi::pad_lands(const Channel& c, double x, double height) const noexcept {
+  return std::isfinite(x) && !(height > params_.airborne_height_m) && std::isfinite(c.last_virtual) &&
+         c.last_virtual < params_.airborne_threshold_N && std::abs(c.previous) <= params_.airborne_threshold_N &&
+         x > params_.airborne_threshold_N;
+}
+
+bool ContactForceFdi::landing_step(const Channel& c, double x, double height, double t) const noexcept {
+  const bool ringing = t - c.last_pad_landing_s < params_.touchdown_guard_s &&
+                       t - c.last_landing_ring_s < params_.jump_window_s;
+  return pad_lands(c, x, height) ||
+         (ringing && std::isfinite(x) && !(height > params_.airborne_height_m) &&
+          std::abs(x - c.previous) > params_.jump_threshold_N);
+}
+
 bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept {
   const bool fell = jump_sum < 0.0;  // the pads now read less than the total force
   for (std::size_t f = 0; f < feet_; ++f) {
@@ -1866,6 +1895,12 @@ bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height,
         // A stuck reading (frozen, saturated, not named) in the residual as read: load coming onto
         // it reads nothing, and load leaving it (while it carries some) nothing either.
         unread_load = unread_load || fell || c.recovered > params_.airborne_threshold_N;
+      } else if ((c.type == FaultType::offset || c.type == FaultType::drift) && c.fit_has_air && !c.follows_load &&
+                 !c.jump_pending) {
+        // An offset the air measured, not yet seen to follow its load: a reading frozen at a load
+        // reads as that offset in the air, and on the ground its correction then says nothing of
+        // what it carries (load may come or go unread).
+        unread_load = true;
       }
     }
     if (member && loaded && unread_load) return true;
@@ -1928,6 +1963,7 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
     return;
   }
   if (load_span < 2.0 * params_.sum_threshold_N) return;  // the load has not moved beyond the force's error
+  if (!c.frozen_by_follow && reading_span >= params_.follow_ratio * load_span) c.follows_load = true;
   if (!c.frozen_by_follow && reading_span < params_.follow_ratio * load_span) {
     c.type = FaultType::frozen;
     c.frozen_by_follow = true;

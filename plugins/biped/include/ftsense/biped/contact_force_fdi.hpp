@@ -89,7 +89,10 @@
 //             pad rings after its own landing (a pad on the ground left no load by the others, on
 //             its zero level, that takes load back: tens of N in one tick at 200 Hz, chatter on
 //             and off): until its changes have stayed below jump_threshold_N for jump_window_s,
-//             at most touchdown_guard_s after the landing (a ring that has died out is over);
+//             at most touchdown_guard_s after the landing (a ring that has died out is over),
+//             nor on a tick another pad of its foot lands so or, ringing, jumps (a heel landing
+//             late jolts its neighbours on that tick, which F_z misses as it does a foot's
+//             impact; a pad chattering on and off trades its load with them);
 //             a channel flagged as a noise burst is no candidate (its swings are that fault);
 //             no group forms while the corrected sum residual (low-passed at 10 Hz, last tick's)
 //             is beyond sum_threshold_N (a fault no test has named yet: loads moving into or out
@@ -98,7 +101,10 @@
 //             air level that has carried nothing since its foot landed, while the pads' sum falls
 //             (its own landing, as a heel rolls onto a dead sensor: the neighbours' steps are the
 //             load they hand it), or a stuck reading (frozen, saturated) while the sum falls or
-//             while it carries load (the unread-load and still-reading tests judge that pad);
+//             while it carries load, or an offset the air test measured whose reading has not yet
+//             spanned follow_ratio of its load's move (a reading frozen at a load reads as that
+//             offset in the air; its correction then says nothing of its load) (the unread-load,
+//             still-reading and follow tests judge that pad);
 //             confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
@@ -552,6 +558,7 @@ class ContactForceFdi {
     // force since the channel was raised as offset or drift (or re-typed frozen).
     bool following = false;  // ranges being tracked
     bool frozen_by_follow = false;
+    bool follows_load = false;  // offset or drift: its reading has spanned follow_ratio of its load's move
     double loaded_at_s = -1e300;  // the last tick its smoothed reading was above airborne_threshold_N
     double reading_lo = 0.0, reading_hi = 0.0, virtual_lo = 0.0, virtual_hi = 0.0;
     double virtual_smoothed = 0.0;  // the same 10 Hz low-pass as `smoothed`: both lag alike
@@ -584,6 +591,12 @@ class ContactForceFdi {
   // member's foot, a healthy pad on the ground reads its air level and has carried no load since
   // the foot landed, while another carries load (the unread-load test's candidate). Then the
   // members' steps are the load handed to it, not their sensors': no verdict from the jump.
+  // Pad c (reading x, at `height`) takes its load back on this tick, on the ground: from its zero
+  // level, while the others left it none, to beyond airborne_threshold_N (its own landing).
+  [[nodiscard]] bool pad_lands(const Channel& c, double x, double height) const noexcept;
+  // Pad c lands on this tick, or rings after its landing and jumps by jump_threshold_N (as the
+  // jump test judged it until the tick before).
+  [[nodiscard]] bool landing_step(const Channel& c, double x, double height, double t) const noexcept;
   [[nodiscard]] bool unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept;
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
@@ -713,6 +726,7 @@ class ContactForceFdi {
   std::vector<int> foot_sum_ticks_;              // consecutive ticks with every pad's value, up to 2
   std::vector<double> foot_d2_;                  // second difference of the summed reading, this tick
   std::vector<int> foot_unread_;                 // its pads whose reading is not their load (unread())
+  std::vector<int> foot_landing_pads_;           // its pads whose landing steps on this tick (landing_step())
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
   int frozen_ticks_ = 2;        // n_f, the frozen test's run length (INT_MAX: never reached)
