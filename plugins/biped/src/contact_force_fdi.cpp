@@ -378,6 +378,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_d2_.assign(feet_, 0.0);
   foot_unread_.assign(feet_, 0);
   foot_landing_pads_.assign(feet_, 0);
+  landing_state_.assign(n, kNoLandingStep);
   for (auto* range : {&still_lo_, &still_hi_, &since_low_min_, &since_low_max_, &since_high_min_, &since_high_max_}) {
     range->assign(still_windows_.size() * n, 0.0);
   }
@@ -595,7 +596,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     foot_landing_pads_[f] = 0;
     for (std::size_t l = 0; l < feet_points_; ++l) {
       const std::size_t j = f * feet_points_ + l;
-      foot_landing_pads_[f] += ticks_since_start > 0 && landing_step(channels_[j], measured[j], height[j], t) ? 1 : 0;
+      const Channel& c = channels_[j];
+      const bool lands = ticks_since_start > 0 && pad_lands(c, measured[j], height[j]);
+      const bool step = lands || (ticks_since_start > 0 && ring_step(c, measured[j], height[j], t));
+      landing_state_[j] = static_cast<char>(lands ? kLands : step ? kRingStep : kNoLandingStep);
+      foot_landing_pads_[f] += step ? 1 : 0;
     }
   }
   const double foot_noise = foot_noise_N_;
@@ -666,7 +671,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // have stayed below jump_threshold_N for jump_window_s, at most touchdown_guard_s after the
       // landing (a ring that has died out is over; a step after it is judged like any other).
       // A fault that starts while it rings is left to the sum residual and the air test.
-      const bool lands = pad_lands(c, x, height[j]);
+      const bool lands = landing_state_[j] == kLands;
       if (lands) {
         c.last_pad_landing_s = t;
         c.last_landing_ring_s = t;
@@ -674,8 +679,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // Rung until the tick before: this tick's change is what the tests below judge.
       const bool in_landing_guard = t - c.last_pad_landing_s < params_.touchdown_guard_s;
       const bool pad_landing = in_landing_guard && t - c.last_landing_ring_s < params_.jump_window_s;
-      // Its landing's own steps: the tick it lands, and its ring's jumps (chatter on and off).
-      const bool landing_step = lands || (pad_landing && std::abs(change) > params_.jump_threshold_N);
       if (pad_landing && std::abs(change) > params_.jump_threshold_N) c.last_landing_ring_s = t;
       // A neighbour of this pad whose reading is not its load (substituted under load, or a
       // noise burst): the foot's sum then misses the load that moves between it and this pad (a
@@ -752,7 +755,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // on and off trades its load with them on each of its jumps. Only those ticks: kept shut
       // while the heel rang (10 ms and more), the test missed a gain that began 9 ms after such
       // a landing.
-      const bool neighbour_landing = foot_landing_pads_[foot] > (landing_step ? 1 : 0);
+      const bool neighbour_landing = foot_landing_pads_[foot] > (landing_state_[j] != kNoLandingStep ? 1 : 0);
       const bool may_jump = !touching_down && !pad_landing && !neighbour_landing;
       // A noise burst's swings are the fault the channel is flagged for, not steps.
       const bool steps = std::abs(change) > params_.jump_threshold_N &&
@@ -1861,20 +1864,6 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
   if (t - unread_since_s_ < smoother_settle_s_) return;
   raise_stuck(channels_[culprit], t);
   unread_candidate_ = channels_.size();
-}
-
-bool ContactForceFdi::pad_lands(const Channel& c, double x, double height) const noexcept {
-  return std::isfinite(x) && !(height > params_.airborne_height_m) && std::isfinite(c.last_virtual) &&
-         c.last_virtual < params_.airborne_threshold_N && std::abs(c.previous) <= params_.airborne_threshold_N &&
-         x > params_.airborne_threshold_N;
-}
-
-bool ContactForceFdi::landing_step(const Channel& c, double x, double height, double t) const noexcept {
-  const bool ringing = t - c.last_pad_landing_s < params_.touchdown_guard_s &&
-                       t - c.last_landing_ring_s < params_.jump_window_s;
-  return pad_lands(c, x, height) ||
-         (ringing && std::isfinite(x) && !(height > params_.airborne_height_m) &&
-          std::abs(x - c.previous) > params_.jump_threshold_N);
 }
 
 bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept {

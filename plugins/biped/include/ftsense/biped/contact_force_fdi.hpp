@@ -366,6 +366,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -593,10 +594,18 @@ class ContactForceFdi {
   // members' steps are the load handed to it, not their sensors': no verdict from the jump.
   // Pad c (reading x, at `height`) takes its load back on this tick, on the ground: from its zero
   // level, while the others left it none, to beyond airborne_threshold_N (its own landing).
-  [[nodiscard]] bool pad_lands(const Channel& c, double x, double height) const noexcept;
-  // Pad c lands on this tick, or rings after its landing and jumps by jump_threshold_N (as the
-  // jump test judged it until the tick before).
-  [[nodiscard]] bool landing_step(const Channel& c, double x, double height, double t) const noexcept;
+  // (Run for every channel on every tick: the rarest conditions first.)
+  [[nodiscard]] bool pad_lands(const Channel& c, double x, double height) const noexcept {
+    return std::abs(c.previous) <= params_.airborne_threshold_N && x > params_.airborne_threshold_N &&
+           !(height > params_.airborne_height_m) && std::isfinite(c.last_virtual) &&
+           c.last_virtual < params_.airborne_threshold_N;
+  }
+  // Pad c, on the ground, rings after its landing (as the jump test judged it until the tick
+  // before) and jumps by jump_threshold_N on this tick.
+  [[nodiscard]] bool ring_step(const Channel& c, double x, double height, double t) const noexcept {
+    return t - c.last_landing_ring_s < params_.jump_window_s && t - c.last_pad_landing_s < params_.touchdown_guard_s &&
+           std::abs(x - c.previous) > params_.jump_threshold_N && !(height > params_.airborne_height_m);
+  }
   [[nodiscard]] bool unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept;
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
@@ -726,7 +735,10 @@ class ContactForceFdi {
   std::vector<int> foot_sum_ticks_;              // consecutive ticks with every pad's value, up to 2
   std::vector<double> foot_d2_;                  // second difference of the summed reading, this tick
   std::vector<int> foot_unread_;                 // its pads whose reading is not their load (unread())
-  std::vector<int> foot_landing_pads_;           // its pads whose landing steps on this tick (landing_step())
+  std::vector<int> foot_landing_pads_;           // its pads that land or ring-step on this tick
+  // Per channel, this tick: its own landing's step (before the jump test's state moves on).
+  static constexpr char kNoLandingStep = 0, kRingStep = 1, kLands = 2;
+  std::vector<char> landing_state_;
   double start_time_s_ = 0.0;
   int noise_window_ticks_;
   int frozen_ticks_ = 2;        // n_f, the frozen test's run length (INT_MAX: never reached)
