@@ -597,8 +597,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     for (std::size_t l = 0; l < feet_points_; ++l) {
       const std::size_t j = f * feet_points_ + l;
       const Channel& c = channels_[j];
-      const bool lands = ticks_since_start > 0 && pad_lands(c, measured[j], height[j]);
-      const bool step = lands || (ticks_since_start > 0 && ring_step(c, measured[j], height[j], t));
+      const bool known = ticks_since_start > 0;  // a previous reading to step from
+      const bool lands = known && pad_lands(c, measured[j], height[j]);
+      const bool step = lands || (known && ring_step(c, measured[j], height[j], t));
       landing_state_[j] = static_cast<char>(lands ? kLands : step ? kRingStep : kNoLandingStep);
       foot_landing_pads_[f] += step ? 1 : 0;
     }
@@ -1875,26 +1876,28 @@ bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height,
       const Channel& c = channels_[j];
       member = member || c.jump_pending;
       if (height[j] > params_.airborne_height_m) continue;
-      if (c.type == FaultType::none) {
-        loaded = loaded || c.smoothed > params_.airborne_threshold_N;
-        // Its landing unread: on the ground at its air level, unloaded since the foot landed.
-        unread_load = unread_load || (fell && !c.jump_pending && std::abs(c.smoothed) <= params_.airborne_threshold_N &&
-                                      c.loaded_at_s < last_touchdown_s_[f]);
-      } else if (!own_estimate(c.type) && c.type != FaultType::invalid && !c.jump_pending) {
-        // A stuck reading (frozen, saturated, not named) in the residual as read: load coming onto
-        // it reads nothing, and load leaving it (while it carries some) nothing either.
-        unread_load = unread_load || fell || c.recovered > params_.airborne_threshold_N;
-      } else if ((c.type == FaultType::offset || c.type == FaultType::drift) && c.fit_has_air && !c.follows_load &&
-                 !c.jump_pending) {
-        // An offset the air measured, not yet seen to follow its load: a reading frozen at a load
-        // reads as that offset in the air, and on the ground its correction then says nothing of
-        // what it carries (load may come or go unread).
-        unread_load = true;
-      }
+      loaded = loaded || (c.type == FaultType::none && c.smoothed > params_.airborne_threshold_N);
+      unread_load = unread_load || (!c.jump_pending && may_hold_unread_load(c, f, fell));
     }
     if (member && loaded && unread_load) return true;
   }
   return false;
+}
+
+bool ContactForceFdi::may_hold_unread_load(const Channel& c, std::size_t f, bool fell) const noexcept {
+  if (c.type == FaultType::none) {
+    // Its landing unread: on the ground at its air level, unloaded since the foot landed.
+    return fell && std::abs(c.smoothed) <= params_.airborne_threshold_N && c.loaded_at_s < last_touchdown_s_[f];
+  }
+  if (!own_estimate(c.type) && c.type != FaultType::invalid) {
+    // A stuck reading in the residual as read: load coming onto it reads nothing, and load
+    // leaving it (while it carries some) nothing either.
+    return fell || c.recovered > params_.airborne_threshold_N;
+  }
+  // An offset the air measured, not yet seen to follow its load: a reading frozen at a load reads
+  // as that offset in the air, and on the ground its correction then says nothing of what it
+  // carries (load may come or go unread).
+  return (c.type == FaultType::offset || c.type == FaultType::drift) && c.fit_has_air && !c.follows_load;
 }
 
 double ContactForceFdi::landing_step_bar(double floor_N) const noexcept {
@@ -1952,12 +1955,15 @@ void ContactForceFdi::follow_test(Channel& c, double reading, double virtual_for
     return;
   }
   if (load_span < 2.0 * params_.sum_threshold_N) return;  // the load has not moved beyond the force's error
-  if (!c.frozen_by_follow && reading_span >= params_.follow_ratio * load_span) c.follows_load = true;
-  if (!c.frozen_by_follow && reading_span < params_.follow_ratio * load_span) {
-    c.type = FaultType::frozen;
-    c.frozen_by_follow = true;
-    c.following = false;  // judge re-admission on a fresh span
-  } else if (c.frozen_by_follow) {
+  if (!c.frozen_by_follow) {
+    if (reading_span >= params_.follow_ratio * load_span) {
+      c.follows_load = true;  // seen to follow: an offset's reading (unread_landing_may_explain)
+    } else {
+      c.type = FaultType::frozen;
+      c.frozen_by_follow = true;
+      c.following = false;  // judge re-admission on a fresh span
+    }
+  } else {
     // Judged on each load move of its own, not on the span since the flag: a reading that has
     // followed again since the fault ended must not have to match every move it missed.
     if (reading_span >= 0.5 * load_span) {

@@ -588,10 +588,6 @@ class ContactForceFdi {
   // The unread-load test (header comment), after the still-reading test has smoothed this tick's
   // residual.
   void unread_load_test(std::span<const double> height, bool usable, double t) noexcept;
-  // A pending jump's fall of the sum may be a pad's landing that its sensor did not read: on a
-  // member's foot, a healthy pad on the ground reads its air level and has carried no load since
-  // the foot landed, while another carries load (the unread-load test's candidate). Then the
-  // members' steps are the load handed to it, not their sensors': no verdict from the jump.
   // Pad c (reading x, at `height`) takes its load back on this tick, on the ground: from its zero
   // level, while the others left it none, to beyond airborne_threshold_N (its own landing).
   // (Run for every channel on every tick: the rarest conditions first.)
@@ -606,7 +602,15 @@ class ContactForceFdi {
     return t - c.last_landing_ring_s < params_.jump_window_s && t - c.last_pad_landing_s < params_.touchdown_guard_s &&
            std::abs(x - c.previous) > params_.jump_threshold_N && !(height > params_.airborne_height_m);
   }
+  // This tick's jump candidates (net step jump_sum in the residual's terms) may be load handed to
+  // a pad of their loaded foot that does not read it: a healthy pad on the ground at its air
+  // level, unloaded since its foot landed, while the sum falls (its landing, unread); a stuck
+  // reading (frozen, saturated, not named) while the sum falls or while it carries load; an
+  // offset the air test measured not yet seen to follow its load. Then no verdict from the jump.
   [[nodiscard]] bool unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept;
+  // Pad c, not a jump candidate, on the ground of a loaded foot f, may take or give load unread
+  // (unread_landing_may_explain's three cases; `fell`: the sum's step is down).
+  [[nodiscard]] bool may_hold_unread_load(const Channel& c, std::size_t f, bool fell) const noexcept;
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
   void raise_stuck(Channel& c, double t) noexcept;
