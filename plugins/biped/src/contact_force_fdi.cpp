@@ -863,6 +863,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.restart_air_readings();  // (air_refit stays until the air's fit next takes a reading)
     }
     c.max_seen = std::max(c.max_seen, x);
+    if (x > c.ceiling_N + repeat_band_N_) c.ceiling_N = std::numeric_limits<double>::quiet_NaN();  // not clipped there
     // A pad only pushes: a loaded pad reading below -airborne_threshold_N is a negative offset
     // or a negative multiple of its load (a sign flip). The least-squares line of the reading on
     // the leave-one-out force (fitted once that force is known, below) tells them apart: slope
@@ -1226,6 +1227,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       raise(c, at_max || c.stale_episodes >= 2 ? FaultType::saturation : FaultType::frozen, t);
       if (c.stale_episodes >= 2 && c.type == FaultType::frozen) c.type = FaultType::saturation;
+      if (loaded) c.ceiling_N = x;  // stuck under load: a level it may be clipped at again
+    } else if (c.type == FaultType::none && c.stale_count >= 1 && !in_air && std::isfinite(c.ceiling_N) &&
+               std::abs(x - c.ceiling_N) <= repeat_band_N_ && std::isfinite(c.last_virtual) &&
+               c.last_virtual - x > params_.sum_threshold_N) {
+      // Back on the ceiling it was found clipped at, while the total force leaves it more.
+      raise(c, FaultType::saturation, t);
     } else if ((c.type == FaultType::frozen || c.type == FaultType::saturation) && c.stale_count == 0 &&
                !c.frozen_by_follow) {
       if (c.clear_since < 0) c.clear_since = t;

@@ -2702,5 +2702,65 @@ TEST(ContactForceFdi, AStuckOutputsStepBackToItsLoadIsItsEndNotANewOffset) {
   EXPECT_EQ(cleared_at, 1200 + 7);
 }
 
+// Pad 2 of the left foot (5 N steps, 2 N of noise: a healthy reading leaves its level every tick
+// here, a stuck one is frozen after n_f = 77 ticks) carries 200 N, rises by 5 N per tick to 700 N
+// from tick 100, falls back to 200 N from tick 400, and from tick 1000 rises again by 5 N per
+// tick. Its sensor clips at 300 N in both rises (`clipped_again`), or only in the first: in the
+// second it is healthy and reads 300 N exactly for 40 ticks while its load holds there. F_z is
+// exact. Returns the first tick it is flagged from tick 1000 (-1: never) and the type then.
+std::pair<int, FaultType> second_clip_flagged_at(bool clipped_again, int& readmitted_at) {
+  Feet feet(suralp(5.0), 1e-3);
+  readmitted_at = -1;
+  bool flagged_before = false;
+  for (int k = 0; k < 1300; ++k) {
+    double load = k < 100 ? 200.0 : k < 200 ? 200.0 + 5.0 * (k - 100) : k < 400 ? 700.0 : k < 500 ? 700.0 - 5.0 * (k - 400) : 200.0;
+    double reading = load + (k % 2 == 0 ? 0.0 : 4.75);
+    if (k < 1000) {
+      reading = std::min(reading, 300.0);
+    } else if (clipped_again) {
+      load = std::min(700.0, 200.0 + 5.0 * (k - 1000));
+      reading = std::min(load + (k % 2 == 0 ? 0.0 : 4.75), 300.0);
+    } else {
+      load = k < 1020 ? 200.0 + 5.0 * (k - 1000) : k < 1060 ? 300.0 : std::min(700.0, 300.0 + 5.0 * (k - 1060));
+      reading = k >= 1020 && k < 1060 ? 300.0 : load + (k % 2 == 0 ? 0.0 : 4.75);
+    }
+    double others = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = j == 2 ? reading : moving(j, k, 5.0);
+      if (j != 2) others += feet.measured[j];
+    }
+    feet.step(others + load);
+    if (k < 1000) {
+      if (feet.type(2) != FaultType::none) flagged_before = true;
+      if (flagged_before && readmitted_at < 0 && feet.type(2) == FaultType::none) readmitted_at = k;
+    } else if (feet.type(2) != FaultType::none) {
+      return {k, feet.type(2)};
+    }
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 2) {
+        EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+  return {-1, FaultType::none};
+}
+
+TEST(ContactForceFdi, APadBackOnTheLevelItWasFoundClippedAtIsSaturatedOnceItsLoadShowsMore) {
+  // The first clip is found by the repeat test (and re-admitted once the reading moves again).
+  // The second: the reading is within q / 2 of its old ceiling from tick 1019 (299.75 N, then
+  // 300 N); its leave-one-out force (the load) exceeds 300 + sum_threshold_N = 380 N from tick
+  // 1037 (385 N), so it is saturated on the next tick, 1038, where the repeat test alone waits
+  // until 1019 + 77 = 1096 (measured with this rule switched off).
+  int readmitted_at = -1;
+  const auto [clipped_at, clipped_type] = second_clip_flagged_at(true, readmitted_at);
+  ASSERT_GE(readmitted_at, 0);
+  EXPECT_LT(readmitted_at, 1000);
+  EXPECT_EQ(clipped_at, 1038);
+  EXPECT_EQ(clipped_type, FaultType::saturation);
+  // Healthy in the second rise: it reads 300 N while it carries 300 N, then above: not flagged.
+  const auto [healthy_at, healthy_type] = second_clip_flagged_at(false, readmitted_at);
+  EXPECT_EQ(healthy_at, -1) << "flagged " << to_string(healthy_type);
+}
+
 }  // namespace
 }  // namespace ftsense::biped

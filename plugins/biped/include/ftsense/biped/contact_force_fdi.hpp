@@ -48,7 +48,11 @@
 //             under a lighter load is off by less than that bound. Saturation when the value is at the top of the range (upper_limit_N - q/2,
 //             when given), or a load (> airborne_threshold_N) that is the largest the channel has
 //             shown, or when the channel sticks again at the value of its previous stuck episode
-//             (a clipped load returns to the same ceiling).
+//             (a clipped load returns to the same ceiling). A channel found stuck under load keeps
+//             that level C until it reads above C + q/2: back at C for two ticks on the ground
+//             while its leave-one-out force exceeds C by sum_threshold_N, it is saturated on that
+//             tick, not n_f ticks later (a clipped sensor clips at the same level each stance; a
+//             frozen one does not leave and return).
 //   spikes    N_{k-1} deviates from both neighbours by > spike_threshold_N while they agree, and
 //             its foot's summed reading spikes the same way by at least half as much (load that
 //             rocks between two pads of a sole for a tick, a heel pad chattering on and off the
@@ -479,6 +483,9 @@ class ContactForceFdi {
     int stale_count = 0;
     double last_stale_value = -1e300;  // the value of the last stuck episode
     int stale_episodes = 0;            // consecutive stuck episodes at that same value
+    // The level the reading was last found clipped at (NaN: none known); kept across episodes
+    // until the reading goes above it.
+    double ceiling_N = std::numeric_limits<double>::quiet_NaN();
     double max_seen = 0.0;
     // The current spike episode, timed in seconds the spike test could see (not within a
     // touchdown's or the pad's landing guard, where spikes are not looked for).
