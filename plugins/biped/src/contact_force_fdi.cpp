@@ -811,7 +811,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.relation_candidate_load = c.previous;
         c.candidate_flagged = c.type != FaultType::none;
       } else if (steps && touching_down && !pad_landing && !c.end_pending && corrects(c.type) &&
-                 (c.type == FaultType::gain || c.fit_has_air) &&
+                 (c.type == FaultType::gain || c.fit_has_air) && !gain_reads_air_level(c, x) &&
                  t - last_touchdown_s_[channel_foot_[j]] >= params_.touchdown_guard_s && fz_ok &&
                  residual_before_known_) {
         // A step back by the fault's size on a foot that is not landing, while another foot is:
@@ -1051,6 +1051,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (++c.end_clear_ticks < jump_window_ticks_) continue;
     c.end_pending = false;
     if (ends_pending > 1) continue;
+    // A gain's error in the residual scales with its load: one whose pad has since gone to its air
+    // level left the residual with its load, ended or not (the next stance judges it).
+    if (gain_reads_air_level(c, measured[static_cast<std::size_t>(&c - channels_.data())])) continue;
     if (residual_steps_by(recent_residual_mean() - c.end_before, c.end_jump, confirm_N)) clear(c);
   }
 
@@ -1164,7 +1167,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     // test, on that very step).
     const bool in_air = height[j] > params_.airborne_height_m;
     const auto decide = [&](double jump, double load_before, bool from_flagged) {
-      if (corrects(c.type) && steps_back(jump, fault_size(c, t, load_before))) {
+      if (corrects(c.type) && !gain_reads_air_level(c, x) && steps_back(jump, fault_size(c, t, load_before))) {
         // The fault ended with a jump back. In the air, where the reading is the fault itself, a
         // step back by half the fault's size is within steps_back's band and is a fault that
         // changed: there the reading must be back within its noise of 0 (else the mean of the
@@ -1443,6 +1446,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     unmeasured_.solve(recovered, unknown_, lower_bound_, plane_usable_, fz - known_sum);
   }
   double total = known_sum;
+  int flagged = 0;  // the gain refit trusts the leave-one-out force only where no other channel is flagged
+  for (const Channel& c : channels_) flagged += c.type != FaultType::none ? 1 : 0;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const bool airborne = height[j] > params_.airborne_height_m;
@@ -1466,6 +1471,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     c.last_virtual = virtual_force[j];
     if (c.negative_ticks > 0 && std::isfinite(x) && virtual_force[j] > params_.gain_min_load_N) {
       c.negative_fit.add(virtual_force[j], x);
+    }
+    if (c.type != FaultType::gain || c.sign_fault) {
+      c.gain_fit = SlopeFit{};
+    } else if (flagged == 1 && fz_ok && !touching_down && !airborne && std::isfinite(x) &&
+               virtual_force[j] > params_.gain_min_load_N) {
+      c.gain_fit.add(virtual_force[j], x);
+      refit_gain(c);
     }
     if (std::isfinite(x)) {
       c.smoothed = ticks_since_start > 0 ? c.smoothed + smoothing_ * (x - c.smoothed) : x;
@@ -2005,6 +2017,20 @@ std::optional<double> ContactForceFdi::onset_gain(const Channel& c) const noexce
     return std::nullopt;
   }
   return 1.0 + c.offset / c.onset_load;
+}
+
+void ContactForceFdi::refit_gain(Channel& c) noexcept {
+  const SlopeFit& fit = c.gain_fit;
+  if (fit.n < stance_min_ticks_ || fit.v_hi - fit.v_lo < params_.sum_threshold_N || !(fit.svv > 0.0)) return;
+  const double k = fit.sxv / fit.svv;
+  const double standard_error = std::sqrt(std::max(0.0, fit.sxx - k * fit.sxv) / ((fit.n - 1.0) * fit.svv));
+  if (!(k >= kMinGain) || std::abs(k - c.gain) <= relation_z_ * standard_error ||
+      std::abs(k / c.gain - 1.0) <= 0.5 * params_.gain_threshold) {
+    return;
+  }
+  c.gain = k;
+  // The gain test's window holds residuals computed with the old k (as when it refines k).
+  restart_gain_window();
 }
 
 void ContactForceFdi::take_gain(Channel& c, double k) noexcept {

@@ -579,6 +579,10 @@ class ContactForceFdi {
     double last_virtual = 0.0;  // the leave-one-out force of the previous tick
     int negative_ticks = 0, positive_ticks = 0;
     SlopeFit negative_fit;
+    // While held as a gain (not a sign flip): the reading on its leave-one-out force, x = k v,
+    // over loaded ground ticks outside touchdown guards while it is the one channel flagged
+    // (refit_gain).
+    SlopeFit gain_fit;
     bool sign_fault = false;
   };
 
@@ -618,6 +622,20 @@ class ContactForceFdi {
   // Pad c, not a jump candidate, on the ground of a loaded foot f, may take or give load unread
   // (unread_landing_may_explain's three cases; `fell`: the sum's step is down).
   [[nodiscard]] bool may_hold_unread_load(const Channel& c, std::size_t f, bool fell) const noexcept;
+  // A gain's reading x back at its air level (within airborne_threshold_N of 0): a step that took
+  // it there is its load leaving (a scaled zero reads zero), no sign that the gain ended.
+  [[nodiscard]] bool gain_reads_air_level(const Channel& c, double x) const noexcept {
+    return c.type == FaultType::gain && std::abs(x) <= params_.airborne_threshold_N;
+  }
+  // A gain's k refitted on its own evidence: its reading against its leave-one-out force, which
+  // no other channel's fit shares (the sum residual's fit often cannot isolate a pad of a sole
+  // loaded with its neighbours, so it cannot refine k either). Only while no other channel is
+  // flagged: with a second fault in the sum, the leave-one-out force carries it, and a fit to it
+  // would make a wrongly held gain absorb that fault (other draw walk 6, in a try: two healthy
+  // pads held as gains 1 s longer). Taken when the fit spans
+  // sum_threshold_N of load over stance_min_ticks_ and its k differs from the one held by
+  // relation_z_ standard errors and by half gain_threshold.
+  void refit_gain(Channel& c) noexcept;
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
   void raise_stuck(Channel& c, double t) noexcept;
