@@ -673,18 +673,24 @@ TEST(ContactForceFdi, AnOffsetEndsWithItsJumpBackWhileANeighbourSpikes) {
 // residual that grows with the load; taken as x / k, k = 1 + jump / load before = 1 + 199 / 201,
 // it leaves none: re-typed gain once the load has moved by 2 sum_threshold_N. An offset's residual
 // stays at zero taken as x - b: it stays an offset.
+// One tick with pad 2 carrying `load` and reading `reading`, the other pads healthy and moving,
+// F_z exact.
+void step_pad2(Feet& feet, int k, double load, double reading) {
+  double fz = load;
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j == 2) continue;
+    feet.measured[j] = moving(j, k, 0.0);
+    fz += feet.measured[j];
+  }
+  feet.measured[2] = reading;
+  feet.step(fz);
+}
+
 FaultType after_a_jump_under_a_rising_load(bool gain, double& recovered, double& load, int ticks = 600) {
   Feet feet(suralp(), 1e-3);
   for (int k = 0; k < ticks; ++k) {
     load = (k < 100 ? 200.0 : std::min(500.0, 200.0 + (k - 100))) + (k % 2 == 0 ? 0.0 : 1.0);
-    double fz = load;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      if (j == 2) continue;
-      feet.measured[j] = moving(j, k, 0.0);
-      fz += feet.measured[j];
-    }
-    feet.measured[2] = k < 50 ? load : gain ? 2.0 * load : load + 200.0;
-    feet.step(fz);
+    step_pad2(feet, k, load, k < 50 ? load : gain ? 2.0 * load : load + 200.0);
   }
   recovered = feet.outs[ContactForceFdi::kRecovered][2];
   return feet.type(2);
@@ -768,14 +774,7 @@ int gain_typed_after_a_jump_under_a_fast_rising_load() {
   Feet feet(suralp(), 1e-3);
   for (int k = 0; k < 400; ++k) {
     const double load = (k < 50 ? 200.0 : std::min(700.0, 200.0 + 4.0 * (k - 50))) + (k % 2 == 0 ? 0.0 : 1.0);
-    double fz = load;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      if (j == 2) continue;
-      feet.measured[j] = moving(j, k, 0.0);
-      fz += feet.measured[j];
-    }
-    feet.measured[2] = k < 50 ? load : 2.0 * load;
-    feet.step(fz);
+    step_pad2(feet, k, load, k < 50 ? load : 2.0 * load);
     if (feet.type(2) == FaultType::gain) return k;
   }
   return -1;
@@ -2771,14 +2770,7 @@ FaultType gain_after_a_jolted_onset(int ticks, double& recovered, double& load) 
   for (int k = 0; k < ticks; ++k) {
     const double swing = k < 50 ? 200.0 : 360.0 + 200.0 * std::sin(2.0 * std::numbers::pi * 2.5 * (k - 50) * 1e-3);
     load = swing + (k % 2 == 0 ? 0.0 : 1.0);
-    double fz = load;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      if (j == 2) continue;
-      feet.measured[j] = moving(j, k, 0.0);
-      fz += feet.measured[j];
-    }
-    feet.measured[2] = k < 50 ? load : 2.0 * load;
-    feet.step(fz);
+    step_pad2(feet, k, load, k < 50 ? load : 2.0 * load);
   }
   recovered = feet.outs[ContactForceFdi::kRecovered][2];
   return feet.type(2);
