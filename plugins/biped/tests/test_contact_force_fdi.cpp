@@ -2787,5 +2787,39 @@ TEST(ContactForceFdi, AGainsKIsRefittedOnItsReadingAgainstItsLeaveOneOutForce) {
   EXPECT_NEAR(recovered, load, 1e-6 * load);
 }
 
+// Pad 2 (left foot) held as a gain (k = 2) as in the rising-load test above. The right foot lifts on
+// tick 600 and lands on tick 700 (its guard: 150 ticks). On tick 710 pad 2's load falls 500 -> 250 N
+// (its reading 1000 -> 500: a step back by the gain's size at that load), and on tick 720 to 0 (its
+// reading too). From tick 720 F_z reads 250 N more than the loads (an impact's error that stays).
+// Returns pad 2's type on tick 1100.
+FaultType gain_after_its_load_left_in_another_foots_guard() {
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 1100; ++k) {
+    const double load = k < 100 ? 200.0 : k < 710 ? std::min(500.0, 200.0 + (k - 100)) : k < 720 ? 250.0 : 0.0;
+    const bool right_up = k >= 600 && k < 700;
+    std::fill(feet.height.begin() + 4, feet.height.end(), right_up ? 0.1 : 0.0);
+    double fz = load + (k >= 720 ? 250.0 : 0.0);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j == 2) continue;
+      feet.measured[j] = j >= 4 && right_up ? (k % 2 == 0 ? 1.0 : -1.0) : moving(j, k, 0.0);
+      if (!(j >= 4 && right_up)) fz += feet.measured[j];
+    }
+    const double noise = k % 2 == 0 ? 0.0 : 1.0;
+    feet.measured[2] = k < 50 ? load + noise : 2.0 * load + noise;
+    feet.step(fz);
+    if (k == 599) {
+      EXPECT_EQ(feet.type(2), FaultType::gain);
+    }
+  }
+  return feet.type(2);
+}
+
+TEST(ContactForceFdi, AGainWhosePadWentToItsAirLevelIsNotEndedByTheResidualsStep) {
+  // After the guard the residual has stepped by -250 N, the end a gain of k = 2 at 1000 N predicts
+  // (-(1 - 1/k) 1000 / k). But pad 2 reads 0 by then: its load left, and a gain's error left with
+  // it, ended or not. It stays a gain (switched off, the rule lets the step re-admit it).
+  EXPECT_EQ(gain_after_its_load_left_in_another_foots_guard(), FaultType::gain);
+}
+
 }  // namespace
 }  // namespace ftsense::biped
