@@ -1234,7 +1234,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     } else if (c.type == FaultType::none && c.stale_count >= 1 && !in_air && std::isfinite(c.ceiling_N) &&
                std::abs(x - c.ceiling_N) <= repeat_band_N_ && std::isfinite(c.last_virtual) &&
                c.last_virtual - x > params_.sum_threshold_N) {
-      // Back on the ceiling it was found clipped at, while the total force leaves it more.
+      // Back on the level it was last found stuck at under load, while the total force leaves it more.
       raise(c, FaultType::saturation, t);
     } else if ((c.type == FaultType::frozen || c.type == FaultType::saturation) && c.stale_count == 0 &&
                !c.frozen_by_follow) {
@@ -1447,10 +1447,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   }
   double total = known_sum;
   int flagged = 0;  // the gain refit trusts the leave-one-out force only where no other channel is flagged
-  for (const Channel& c : channels_) flagged += c.type != FaultType::none ? 1 : 0;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const bool airborne = height[j] > params_.airborne_height_m;
+    flagged += c.type != FaultType::none ? 1 : 0;
     if (c.type != FaultType::none && !own_estimate(c.type) && !airborne) {
       if (!fz_ok) recovered[j] = c.recovered;
       total += recovered[j];
@@ -1473,7 +1473,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.negative_fit.add(virtual_force[j], x);
     }
     if (c.type != FaultType::gain || c.sign_fault) {
-      c.gain_fit = SlopeFit{};
+      if (c.gain_fit.n > 0.0) c.gain_fit = SlopeFit{};  // (most channels most ticks: already empty)
     } else if (flagged == 1 && fz_ok && !touching_down && !airborne && std::isfinite(x) &&
                virtual_force[j] > params_.gain_min_load_N) {
       c.gain_fit.add(virtual_force[j], x);

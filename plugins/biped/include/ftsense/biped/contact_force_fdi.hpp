@@ -483,8 +483,8 @@ class ContactForceFdi {
     int stale_count = 0;
     double last_stale_value = -1e300;  // the value of the last stuck episode
     int stale_episodes = 0;            // consecutive stuck episodes at that same value
-    // The level the reading was last found clipped at (NaN: none known); kept across episodes
-    // until the reading goes above it.
+    // The level the reading was last found stuck at under load, a ceiling it may be clipped at
+    // again (NaN: none known); kept across episodes until the reading goes above it.
     double ceiling_N = std::numeric_limits<double>::quiet_NaN();
     double max_seen = 0.0;
     // The current spike episode, timed in seconds the spike test could see (not within a
