@@ -761,7 +761,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // A noise burst's swings are the fault the channel is flagged for, not steps.
       const bool steps = std::abs(change) > params_.jump_threshold_N &&
                          std::abs(innovation) > params_.jump_threshold_N && c.type != FaultType::noise;
-      any_step = any_step || steps;
+      // The still test's windows restart on a step: it may be a fault's onset or end the jump test
+      // did not judge. But a landing foot's pads step as they take their loads (none of them is
+      // named while its foot lands): no restart, so a window holds the load that landing moves
+      // off the other foot's pads, which a stuck one among them does not follow.
+      const bool own_foot_landing = t - last_touchdown_s_[foot] < params_.touchdown_guard_s;
+      any_step = any_step || (steps && (may_jump || c.type != FaultType::none || !own_foot_landing));
       if (steps && may_jump && !group_pending_ && !late_pending_) {
         c.jump_pending = true;
         c.jump_size = change;
@@ -1710,7 +1715,11 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
     const bool airborne = height[j] > params_.airborne_height_m;
     restart = restart || c.type != c.still_window_type;
     c.still_window_type = c.type;
-    const bool additive = c.type == FaultType::offset || c.type == FaultType::drift || c.type == FaultType::spikes;
+    // An offset raised by a jump under load and not yet told from a gain (offset_or_gain_test) is
+    // corrected as x - b while it may scale with its load: not additive until decided.
+    const bool undecided = c.type == FaultType::offset && !c.fit_has_air && onset_gain(c).has_value();
+    const bool additive =
+        (c.type == FaultType::offset && !undecided) || c.type == FaultType::drift || c.type == FaultType::spikes;
     restart = restart || (c.type != FaultType::none && !additive && !airborne);
   }
   if (restart) {
@@ -1818,7 +1827,10 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
       }
     }
     window.active = false;  // judged: the long one opens afresh, a short one waits for its turn
-    if (candidates == 1 &&
+    // A landing foot's pads take their loads each in its turn as the sole rolls on (a toe still at
+    // its air level beside a loaded heel): such a pad may be the one, but is not named while its
+    // foot lands (counted, it keeps any other from being named).
+    if (candidates == 1 && !(t - last_touchdown_s_[channel_foot_[culprit]] < params_.touchdown_guard_s) &&
         (!short_window || still_hi_[w * n + culprit] - still_lo_[w * n + culprit] <= still_band_N_)) {
       raise_stuck(channels_[culprit], t);
       break;

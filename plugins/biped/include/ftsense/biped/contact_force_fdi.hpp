@@ -256,11 +256,17 @@
 //             -airborne_threshold_N (a pad only pushes; one stuck where its load came to 0, a
 //             foot about to lift, is one), are the candidates: exactly one is raised frozen (and
 //             re-admitted by the follow test); two or more cannot be told apart (a steadily
-//             loaded pad reads still too), and none is blamed. The window is at least the
+//             loaded pad reads still too), and none is blamed. A pad of a foot within its
+//             landing's touchdown_guard_s is counted but not named (a sole takes its load pad by
+//             pad: a toe at its air level beside a loaded heel). The window is at least the
 //             smoother's settling (five time constants) long, and restarts, a settling later,
-//             when F_z or a reading is unknown, a channel steps (the jump test's), a flag changes,
-//             or a loaded channel is flagged as anything but offset, drift or spikes (a gain's
-//             wrong k or a substituted share moves r with its load, as a stuck neighbour would).
+//             when F_z or a reading is unknown, a channel steps (the jump test's: an onset it did
+//             not judge; but not a pad of a foot within its landing's guard taking its load, so
+//             that a window holds the load a landing moves off the other foot, the move that
+//             shows a stuck pad there), a flag changes, or a loaded channel is flagged as anything
+//             but drift, spikes or an offset told from a gain (a gain's wrong k, an offset that
+//             may be a gain, or a substituted share moves r with its load, as a stuck neighbour
+//             would).
 //             That window holds what the stuck reading did before it stuck (a pad frozen at the
 //             load it had just risen to spans that rise), and names no one. So beside it, short
 //             windows open in turn every half settling, four at a time (each lives two
