@@ -1449,6 +1449,16 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
     }
     unmeasured_.solve(recovered, unknown_, lower_bound_, plane_usable_, fz - known_sum);
+    // Left the only one to take what the total force leaves, a lifting foot's unknown pad may
+    // still carry its foot's last load (a sole rolling off it), but no more than it carried a tick
+    // before: a sole that lifts takes on no load. What the total force leaves beyond that is
+    // another channel's error (a correction gone wrong elsewhere), left in the sum residual.
+    for (std::size_t j = 0; j < channels_.size(); ++j) {
+      if (unknown_[j] != 0 && foot_reads_unloaded_[channel_foot_[j]] != 0 && lower_bound_[j] == 0.0 &&
+          std::isfinite(channels_[j].recovered)) {
+        recovered[j] = std::min(recovered[j], std::max(0.0, channels_[j].recovered));
+      }
+    }
   }
   double total = known_sum;
   int flagged = 0;  // the gain refit trusts the leave-one-out force only where no other channel is flagged

@@ -1387,6 +1387,34 @@ TEST(ContactForceFdi, AFrozenPadOnAFootWhoseOtherPadsReadNothingCarriesNothingOf
   }
 }
 
+TEST(ContactForceFdi, ALiftingFootsSubstitutedPadTakesOnNoLoadThatTheTotalForceLeaves) {
+  // Pad 6 sticks from tick 300 (exact repeats: frozen, substituted); from tick 600 the right foot
+  // is about to lift (on the ground, its loads 0, its readable pads at +-1 N), and from tick 700
+  // F_z reads 100 N above the loads' sum. Pad 6 is the one substituted pad, so it takes what F_z
+  // leaves, but a lifting sole takes on no load: it carries no more than on the tick before, 0
+  // from the first tick the pads' noise leaves it nothing. The 100 N stay in the sum residual,
+  // reported unisolated (without the rule pad 6 carried them: 100 N +- 7 N).
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 1500; ++k) {
+    const double noise = k % 2 == 0 ? 1.0 : -1.0;
+    double fz = k >= 700 ? 100.0 : 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double load = j < 4 ? (k < 600 ? 150.0 : 240.0) + 10.0 * static_cast<double>(j)
+                                 : (k < 600 ? 200.0 + 10.0 * static_cast<double>(j - 4) : 0.0);
+      fz += load;
+      if (k < 300 || j != 6) feet.measured[j] = load + noise;
+    }
+    feet.step(fz);
+    if (k >= 610) {
+      ASSERT_EQ(feet.type(6), FaultType::frozen) << "tick " << k;
+      EXPECT_EQ(feet.outs[ContactForceFdi::kRecovered][6], 0.0) << "tick " << k;
+    }
+    if (k == 1499) {
+      EXPECT_EQ(feet.outs[ContactForceFdi::kUnisolated][0], 1.0);
+    }
+  }
+}
+
 TEST(ContactForceFdi, AFrozenPadALandingSoleStandsOnAloneKeepsItsShareOfTheLoad) {
   // As above, but the left foot lifts (0.05 m) from tick 600 and lands on tick 900 on its heel
   // pad 3 alone (200 N for 60 ticks; pads 0-2 on the ground, unloaded), then on all four. Inside
