@@ -357,7 +357,8 @@
 // equal shares), each at least 0 and a saturated pad at least its reading, its ceiling; a
 // substituted pad on a foot whose readable pads on the ground all read their air level, past its
 // landing's touchdown_guard_s (a lifting sole; a landing one may stand on that pad alone), carries
-// 0 while another foot not seen so holds a substituted pad too),
+// 0 while another foot not seen so holds a substituted pad too, and else at most what it carried
+// on the tick before (a lifting sole takes on no load; the rest stays in the sum residual)),
 // virtual (leave-one-out: 0 when airborne, else F_z - sum of the other channels' recovered
 // values; NaN while F_z is not finite, the virtual sensor not ready), virtual_ready (1 while F_z
 // is finite; while it is not, the sum residual holds and no channel is judged on it).
