@@ -762,11 +762,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const bool steps = std::abs(change) > params_.jump_threshold_N &&
                          std::abs(innovation) > params_.jump_threshold_N && c.type != FaultType::noise;
       // The still test's windows restart on a step: it may be a fault's onset or end the jump test
-      // did not judge. But a landing foot's pads step as they take their loads (none of them is
-      // named while its foot lands): no restart, so a window holds the load that landing moves
-      // off the other foot's pads, which a stuck one among them does not follow.
+      // did not judge. But a landing foot's unflagged pads step as they take their loads (none of
+      // them is named while its foot lands): no restart, so a window holds the load that landing
+      // moves off the other foot's pads, which a stuck one among them does not follow. (Inside
+      // its foot's guard the jump test judges no step: touching_down holds.)
       const bool own_foot_landing = t - last_touchdown_s_[foot] < params_.touchdown_guard_s;
-      any_step = any_step || (steps && (may_jump || c.type != FaultType::none || !own_foot_landing));
+      any_step = any_step || (steps && (c.type != FaultType::none || !own_foot_landing));
       if (steps && may_jump && !group_pending_ && !late_pending_) {
         c.jump_pending = true;
         c.jump_size = change;

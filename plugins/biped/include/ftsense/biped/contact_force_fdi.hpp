@@ -261,9 +261,9 @@
 //             pad: a toe at its air level beside a loaded heel). The window is at least the
 //             smoother's settling (five time constants) long, and restarts, a settling later,
 //             when F_z or a reading is unknown, a channel steps (the jump test's: an onset it did
-//             not judge; but not a pad of a foot within its landing's guard taking its load, so
-//             that a window holds the load a landing moves off the other foot, the move that
-//             shows a stuck pad there), a flag changes, or a loaded channel is flagged as anything
+//             not judge; but not an unflagged pad of a foot within its landing's guard taking its
+//             load, so that a window holds the load a landing moves off the other foot, the move
+//             that shows a stuck pad there), a flag changes, or a loaded channel is flagged as anything
 //             but drift, spikes or an offset told from a gain (a gain's wrong k, an offset that
 //             may be a gain, or a substituted share moves r with its load, as a stuck neighbour
 //             would).
