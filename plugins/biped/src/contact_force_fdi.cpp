@@ -766,8 +766,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // them is named while its foot lands): no restart, so a window holds the load that landing
       // moves off the other foot's pads, which a stuck one among them does not follow. (Inside
       // its foot's guard the jump test judges no step: touching_down holds.)
-      const bool own_foot_landing = t - last_touchdown_s_[foot] < params_.touchdown_guard_s;
-      any_step = any_step || (steps && (c.type != FaultType::none || !own_foot_landing));
+      any_step = any_step || (steps && (c.type != FaultType::none || !foot_landing(foot, t)));
       if (steps && may_jump && !group_pending_ && !late_pending_) {
         c.jump_pending = true;
         c.jump_size = change;
@@ -1440,7 +1439,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         }
       }
       // A sole landing may stand on its substituted pad alone (a heel first): lifting ones only.
-      if (shows_load || t - last_touchdown_s_[f] < params_.touchdown_guard_s) foot_reads_unloaded_[f] = 0;
+      if (shows_load || foot_landing(f, t)) foot_reads_unloaded_[f] = 0;
       loaded_foot_unknown = loaded_foot_unknown || (holds_unknown && foot_reads_unloaded_[f] == 0);
     }
     for (std::size_t j = 0; j < channels_.size() && loaded_foot_unknown; ++j) {
@@ -1841,7 +1840,7 @@ void ContactForceFdi::still_reading_test(std::span<const double> measured,
     // A landing foot's pads take their loads each in its turn as the sole rolls on (a toe still at
     // its air level beside a loaded heel): such a pad may be the one, but is not named while its
     // foot lands (counted, it keeps any other from being named).
-    if (candidates == 1 && !(t - last_touchdown_s_[channel_foot_[culprit]] < params_.touchdown_guard_s) &&
+    if (candidates == 1 && !foot_landing(channel_foot_[culprit], t) &&
         (!short_window || still_hi_[w * n + culprit] - still_lo_[w * n + culprit] <= still_band_N_)) {
       raise_stuck(channels_[culprit], t);
       break;

@@ -263,10 +263,10 @@
 //             when F_z or a reading is unknown, a channel steps (the jump test's: an onset it did
 //             not judge; but not an unflagged pad of a foot within its landing's guard taking its
 //             load, so that a window holds the load a landing moves off the other foot, the move
-//             that shows a stuck pad there), a flag changes, or a loaded channel is flagged as anything
-//             but drift, spikes or an offset told from a gain (a gain's wrong k, an offset that
-//             may be a gain, or a substituted share moves r with its load, as a stuck neighbour
-//             would).
+//             that shows a stuck pad there), a flag changes, or a loaded channel is flagged as
+//             anything but drift, spikes or an offset told from a gain (a gain's wrong k, an
+//             offset that may be a gain, or a substituted share moves r with its load, as a stuck
+//             neighbour would).
 //             That window holds what the stuck reading did before it stuck (a pad frozen at the
 //             load it had just risen to spans that rise), and names no one. So beside it, short
 //             windows open in turn every half settling, four at a time (each lives two
@@ -667,6 +667,11 @@ class ContactForceFdi {
   // Channel j's reading is not its load, as flagged until this tick: substituted from the total
   // force on the ground, or a noise burst (anywhere: its noise is in its foot's summed reading).
   [[nodiscard]] bool unread(std::size_t j, std::span<const double> height) const noexcept;
+  // Foot f touched down within touchdown_guard_s of t (its landing's transient; its pads taking
+  // their loads one by one).
+  [[nodiscard]] bool foot_landing(std::size_t f, double t) const noexcept {
+    return t - last_touchdown_s_[f] < params_.touchdown_guard_s;
+  }
   // The fault's size now (a gain's from the reading before the step, `load_before`).
   [[nodiscard]] static double fault_size(const Channel& c, double t, double load_before) noexcept;
   // A one-tick change that takes a fault of that size back: |jump + size| < 0.4 |size| + jump_confirm_N.
