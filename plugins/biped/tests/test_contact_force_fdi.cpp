@@ -2339,7 +2339,8 @@ int unread_load_flagged_at(double pad3_load) {
 TEST(ContactForceFdi, APadThatReadsItsAirLevelOnALandedFootIsFrozenOnceTheShortfallHasHeld) {
   // Pad 3 carries 150 N from the landing and reads nothing: the pads read 150 N short of F_z, its
   // neighbours carry load, and it is the only pad on the ground at its air level. Its reading has
-  // no window that spans a move (the still-reading test restarts at the landing's steps).
+  // no window that spans a move named in time (the still-reading test names no pad of a foot
+  // inside its landing's guard).
   const int expected = unread_load_flagged_at(150.0);
   ASSERT_EQ(expected, 731);
   const auto first = landing_flags({}, 900);

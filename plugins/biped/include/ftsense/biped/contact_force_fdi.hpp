@@ -283,7 +283,7 @@
 //             from the next tick. Its known limit: with the reference itself moving and one
 //             reading still (steadily loaded), that reading is taken as stuck.
 //   unread    (no flag yet) a pad that reads nothing of the load it lands on: a dead sensor at its
-//             air level, whose landing steps restart the still test's window. While the smoothed
+//             air level, which the still test does not name while its foot lands. While the smoothed
 //             residual r (as above) stays below -(sum_threshold_N + zero_clamp_N) (the pads read
 //             short of F_z by more than its error and a clamped zero can hide), and exactly one
 //             pad of the robot is on the ground, not flagged, with its smoothed reading within
