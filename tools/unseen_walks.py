@@ -1,9 +1,15 @@
 #!/usr/bin/python3
 """Runs the robust pipeline (configs/suralp_robust.json) on SURALP walks the demo does not use, and
 reports the false alarms of each: the trial a new user makes before trusting it. With --robot
-quadruped, configs/quadruped.json on crawls of the 13 kg quadruped the demo does not use.
+quadruped, configs/quadruped.json on crawls of the 13 kg quadruped the demo does not use. With
+--robot light_biped, configs/suralp_robust.json told another biped's build (48 kg, legs 0.22 + 0.21 m,
+a 0.18 x 0.11 m sole: the simulator's scenario "body") as its user would, on its walks: gaits
+0.10/0.8/0.3, 0.15/0.6/0.15, 0.12/0.7/0.25, 0.08/0.65/0.2 (step height 0.03 m, feet 0.08 m off the
+midline); sensors 0.001/0.5/0, 0.005/1.5/0, 0.002/1/1, 0.001/1/2.5; seeds 700 + (800 + with faults);
+fault sizes for its 118 N per pad: offsets +-20/30/50 N, drifts +-3/5/8 N/s, noise bursts 8/15/20 N,
+spikes 50/120 N, saturation at 110/160 N.
 
-    tools/unseen_walks.py BUILD_BIN [--robot suralp|quadruped] [--faults] [--calibrate] [--work DIR]
+    tools/unseen_walks.py BUILD_BIN [--robot suralp|light_biped|quadruped] [--faults] [--calibrate] [--work DIR]
                           [--duration S] [--jobs N]
 
 BUILD_BIN holds ftsense and ftsense-sim (e.g. build/bin). 4 gaits x 4 sensor settings, each walk
@@ -58,6 +64,24 @@ ROBOTS = {
         "sensors": SENSORS, "seeds": (300, 400),
         "offset_N": [40, 60, 100], "slope_N_s": [5, 10, 15], "noise_N": [15, 30, 40],
         "spike_N": [100, 250], "ceiling_N": [250, 350],
+    },
+    # A lighter biped of another build (sim/README.md "body"): 48 kg, shorter legs, a smaller sole.
+    # Its config is configs/suralp_robust.json told this robot as a user would (adapt_to_body):
+    # the pads at the sole's corners, the mass, the CoM height (the simulator's planned CoM,
+    # plan/com_z_m) and the legs' effective mass (7.1 kg at 114 kg, limb_inertia_correction.hpp,
+    # scaled with the mass: the same build). Fault sizes and sensors scaled to its 118 N per pad.
+    "light_biped": {
+        "config": "suralp_robust.json",
+        "body": {"total_mass_kg": 48.0, "upper_leg_m": 0.22, "lower_leg_m": 0.21, "sole_ankle_m": 0.09,
+                 "foot_length_m": 0.18, "foot_width_m": 0.11},
+        "com_height_m": 0.586,
+        "channels": [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)],
+        "gaits": [{"step_length_m": a, "step_time_s": b, "double_support_ratio": c, "foot_half_spacing_m": 0.08,
+                   "step_height_m": 0.03}
+                  for a, b, c in [(0.10, 0.8, 0.3), (0.15, 0.6, 0.15), (0.12, 0.7, 0.25), (0.08, 0.65, 0.2)]],
+        "sensors": [(0.001, 0.5, 0.0), (0.005, 1.5, 0.0), (0.002, 1.0, 1.0), (0.001, 1.0, 2.5)], "seeds": (700, 800),
+        "offset_N": [20, 30, 50], "slope_N_s": [3, 5, 8], "noise_N": [8, 15, 20],
+        "spike_N": [50, 120], "ceiling_N": [110, 160],
     },
     "quadruped": {
         "config": "quadruped.json",
@@ -118,7 +142,9 @@ def walks(robot_name, duration_s, with_faults):
                 "sensors": {"force": {"noise_std_N": noise, "resolution_N": resolution}},
                 "faults": faults,
             }
-            if robot_name != "suralp":
+            if "body" in robot:
+                scenario["body"] = robot["body"]
+            elif robot_name != "suralp":
                 scenario["robot"] = robot_name
             if period != 0.001:
                 scenario["log_period_s"] = period
@@ -143,6 +169,29 @@ def told(config, scenario, sensors=True):
             stages[0]["params"][key] = scenario["sensors"]["force"][key]
         else:
             stages[0]["params"].pop(key, None)  # left to `ftsense calibrate`
+    return config
+
+
+def adapt_to_body(config, robot):
+    """configs/suralp_robust.json told another biped's build, as its user would: the sole's pads,
+    the mass, the CoM height and the legs' effective mass (the default build's 7.1 of 114 kg)."""
+    config = json.loads(json.dumps(config))
+    body = robot["body"]
+    gravity = 9.806
+    half_length, half_width = body["foot_length_m"] / 2, body["foot_width_m"] / 2
+    config["definitions"]["sole_pads"] = [[half_length, half_width], [half_length, -half_width],
+                                          [-half_length, half_width], [-half_length, -half_width]]
+    mass = body["total_mass_kg"]
+    for stage in config["stages"]:
+        params = stage.get("params", {})
+        if "com_height_m" in params:
+            params["com_height_m"] = robot["com_height_m"]
+        if "mass_kg" in params:
+            params["mass_kg"] = mass
+        if "leg_effective_mass_kg" in params:
+            params["leg_effective_mass_kg"] = round(7.1 * mass / 114.0, 3)
+        if "weight_N" in params:
+            params["weight_N"] = round(mass * gravity, 2)
     return config
 
 
@@ -199,6 +248,8 @@ def main():
                         help="measure the sensors' noise and resolution with ftsense calibrate, not told")
     args = parser.parse_args()
     config = json.load(open(os.path.join(ROOT, "configs", ROBOTS[args.robot]["config"])))
+    if "body" in ROBOTS[args.robot]:
+        config = adapt_to_body(config, ROBOTS[args.robot])
     if args.work:
         return run_all(args, config, args.work)
     with tempfile.TemporaryDirectory(prefix="unseen_walks_") as work:  # removed afterwards

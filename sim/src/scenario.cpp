@@ -196,8 +196,30 @@ class ObjectReader {
   std::vector<std::string> allowed_;
 };
 
-void read_gait(const json& j, const std::string& path, GaitParams& g, std::vector<std::string>& e) {
+// The biped's build (sim/README.md "body"): its size and mass. A robot of another mass keeps the
+// default's proportions: every segment's mass scales with the total, so the trunk keeps its share.
+void read_body(const json& j, const std::string& path, RobotParams& p, std::vector<std::string>& e) {
   ObjectReader r(j, path, e);
+  double mass = p.total_mass_kg;
+  r.number("total_mass_kg", mass, false, closed(30.0, 250.0));
+  r.number("upper_leg_m", p.upper_leg_m, false, closed(0.15, 0.45));
+  r.number("lower_leg_m", p.lower_leg_m, false, closed(0.15, 0.45));
+  r.number("sole_ankle_m", p.sole_ankle_m, false, closed(0.05, 0.20));
+  r.number("foot_length_m", p.foot_length_m, false, closed(0.12, 0.36));
+  r.number("foot_width_m", p.foot_width_m, false, closed(0.07, 0.22));
+  r.finish();
+  const double scale = mass / p.total_mass_kg;
+  p.total_mass_kg = mass;
+  for (double* m : {&p.hip_yaw_link_kg, &p.hip_roll_link_kg, &p.thigh_kg, &p.shank_kg, &p.ankle_link_kg, &p.foot_kg,
+                    &p.pad_kg})
+    *m *= scale;
+}
+
+// `leg_scale`: the robot's leg length (hip to sole, straight) over the default's, which the
+// pelvis height's default and range follow.
+void read_gait(const json& j, const std::string& path, GaitParams& g, double leg_scale, std::vector<std::string>& e) {
+  ObjectReader r(j, path, e);
+  g.pelvis_height_m *= leg_scale;
   r.number("step_length_m", g.step_length_m, true, closed(0.0, 0.30));
   r.number("step_time_s", g.step_time_s, true, closed(0.5, 3.0));
   r.number("double_support_ratio", g.double_support_ratio, true, closed(0.05, 0.8));
@@ -206,7 +228,7 @@ void read_gait(const json& j, const std::string& path, GaitParams& g, std::vecto
   g.num_steps = static_cast<int>(n);
   r.number("step_height_m", g.step_height_m, false, closed(0.0, 0.12));
   r.number("initial_stand_s", g.initial_stand_s, false, closed(0.5, 60.0));
-  r.number("pelvis_height_m", g.pelvis_height_m, false, closed(0.50, 0.64));
+  r.number("pelvis_height_m", g.pelvis_height_m, false, closed(0.50 * leg_scale, 0.64 * leg_scale));
   r.number("preview_s", g.preview_s, false, closed(0.5, 3.0));
   r.number("foot_half_spacing_m", g.foot_half_spacing_m, false, closed(0.08, 0.15));
   r.number("com_feedback_gain", g.com_feedback_gain, false, closed(0.0, 10.0));
@@ -384,11 +406,16 @@ Scenario parse_scenario(const json& doc) {
   if (!robot_known) {
     // Unknown robot: its gait keys and channel names are unknown too; accept the keys unread.
     (void)r.find("gait", false, "object");
+    (void)r.find("body", false, "object");
     (void)r.find("faults", false, "array");
   } else if (quadruped) {
     if (const json* g = r.object("gait", false)) read_crawl(*g, r.at("gait"), s.crawl, e);
   } else {
-    if (const json* g = r.object("gait", true)) read_gait(*g, r.at("gait"), s.gait, e);
+    if (const json* b = r.object("body", false)) read_body(*b, r.at("body"), s.robot, e);
+    const RobotParams standard;
+    const double leg_scale = (s.robot.upper_leg_m + s.robot.lower_leg_m + s.robot.sole_ankle_m) /
+                             (standard.upper_leg_m + standard.lower_leg_m + standard.sole_ankle_m);
+    if (const json* g = r.object("gait", true)) read_gait(*g, r.at("gait"), s.gait, leg_scale, e);
   }
   if (const json* se = r.object("sensors", false)) read_sensors(*se, r.at("sensors"), s.sensors, e);
   if (robot_known) {

@@ -84,6 +84,32 @@ TEST(Scenario, MinimalDocumentGetsDefaults) {
   EXPECT_EQ(s.sensors.force_noise_std_N, SensorParams{}.force_noise_std_N);
 }
 
+TEST(Scenario, ABodyScalesEverySegmentsMassAndThePelvisHeightFollowsTheLegs) {
+  json doc = minimal();
+  doc["body"] = json::parse(R"({"total_mass_kg": 57, "upper_leg_m": 0.22, "lower_leg_m": 0.21,
+                               "sole_ankle_m": 0.09, "foot_length_m": 0.18, "foot_width_m": 0.11})");
+  const Scenario s = parse_scenario(doc);
+  const RobotParams standard;
+  EXPECT_EQ(s.robot.total_mass_kg, 57.0);
+  EXPECT_EQ(s.robot.thigh_kg, 0.5 * standard.thigh_kg);  // 57 of 114 kg
+  EXPECT_EQ(s.robot.foot_kg, 0.5 * standard.foot_kg);
+  EXPECT_NEAR(s.robot.trunk_kg(), 0.5 * standard.trunk_kg(), 1e-12);  // the trunk keeps its share
+  EXPECT_EQ(s.robot.foot_length_m, 0.18);
+  EXPECT_EQ(s.robot.foot_width_m, 0.11);
+  // The pelvis height's default scales with the leg (0.52 m hip to sole, against 0.674 m).
+  EXPECT_NEAR(s.gait.pelvis_height_m, 0.60 * 0.52 / 0.674, 1e-12);
+  // The paper's robot without "body": its own numbers, exactly.
+  const Scenario paper = parse_scenario(minimal());
+  EXPECT_EQ(paper.gait.pelvis_height_m, 0.60);
+  EXPECT_EQ(paper.robot.total_mass_kg, 114.0);
+  EXPECT_EQ(paper.robot.thigh_kg, standard.thigh_kg);
+  // A pelvis height the shorter legs cannot reach is refused with the scaled range.
+  doc["gait"]["pelvis_height_m"] = 0.6;
+  const auto p = problems_of(doc);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].rfind("/gait/pelvis_height_m = 0.6 is out of range, expected >= 0.385", 0), 0u) << p[0];
+}
+
 struct BadCase {
   const char* what;
   const char* patch;     // JSON merge patch applied to minimal()
@@ -140,6 +166,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "/seed = -3 is out of range, expected >= 0 and <= 9223372036854775807"},
         BadCase{"huge seed", R"({"seed": 18446744073709551615})",
                 "/seed = 18446744073709551615 is out of range, expected >= 0 and <= 9223372036854775807"},
+        BadCase{"body out of range", R"({"body": {"total_mass_kg": 5}})",
+                "/body/total_mass_kg = 5 is out of range, expected >= 30 and <= 250"},
+        BadCase{"body unknown key", R"({"body": {"mass": 50}})",
+                "/body/mass = 50 is not a known key (allowed here: foot_length_m, foot_width_m, lower_leg_m, "
+                "sole_ankle_m, total_mass_kg, upper_leg_m)"},
         BadCase{"null duration", R"({"duration_s": null, "name": 5})", "/name = 5 has type number, expected string"}));
 
 TEST(Scenario, FaultTypesAreTheCoresSensorFaultTypes) {

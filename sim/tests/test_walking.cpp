@@ -164,6 +164,46 @@ TEST_P(Walking, ThirtySecondsWithoutFallingWithCleanContactsAndForces) {
 
 INSTANTIATE_TEST_SUITE_P(PaperGaits, Walking, ::testing::Values(Gait{0.15, 1.0}, Gait{0.20, 0.8}));
 
+TEST(Walking, ALighterBipedOfAnotherBuildWalksAndItsPadsCarryItsWeight) {
+  // 48 kg, shorter legs, a smaller sole (scenario "body"): the preview controller, the CoM
+  // feedback and the servos walk it as they walk the paper's robot, with the same checks: one
+  // lift-off and touchdown per planned one, and its pads carrying 0.85-1.2 m g outside the
+  // touchdowns (+-30 ms).
+  const Scenario sc = parse_scenario_text(R"({"name": "light biped", "duration_s": 6,
+    "body": {"total_mass_kg": 48, "upper_leg_m": 0.22, "lower_leg_m": 0.21, "sole_ankle_m": 0.09,
+             "foot_length_m": 0.18, "foot_width_m": 0.11},
+    "gait": {"step_length_m": 0.12, "step_time_s": 0.8, "double_support_ratio": 0.2,
+             "foot_half_spacing_m": 0.08, "step_height_m": 0.03},
+    "faults": []})");
+  const SimRun r = run(sc);
+  ASSERT_FALSE(r.sum.fell) << r.sum.message;
+  EXPECT_NEAR(r.sum.total_mass_kg, 48.0, 1e-9);
+  EXPECT_GE(r.sum.num_steps, 4);
+  EXPECT_NEAR(r.sum.quiet_stance_force_ratio, 1.0, 1e-3);
+  const CsvTable t = CsvTable::parse(r.csv);
+  const auto& time = t["time_s"];
+  std::vector<double> td;
+  for (const char* side : {"l", "r"}) {
+    const auto land = edges(t, std::string("truth/") + side + "_foot/contact", 0.0);
+    EXPECT_EQ(land.size(), edges(t, std::string("plan/contact_") + side, 0.0).size()) << side;
+    EXPECT_EQ(edges(t, std::string("truth/") + side + "_foot/contact", 1.0).size(),
+              edges(t, std::string("plan/contact_") + side, 1.0).size())
+        << side;
+    td.insert(td.end(), land.begin(), land.end());
+  }
+  const double mg = r.sum.total_mass_kg * r.sum.gravity_m_s2;
+  const auto l = foot_sum(t, "truth/", 'l'), rr = foot_sum(t, "truth/", 'r');
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    bool near_td = false;
+    for (double x : td) near_td |= std::abs(time[i] - x) < 0.03;
+    if (near_td) continue;
+    ASSERT_GE((l[i] + rr[i]) / mg, 0.85) << "t = " << time[i];
+    ASSERT_LE((l[i] + rr[i]) / mg, 1.2) << "t = " << time[i];
+  }
+  EXPECT_LT(r.sum.zmp_error_ss_rms_m, 0.04);
+  EXPECT_EQ(r.sum.ik_unreachable_ticks, 0);
+}
+
 TEST(Determinism, SameScenarioAndSeedGiveByteIdenticalLogs) {
   Scenario sc = load_scenario(kDir / "paper.json");
   sc.duration_s = 8.0;

@@ -39,7 +39,7 @@ struct Scenario {
   CrawlParams crawl;  ///< "gait" of the quadruped
   SensorParams sensors;
   std::vector<FaultSpec> faults;
-  RobotParams robot;  ///< not read from JSON: the paper's robot
+  RobotParams robot;  ///< "body" of the biped: its size and mass; absent: the paper's robot
   QuadrupedParams quadruped;  ///< not read from JSON
 };
 
