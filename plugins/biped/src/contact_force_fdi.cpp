@@ -1,3 +1,5 @@
+#include <cstdio>
+#include <cstdlib>
 // Why this file is longer than the ~500 lines a file usually holds: it is the biped robust
 // detector's one evidence loop, whose tests (jump, frozen, noise, airborne, sum residual, gain
 // regression) share each channel's state tick by tick. Issue 13 replaces it with the generic FDI
@@ -468,6 +470,7 @@ void ContactForceFdi::reset() noexcept {
 }
 
 void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
+  if (std::getenv("GTRACE") && c.type == FaultType::none) std::fprintf(stderr, "raise t=%.3f ch=%ld type=%d from %p\n", t, &c - channels_.data(), int(type), __builtin_return_address(0));
   if (c.type == FaultType::none) {
     c.flagged_since = t;
     last_flag_change_s_ = t;
@@ -479,6 +482,7 @@ void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
 }
 
 void ContactForceFdi::clear(Channel& c) noexcept {
+  if (std::getenv("GTRACE") && c.type != FaultType::none) std::fprintf(stderr, "clear t=%.3f ch=%ld type=%d from %p\n", last_tick_s_, &c - channels_.data(), int(c.type), __builtin_return_address(0));
   if (c.type != FaultType::none) last_flag_change_s_ = last_tick_s_;
   c.type = FaultType::none;
   c.end_pending = false;
@@ -488,6 +492,7 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.clear_since = -1.0;
   c.following = c.frozen_by_follow = c.follows_load = false;
   c.sign_fault = false;
+  c.reads_as_gain = false;
   c.negative_fit = SlopeFit{};
 }
 
@@ -1153,7 +1158,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // The feet's plane verdicts, taken before any member is raised (a raise sets the offset the
   // verdict's level check corrects by), and the size of each group decided this tick.
   for (std::size_t f = 0; f < relation_verdict_.size(); ++f) {
-    relation_verdict_[f] = relation_group_[f] == 2 && relation_confirmed(f, t) ? 1 : 0;
+    relation_verdict_[f] = relation_group_[f] == 2 && relation_confirmed(f, measured, t) ? 1 : 0;
     relation_group_size_[f] = 0;
     for (std::size_t i = 0; i < feet_points_ && relation_group_[f] == 2; ++i) {
       relation_group_size_[f] += channels_[f * feet_points_ + i].relation_member ? 1 : 0;
@@ -1545,7 +1550,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   //   by more than jump_confirm_N. The wrong one is taken only where the two lie within about
   //   twice that force's error e of each other, so the error stays within about 2 |e|.
   for (std::size_t j = 0; j < channels_.size(); ++j) {
-    const Channel& c = channels_[j];
+    Channel& c = channels_[j];
     const double x = measured[j];
     if (!std::isfinite(x)) continue;
     const bool airborne = height[j] > params_.airborne_height_m;
@@ -1556,10 +1561,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       if (x < -params_.airborne_threshold_N && std::isfinite(virtual_force[j])) value = virtual_force[j];
     } else if (c.type == FaultType::offset && !c.fit_has_air && !airborne && std::isfinite(virtual_force[j])) {
       const auto k = onset_gain(c);
-      if (k && std::abs(*k) >= kMinGain &&
-          std::abs(x / *k - virtual_force[j]) + params_.jump_confirm_N < std::abs(recovered[j] - virtual_force[j])) {
-        value = x / *k;
-      }
+      const bool as_gain = k && std::abs(*k) >= kMinGain &&
+                           std::abs(x / *k - virtual_force[j]) + params_.jump_confirm_N <
+                               std::abs(recovered[j] - virtual_force[j]);
+      if (as_gain) value = x / *k;
+      // At its air level both models read about 0 and x / k always lies nearer: the choice made
+      // above it stands (gain_reads_air_level).
+      if (std::abs(x) > params_.airborne_threshold_N) c.reads_as_gain = as_gain;
     }
     if (value != recovered[j]) {
       recovered[j] = value;
@@ -1656,6 +1664,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
       for (std::size_t i = 0; i < feet_points_; ++i) {
         Channel& c = channels_[f * feet_points_ + i];
         c.relation_member = c.relation_pending;
+        c.relation_reading_before = c.relation_member ? c.relation_candidate_load : measured[f * feet_points_ + i];
         if (!c.relation_member) continue;
         c.relation_load_before = c.relation_candidate_load;
         c.relation_jump_size = c.relation_jump;
@@ -1671,7 +1680,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
   for (auto& c : channels_) c.relation_pending = false;  // this tick's candidates are in their groups
 }
 
-bool ContactForceFdi::relation_confirmed(std::size_t foot, double t) const noexcept {
+bool ContactForceFdi::relation_confirmed(std::size_t foot, std::span<const double> measured, double t) const noexcept {
   const std::size_t relations = unmeasured_.relations_per_foot();
   if (relations == 0 || relation_step_known_[foot] == 0 ||
       relation_step_count_[foot] < UnmeasuredContactLoads::kMinSamples) {
@@ -1703,7 +1712,30 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, double t) const noexc
     agreement += step * e / (sigma * sigma);
   }
   const double z2 = relation_z_ * relation_z_;
-  return observed >= z2 && expected >= z2 && agreement > 0.0;
+  if (!(observed >= z2 && expected >= z2 && agreement > 0.0)) return false;
+  // A pad whose offset may yet be a gain moves the plane by (k - 1) times its load's change, which
+  // a landing's load transfer makes as large as a sensor's step: on a 48 kg biped, a gain x 1.5
+  // was read as its offset's end at the other foot's landing, and its neighbours' load steps as
+  // onsets. Read through the gain instead, is the plane's step within its noise?
+  bool may_be_gain = false;
+  for (std::size_t i = 0; i < feet_points_; ++i) {
+    may_be_gain = may_be_gain || offset_may_be_gain(channels_[foot * feet_points_ + i]);
+  }
+  if (!may_be_gain) return true;
+  for (std::size_t r = 0; r < relations; ++r) {
+    const double sigma =
+        std::sqrt(std::max(relation_step_square_[foot * relations + r] / relation_step_count_[foot], 1e-12));
+    double step = relation_step_[foot * relations + r];
+    for (std::size_t i = 0; i < feet_points_; ++i) {
+      const std::size_t j = foot * feet_points_ + i;
+      const Channel& c = channels_[j];
+      const auto k = offset_may_be_gain(c) ? onset_gain(c) : std::nullopt;
+      if (!k || !std::isfinite(measured[j]) || !std::isfinite(c.relation_reading_before)) continue;
+      step -= unmeasured_.relation_weight(i, r) * (measured[j] - c.relation_reading_before) * (1.0 - 1.0 / *k);
+    }
+    if (std::abs(step) > relation_z_ * sigma) return true;  // not its load alone: a sensor stepped
+  }
+  return false;
 }
 
 void ContactForceFdi::still_reading_test(std::span<const double> measured,
@@ -1953,6 +1985,7 @@ void ContactForceFdi::raise_stuck(Channel& c, double t) noexcept {
 
 void ContactForceFdi::raise_jump_onset(Channel& c, double jump, double load_before, double t) noexcept {
   c.onset_load = load_before;  // the load the onset jump left (onset_gain)
+  c.reads_as_gain = false;
   raise(c, FaultType::offset, t);
   c.fit.clear(t);
   c.fit.add(t, jump, 1.0);
@@ -2034,6 +2067,12 @@ void ContactForceFdi::offset_or_gain_test(Channel& c, double reading, bool airbo
   if (c.gain_power < 0.5 * c.offset_power) take_gain(c, *k);
 }
 
+bool ContactForceFdi::offset_may_be_gain(const Channel& c) const noexcept {
+  if (c.type != FaultType::offset || c.fit_has_air) return false;
+  const auto k = onset_gain(c);
+  return k && std::abs(*k) >= kMinGain;
+}
+
 std::optional<double> ContactForceFdi::onset_gain(const Channel& c) const noexcept {
   if (!(c.onset_load > params_.gain_min_load_N) || !(std::abs(c.offset) > 0.1 * c.onset_load)) {
     return std::nullopt;
@@ -2056,6 +2095,7 @@ void ContactForceFdi::refit_gain(Channel& c) noexcept {
 }
 
 void ContactForceFdi::take_gain(Channel& c, double k) noexcept {
+  if (std::getenv("GTRACE")) std::fprintf(stderr, "take_gain t=%.3f ch=%ld k=%.3f from %p\n", last_tick_s_, &c - channels_.data(), k, __builtin_return_address(0));
   c.type = FaultType::gain;
   c.gain = k;
   c.sign_fault = k < 0.0;  // re-admitted when it reads right side up under load

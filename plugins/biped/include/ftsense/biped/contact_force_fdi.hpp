@@ -514,6 +514,7 @@ class ContactForceFdi {
     bool relation_member = false;   // in its foot's group awaiting the plane's confirmation
     double relation_jump = 0.0, relation_candidate_load = 0.0;  // this tick's candidate
     double relation_jump_size = 0.0, relation_load_before = 0.0;  // the group's: its jump, the reading before
+    double relation_reading_before = 0.0;  // its reading before its foot's group (member or not)
     double jump_size = 0.0;
     double candidate_load = 0.0;
     double jump_load_before = 0.0;
@@ -591,6 +592,9 @@ class ContactForceFdi {
     // (refit_gain).
     SlopeFit gain_fit;
     bool sign_fault = false;
+    // An offset that may be a gain (offset_may_be_gain) last read, above its air level, nearer its
+    // leave-one-out force as x / k than as x - b (by jump_confirm_N): the recovery's choice.
+    bool reads_as_gain = false;
   };
 
   void raise(Channel& c, FaultType type, double t) noexcept;
@@ -630,9 +634,13 @@ class ContactForceFdi {
   // (unread_landing_may_explain's three cases; `fell`: the sum's step is down).
   [[nodiscard]] bool may_hold_unread_load(const Channel& c, std::size_t f, bool fell) const noexcept;
   // A gain's reading x back at its air level (within airborne_threshold_N of 0): a step that took
-  // it there is its load leaving (a scaled zero reads zero), no sign that the gain ended.
+  // it there is its load leaving (a scaled zero reads zero), no sign that the gain ended. Also an
+  // offset that may yet be a gain (offset_may_be_gain) and read as one before the step
+  // (reads_as_gain): the air test tells them. One that read as x - b (an offset b on an unloaded
+  // pad reads b, a gain reads 0) ended with that step.
   [[nodiscard]] bool gain_reads_air_level(const Channel& c, double x) const noexcept {
-    return c.type == FaultType::gain && std::abs(x) <= params_.airborne_threshold_N;
+    return (c.type == FaultType::gain || (c.reads_as_gain && offset_may_be_gain(c))) &&
+           std::abs(x) <= params_.airborne_threshold_N;
   }
   // A gain's k refitted on its own evidence: its reading against its leave-one-out force, which
   // no other channel's fit shares (the sum residual's fit often cannot isolate a pad of a sole
@@ -658,6 +666,9 @@ class ContactForceFdi {
   // The gain k = 1 + b / L0 that a jump b raised on a loaded pad (load L0 > gain_min_load_N before
   // it) implies; none when the pad was not loaded or the jump is under a tenth of its load.
   [[nodiscard]] std::optional<double> onset_gain(const Channel& c) const noexcept;
+  // An offset raised by a jump under load, not yet seen in the air, whose onset implies a gain of
+  // at least kMinGain: it may yet be that gain, whose error (k - 1) L moves with its load.
+  [[nodiscard]] bool offset_may_be_gain(const Channel& c) const noexcept;
   void take_gain(Channel& c, double k) noexcept;
   // An offset's or drift's size at time t, b + s (t - t0).
   [[nodiscard]] static double fault_at(const Channel& c, double t) noexcept { return c.offset + c.slope * (t - c.fit.t0); }
@@ -682,8 +693,12 @@ class ContactForceFdi {
   // The sum residual's mean over a jump window: the ring's newest jump_window_ticks_, after
   // skipping the newest `skip` (at most jump_window_ticks_: the ring holds two windows).
   [[nodiscard]] double recent_residual_mean(std::size_t skip = 0) const noexcept;
-  // A foot's decided group: its relations stepped by what its jumps imply, beyond their noise.
-  [[nodiscard]] bool relation_confirmed(std::size_t foot, double t) const noexcept;
+  // A foot's decided group: its relations stepped by what its jumps imply, beyond their noise, and
+  // not by what a pad whose offset may be a gain (offset_may_be_gain) does as its load moves: read
+  // through x / k, its reading's change since the group began would move the plane by
+  // w (1 - 1/k) of it less; where that leaves the plane's step within its noise, the step is that
+  // pad's load moving (a landing handing load over), not a sensor's step.
+  [[nodiscard]] bool relation_confirmed(std::size_t foot, std::span<const double> measured, double t) const noexcept;
 
   Ports ports_;
   Params params_;
