@@ -1,5 +1,3 @@
-#include <cstdio>
-#include <cstdlib>
 // Why this file is longer than the ~500 lines a file usually holds: it is the biped robust
 // detector's one evidence loop, whose tests (jump, frozen, noise, airborne, sum residual, gain
 // regression) share each channel's state tick by tick. Issue 13 replaces it with the generic FDI
@@ -470,7 +468,6 @@ void ContactForceFdi::reset() noexcept {
 }
 
 void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
-  if (std::getenv("GTRACE") && c.type == FaultType::none) std::fprintf(stderr, "raise t=%.3f ch=%ld type=%d from %p\n", t, &c - channels_.data(), int(type), __builtin_return_address(0));
   if (c.type == FaultType::none) {
     c.flagged_since = t;
     last_flag_change_s_ = t;
@@ -482,7 +479,6 @@ void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
 }
 
 void ContactForceFdi::clear(Channel& c) noexcept {
-  if (std::getenv("GTRACE") && c.type != FaultType::none) std::fprintf(stderr, "clear t=%.3f ch=%ld type=%d from %p\n", last_tick_s_, &c - channels_.data(), int(c.type), __builtin_return_address(0));
   if (c.type != FaultType::none) last_flag_change_s_ = last_tick_s_;
   c.type = FaultType::none;
   c.end_pending = false;
@@ -2095,7 +2091,6 @@ void ContactForceFdi::refit_gain(Channel& c) noexcept {
 }
 
 void ContactForceFdi::take_gain(Channel& c, double k) noexcept {
-  if (std::getenv("GTRACE")) std::fprintf(stderr, "take_gain t=%.3f ch=%ld k=%.3f from %p\n", last_tick_s_, &c - channels_.data(), k, __builtin_return_address(0));
   c.type = FaultType::gain;
   c.gain = k;
   c.sign_fault = k < 0.0;  // re-admitted when it reads right side up under load
