@@ -6,7 +6,7 @@ quadruped, configs/quadruped.json on crawls of the 13 kg quadruped the demo does
 a 0.18 x 0.11 m sole: the simulator's scenario "body") as its user would, on its walks: gaits
 0.10/0.8/0.3, 0.15/0.6/0.15, 0.12/0.7/0.25, 0.08/0.65/0.2 (step height 0.03 m, feet 0.08 m off the
 midline); sensors 0.001/0.5/0, 0.005/1.5/0, 0.002/1/1, 0.001/1/2.5; seeds 700 + (800 + with faults);
-fault sizes for its 118 N per pad: offsets +-20/30/50 N, drifts +-3/5/8 N/s, noise bursts 8/15/20 N,
+fault sizes for its 118 N per pad in single support: offsets +-20/30/50 N, drifts +-3/5/8 N/s, noise bursts 8/15/20 N,
 spikes 50/120 N, saturation at 110/160 N.
 
     tools/unseen_walks.py BUILD_BIN [--robot suralp|light_biped|quadruped] [--faults] [--calibrate] [--work DIR]
@@ -69,7 +69,7 @@ ROBOTS = {
     # Its config is configs/suralp_robust.json told this robot as a user would (adapt_to_body):
     # the pads at the sole's corners, the mass, the CoM height (the simulator's planned CoM,
     # plan/com_z_m) and the legs' effective mass (7.1 kg at 114 kg, limb_inertia_correction.hpp,
-    # scaled with the mass: the same build). Fault sizes and sensors scaled to its 118 N per pad.
+    # scaled with the mass: the same build). Fault sizes and sensors scaled to its 118 N per pad on one foot.
     "light_biped": {
         "config": "suralp_robust.json",
         "body": {"total_mass_kg": 48.0, "upper_leg_m": 0.22, "lower_leg_m": 0.21, "sole_ankle_m": 0.09,

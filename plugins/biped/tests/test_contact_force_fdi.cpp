@@ -3000,6 +3000,25 @@ TEST(ContactForceFdi, AGainWhosePadWentToItsAirLevelIsNotEndedByTheResidualsStep
   EXPECT_EQ(gain_after_its_load_left_in_another_foots_guard(), FaultType::gain);
 }
 
+// The first channel other than `pad` that is flagged, -1 if none.
+int other_flagged(const Feet& feet, std::size_t pad) {
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != pad && feet.type(j) != FaultType::none) return static_cast<int>(j);
+  }
+  return -1;
+}
+
+// Both soles' loads as read (left pads 0-3, right pads 4-7); returns their sum, F_z.
+double read_soles(Feet& feet, const std::array<double, 4>& left, const std::array<double, 4>& right) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    feet.measured[i] = left[i];
+    feet.measured[4 + i] = right[i];
+    sum += left[i] + right[i];
+  }
+  return sum;
+}
+
 // A foot's four pads carrying `share` of an 1100 N robot on a plane (the CoP a little forward and
 // to the left), each with a small deterministic noise of its own (under 0.5 N), so that the
 // sole's plane relation has a fault-free spread to be judged against.
@@ -3021,8 +3040,8 @@ TEST(ContactForceFdi, AGainHeldAsAnOffsetIsNoEndAndItsNeighboursNoOnsetsWhereThe
   // guard the right sole's plane judges those steps, and the plane moved: pad 4's error (k - 1) L
   // halved with its load. Read as an offset (as held), that is pad 4 stepping back by about its
   // offset and its neighbours stepping by their loads: the plane's verdict re-admitted pad 4 on
-  // tick 2309 (measured with the rule off). An offset that may still be a gain gives its foot's
-  // plane no verdict. The load's move (152.5 N) is under the offset-or-gain test's
+  // tick 2309 (measured with the rule off). Read through the gain its onset implies, pad 4's
+  // step explains the plane's: no verdict. The load's move (152.5 N) is under the offset-or-gain test's
   // 2 sum_threshold_N (160 N), so the pad stays an offset; it must stay flagged, and nobody else be.
   auto p = suralp();
   p.points = kSuralpSole;
@@ -3033,22 +3052,13 @@ TEST(ContactForceFdi, AGainHeldAsAnOffsetIsNoEndAndItsNeighboursNoOnsetsWhereThe
     const double right_share = landed ? 0.5 : 1.0;
     const auto right = sole_loads(k, right_share, 1);
     const auto left = sole_loads(k, 1.0 - right_share, 0);
-    double sum = 0.0;
-    for (std::size_t i = 0; i < 4; ++i) {
-      feet.measured[i] = left[i];
-      feet.measured[4 + i] = right[i];
-      sum += left[i] + right[i];
-    }
+    const double sum = read_soles(feet, left, right);
     if (k >= 2000) feet.measured[4] += 0.5 * right[0];
     feet.step(sum);
     if (k >= 2015) {
       ASSERT_NE(feet.type(4), FaultType::none) << "tick " << k;
     }
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      if (j != 4) {
-        ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
-      }
-    }
+    ASSERT_EQ(other_flagged(feet, 4), -1) << "tick " << k;
   }
 }
 
@@ -3085,11 +3095,7 @@ TEST(ContactForceFdi, AnOffsetThatMayBeAGainIsNotEndedByItsReadingsStepToItsAirL
     if (k >= 2015) {
       ASSERT_NE(feet.type(4), FaultType::none) << "tick " << k;
     }
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      if (j != 4) {
-        ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
-      }
-    }
+    ASSERT_EQ(other_flagged(feet, 4), -1) << "tick " << k;
   }
   EXPECT_EQ(feet.type(4), FaultType::gain);
   EXPECT_NEAR(feet.outs[ContactForceFdi::kFaultEstimate][4], 0.0, 1.0);  // in the air: 0 / k
@@ -3120,11 +3126,7 @@ int offset_on_an_unloaded_pad_readmitted_at(int end) {
       EXPECT_NE(feet.type(4), FaultType::none) << "tick " << k;
     }
     if (readmitted < 0 && k >= end && feet.type(4) == FaultType::none) readmitted = k;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      if (j != 4) {
-        EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
-      }
-    }
+    EXPECT_EQ(other_flagged(feet, 4), -1) << "tick " << k;
   }
   return readmitted;
 }
@@ -3140,8 +3142,8 @@ TEST(ContactForceFdi, AnOffsetThatReadItsSizeOnAnUnloadedPadEndsWithItsStepToThe
 
 // The right foot alone on the ground (sole_loads), pad 4 +80 N from tick 2000 (raised under its
 // 305 N: it may be a gain x 1.26); the left foot lands on tick 2300 and takes half the weight over
-// 50 ms; the offset ends on tick 2320, inside the landing's guard, the load not moving on that
-// tick. Returns the tick pad 4 was re-admitted on (-1: not within 300 ticks of the end), checking
+// 50 ms; the offset ends on tick 2320, inside the landing's guard, while the load still moves.
+// Returns the tick pad 4 was re-admitted on (-1: not within 300 ticks of the end), checking
 // that no other pad is flagged.
 int offset_ending_in_a_landing_readmitted_at() {
   auto p = suralp();
@@ -3154,30 +3156,21 @@ int offset_ending_in_a_landing_readmitted_at() {
     const double right_share = 1.0 - 0.5 * std::clamp((k - 2299) / 50.0, 0.0, 1.0);
     const auto right = sole_loads(k, right_share, 1);
     const auto left = sole_loads(k, 1.0 - right_share, 0);
-    double sum = 0.0;
-    for (std::size_t i = 0; i < 4; ++i) {
-      feet.measured[i] = left[i];
-      feet.measured[4 + i] = right[i];
-      sum += left[i] + right[i];
-    }
+    const double sum = read_soles(feet, left, right);
     if (k >= 2000 && k < 2320) feet.measured[4] += 80.0;
     feet.step(sum);
     if (readmitted < 0 && k >= 2320 && feet.type(4) == FaultType::none) readmitted = k;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      if (j != 4) {
-        EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
-      }
-    }
+    EXPECT_EQ(other_flagged(feet, 4), -1) << "tick " << k;
   }
   return readmitted;
 }
 
 TEST(ContactForceFdi, AnOffsetThatMayBeAGainAndEndsInALandingIsJudgedByItsSolesPlane) {
   // Its step (-80 N) moves the plane by w times it; read through the gain it implies, by
-  // w (1 - 1/k) of it less: still 32 N, far beyond the plane's noise, so no load move explains
-  // it and the plane's verdict re-admits the pad when the window after the step is complete
-  // (9 ticks). Giving no verdict on a foot with such an offset at all re-admitted it only on tick
-  // 2501, 0.18 s later (measured).
+  // w (1 - 1/k) of it less: still beyond the plane's noise, so no load move explains it and the
+  // plane's verdict re-admits the pad when the window after the step is complete (9 ticks).
+  // Giving no verdict on a foot with such an offset at all re-admitted it only on tick 2501,
+  // 0.172 s later (measured).
   EXPECT_EQ(offset_ending_in_a_landing_readmitted_at(), 2320 + 9);
 }
 
