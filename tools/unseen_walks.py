@@ -9,7 +9,15 @@ midline); sensors 0.001/0.5/0, 0.005/1.5/0, 0.002/1/1, 0.001/1/2.5; seeds 700 + 
 fault sizes for its 118 N per pad in single support: offsets +-20/30/50 N, drifts +-3/5/8 N/s, noise bursts 8/15/20 N,
 spikes 50/120 N, saturation at 110/160 N.
 
-    tools/unseen_walks.py BUILD_BIN [--robot suralp|light_biped|quadruped] [--faults] [--calibrate] [--work DIR]
+With --robot heavy_biped, the same for a heavier build (180 kg, legs 0.40 + 0.38 m, a 0.30 x 0.18 m
+sole, the ankle 0.15 m above it): gaits 0.25/1.0/0.3, 0.28/0.8/0.15, 0.30/0.9/0.25, 0.20/0.85/0.2
+(step height 0.05 m, feet 0.12 m off the midline); sensors 0.001/2/0, 0.005/4/0, 0.002/3/3,
+0.001/3/8; seeds 900 + (950 + with faults); fault sizes for its 441 N per pad in single support:
+offsets +-60/100/160 N, drifts +-8/15/24 N/s, noise bursts 25/45/60 N, spikes 160/400 N,
+saturation at 400/550 N. Both builds' CoM height is the simulator's planned one (plan/com_z_m of
+a 0.05 s walk), printed.
+
+    tools/unseen_walks.py BUILD_BIN [--robot suralp|light_biped|heavy_biped|quadruped] [--faults] [--calibrate] [--work DIR]
                           [--duration S] [--jobs N]
 
 BUILD_BIN holds ftsense and ftsense-sim (e.g. build/bin). 4 gaits x 4 sensor settings, each walk
@@ -74,7 +82,6 @@ ROBOTS = {
         "config": "suralp_robust.json",
         "body": {"total_mass_kg": 48.0, "upper_leg_m": 0.22, "lower_leg_m": 0.21, "sole_ankle_m": 0.09,
                  "foot_length_m": 0.18, "foot_width_m": 0.11},
-        "com_height_m": 0.586,
         "channels": [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)],
         "gaits": [{"step_length_m": a, "step_time_s": b, "double_support_ratio": c, "foot_half_spacing_m": 0.08,
                    "step_height_m": 0.03}
@@ -82,6 +89,20 @@ ROBOTS = {
         "sensors": [(0.001, 0.5, 0.0), (0.005, 1.5, 0.0), (0.002, 1.0, 1.0), (0.001, 1.0, 2.5)], "seeds": (700, 800),
         "offset_N": [20, 30, 50], "slope_N_s": [3, 5, 8], "noise_N": [8, 15, 20],
         "spike_N": [50, 120], "ceiling_N": [110, 160],
+    },
+    # A heavier biped of another build: 180 kg, longer legs, a larger sole, noisier sensors. Told to
+    # configs/suralp_robust.json as the light biped is; sizes scaled to its 441 N per pad on one foot.
+    "heavy_biped": {
+        "config": "suralp_robust.json",
+        "body": {"total_mass_kg": 180.0, "upper_leg_m": 0.40, "lower_leg_m": 0.38, "sole_ankle_m": 0.15,
+                 "foot_length_m": 0.30, "foot_width_m": 0.18},
+        "channels": [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)],
+        "gaits": [{"step_length_m": a, "step_time_s": b, "double_support_ratio": c, "foot_half_spacing_m": 0.12,
+                   "step_height_m": 0.05}
+                  for a, b, c in [(0.25, 1.0, 0.3), (0.28, 0.8, 0.15), (0.30, 0.9, 0.25), (0.20, 0.85, 0.2)]],
+        "sensors": [(0.001, 2.0, 0.0), (0.005, 4.0, 0.0), (0.002, 3.0, 3.0), (0.001, 3.0, 8.0)], "seeds": (900, 950),
+        "offset_N": [60, 100, 160], "slope_N_s": [8, 15, 24], "noise_N": [25, 45, 60],
+        "spike_N": [160, 400], "ceiling_N": [400, 550],
     },
     "quadruped": {
         "config": "quadruped.json",
@@ -172,7 +193,20 @@ def told(config, scenario, sensors=True):
     return config
 
 
-def adapt_to_body(config, robot):
+def planned_com_height(bin_dir, work, robot):
+    """The CoM height the simulator's walking planner holds for this build (plan/com_z_m of a
+    0.05 s walk): what the robot's own planner would tell its user."""
+    scenario = {"name": "com_height_probe", "description": "the planned CoM height of this build",
+                "duration_s": 0.05, "seed": 1, "body": robot["body"], "gait": robot["gaits"][0], "faults": []}
+    path, log = os.path.join(work, "com_height_probe.json"), os.path.join(work, "com_height_probe.csv")
+    json.dump(scenario, open(path, "w"), indent=1)
+    subprocess.run([os.path.join(bin_dir, "ftsense-sim"), "--scenario", path, "--out", log, "--quiet"], check=True)
+    with open(log) as f:
+        header, first = f.readline().strip().split(","), f.readline().strip().split(",")
+    return round(float(first[header.index("plan/com_z_m")]), 3)
+
+
+def adapt_to_body(config, robot, com_height_m):
     """configs/suralp_robust.json told another biped's build, as its user would: the sole's pads,
     the mass, the CoM height and the legs' effective mass (the default build's 7.1 of 114 kg)."""
     config = json.loads(json.dumps(config))
@@ -185,7 +219,7 @@ def adapt_to_body(config, robot):
     for stage in config["stages"]:
         params = stage.get("params", {})
         if "com_height_m" in params:
-            params["com_height_m"] = robot["com_height_m"]
+            params["com_height_m"] = com_height_m
         if "mass_kg" in params:
             params["mass_kg"] = mass
         if "leg_effective_mass_kg" in params:
@@ -247,13 +281,22 @@ def main():
     parser.add_argument("--calibrate", action="store_true",
                         help="measure the sensors' noise and resolution with ftsense calibrate, not told")
     args = parser.parse_args()
-    config = json.load(open(os.path.join(ROOT, "configs", ROBOTS[args.robot]["config"])))
-    if "body" in ROBOTS[args.robot]:
-        config = adapt_to_body(config, ROBOTS[args.robot])
     if args.work:
-        return run_all(args, config, args.work)
+        os.makedirs(args.work, exist_ok=True)
+        return run_all(args, robot_config(args, args.work), args.work)
     with tempfile.TemporaryDirectory(prefix="unseen_walks_") as work:  # removed afterwards
-        return run_all(args, config, work)
+        return run_all(args, robot_config(args, work), work)
+
+
+def robot_config(args, work):
+    """The robot's config; another biped's build is told its own numbers (adapt_to_body)."""
+    robot = ROBOTS[args.robot]
+    config = json.load(open(os.path.join(ROOT, "configs", robot["config"])))
+    if "body" in robot:
+        com_height_m = planned_com_height(args.bin, work, robot)
+        print(f"planned CoM height of this build: {com_height_m} m")
+        config = adapt_to_body(config, robot, com_height_m)
+    return config
 
 
 def fault_line(m):

@@ -670,8 +670,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // level, takes its load back as the foot rolls onto it. That contact is as abrupt as a
       // foot's touchdown and rings alike (at 200 Hz: tens of newtons in one tick, chatter on and
       // off), so the jump and spike tests leave the pad alone while it rings: until its changes
-      // have stayed below jump_threshold_N for jump_window_s, at most touchdown_guard_s after the
-      // landing (a ring that has died out is over; a step after it is judged like any other).
+      // have stayed below jump_threshold_N for jump_window_s, or while it steps to or from its
+      // air level (its contact lost and made again: a heavy robot's heel bounces 8-10 ms apart), at
+      // most touchdown_guard_s after the landing (a ring that has died out is over; a step after
+      // it is judged like any other).
       // A fault that starts while it rings is left to the sum residual and the air test.
       const bool lands = landing_state_[j] == kLands;
       if (lands) {
@@ -680,7 +682,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       // Rung until the tick before: this tick's change is what the tests below judge.
       const bool in_landing_guard = t - c.last_pad_landing_s < params_.touchdown_guard_s;
-      const bool pad_landing = in_landing_guard && t - c.last_landing_ring_s < params_.jump_window_s;
+      const bool pad_landing =
+          in_landing_guard && (t - c.last_landing_ring_s < params_.jump_window_s ||
+                               (std::abs(change) > params_.jump_threshold_N && contact_step(c, x)));
       if (pad_landing && std::abs(change) > params_.jump_threshold_N) c.last_landing_ring_s = t;
       // A neighbour of this pad whose reading is not its load (substituted under load, or a
       // noise burst): the foot's sum then misses the load that moves between it and this pad (a
@@ -702,11 +706,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.spikes.spike(spike_rule_);
       }
       const double innovation = x - 2.0 * c.previous + c.previous2;
+      // A pad making its contact (inside its landing's guard) whose reading leaves or regains its
+      // air level within these three readings: its contact chatters (a 180 kg biped's outer heel
+      // lets go for a tick every 6 ms for 0.14 s as its foot rolls onto it), the sensor is not
+      // noisy. A noise burst's readings seldom fall to the air level under load: it still shows
+      // (and one already flagged keeps being judged on every tick, as beside an unread neighbour).
+      const bool contact_chatter = in_landing_guard && (std::abs(x) <= params_.airborne_threshold_N ||
+                                                        std::abs(c.previous) <= params_.airborne_threshold_N ||
+                                                        std::abs(c.previous2) <= params_.airborne_threshold_N);
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
       c.second_diff[c.second_diff_next] = std::abs(innovation);
       c.noisy_tick[c.second_diff_next] = std::abs(innovation) > tick_noise &&
-                                         std::abs(foot_d2_[channel_foot_[j]]) > foot_noise &&
-                                                 (!neighbour_unread || c.type == FaultType::noise)
+                                                 std::abs(foot_d2_[channel_foot_[j]]) > foot_noise &&
+                                                 (!(neighbour_unread || contact_chatter) || c.type == FaultType::noise)
                                              ? 1
                                              : 0;
       c.noisy_count += c.noisy_tick[c.second_diff_next];

@@ -3176,3 +3176,91 @@ TEST(ContactForceFdi, AnOffsetThatMayBeAGainAndEndsInALandingIsJudgedByItsSolesP
 
 }  // namespace
 }  // namespace ftsense::biped
+
+namespace ftsense::biped {
+namespace {
+
+// A heel landing on a flat foot, as a 180 kg biped's (tools/unseen_walks.py --robot heavy_biped)
+// does it, at 1 kHz: both feet on the ground, pad 2 (the left heel) unloaded and reading its zero
+// level (0, 1 N alternately) until tick 300, when it takes 60 N and then 3 N more per tick (to
+// 150 N, on tick 330) from pad 0, its toe (F_z steady: the trunk IMU does not see load moving along a sole).
+// F_z also carries `fz_error` N that no pad reads (the leave-one-out force's error). On each tick
+// `bounce(k)` says, the heel lets go for one tick: it reads its zero level and its load is lost
+// to the foot's sum (F_z, from the trunk, does not see that either). Returns the first tick and
+// channel any test flags, (-1, -1) if none does in 600 ticks; `jitter_from` (if >= 0) adds a
+// noise burst of +-20 N to the heel's reading from that tick on, and the heel's flag is then
+// returned in `heel`.
+template <class Bounce>
+std::pair<int, int> heel_landing(double fz_error, Bounce bounce, int jitter_from = -1,
+                                 std::vector<FaultType>* heel = nullptr) {
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 600; ++k) {
+    const double alternation = k % 2 == 0 ? 0.0 : 1.0;
+    const double heel_load = k < 300 ? 0.0 : std::min(150.0, 60.0 + 3.0 * (k - 300));
+    feet.measured[0] = 400.0 - heel_load + alternation;
+    feet.measured[1] = 300.0 + alternation;
+    feet.measured[2] = (bounce(k) ? 0.0 : heel_load) + alternation;
+    if (jitter_from >= 0 && k >= jitter_from) feet.measured[2] += k % 2 == 0 ? 20.0 : -20.0;
+    feet.measured[3] = alternation;
+    double fz = 700.0 + fz_error;
+    for (std::size_t j = 4; j < kChannels; ++j) fz += feet.measured[j] = moving(j, k, 0.0);
+    feet.step(fz);
+    if (heel != nullptr) heel->push_back(feet.type(2));
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (feet.type(j) != FaultType::none && (heel == nullptr || j != 2)) return {k, static_cast<int>(j)};
+    }
+  }
+  return {-1, -1};
+}
+
+TEST(ContactForceFdi, AHeelThatLandsWhereTheLeaveOneOutForceStraysAboveTheSensorsNoiseIsStillALanding) {
+  // The leave-one-out force says 16 N where the heel reads 0 (a 180 kg robot's total force
+  // error; the sensors' 4 sigma is 8 N): still "no load", within the total force's error bound
+  // (sum_threshold_N, 80 N), so the heel's first 60 N is its landing, and its bounce at 69 N three
+  // ticks later, inside the landing's ring, is no spike (30 sigma: 60 N). (Before: the landing was
+  // not one, and the bounce was a spike on tick 304.)
+  const auto flagged = heel_landing(16.0, [](int k) { return k == 303; });
+  EXPECT_EQ(flagged, std::make_pair(-1, -1)) << "tick " << flagged.first << ", channel " << flagged.second;
+}
+
+TEST(ContactForceFdi, AHeelThatBouncesAfterItsLandingsRingHasDiedOutIsNoSpike) {
+  // The heel lands on tick 300 and rises by 3 N a tick (below jump_threshold_N, 20 N: its ring is
+  // over by tick 310); carrying 150 N, it lets go for a tick on ticks 340 and 350, 0.04 and 0.05 s
+  // after its landing, inside touchdown_guard_s (0.15 s). Its leave-one-out force, 150 N, is beyond
+  // "no load" (80 N), so neither return is a new landing; each is a step to its air level and
+  // back, its contact made again, no spike. (Before: a spike on tick 341.)
+  const auto flagged = heel_landing(0.0, [](int k) { return k == 340 || k == 350; });
+  EXPECT_EQ(flagged, std::make_pair(-1, -1)) << "tick " << flagged.first << ", channel " << flagged.second;
+  // The same bounce 0.2 s after its landing (past the guard) is a spike, as on any loaded pad.
+  const auto late = heel_landing(0.0, [](int k) { return k == 500; });
+  EXPECT_EQ(late, std::make_pair(501, 2));
+}
+
+TEST(ContactForceFdi, AHeelWhoseContactChattersAsItsFootRollsIsNoNoiseBurst) {
+  // From its landing, the heel lets go for a tick every 6 ticks for 0.14 s (the 180 kg biped's
+  // outer heel): large second differences on a third of the ticks, each beside its air level.
+  // Not a noise burst, nor spikes. (Before: flagged on tick 354.)
+  const auto flagged = heel_landing(0.0, [](int k) { return k >= 300 && k < 440 && (k - 300) % 6 == 5; });
+  EXPECT_EQ(flagged, std::make_pair(-1, -1)) << "tick " << flagged.first << ", channel " << flagged.second;
+}
+
+TEST(ContactForceFdi, ANoiseBurstThatBeginsInsideItsPadsLandingGuardIsStillOne) {
+  // The heel lands on tick 300 with no bounce; from tick 340, inside its landing's guard, its
+  // reading jitters +-20 N around its load (never near its air level): a noise burst, flagged on
+  // its 27th tick, as the same burst is from tick 500, past the guard (on tick 526).
+  std::vector<FaultType> heel;
+  const auto flagged = heel_landing(0.0, [](int) { return false; }, 340, &heel);
+  EXPECT_EQ(flagged, std::make_pair(-1, -1)) << "tick " << flagged.first << ", channel " << flagged.second;
+  ASSERT_EQ(heel.size(), 600u);
+  const auto first = std::find(heel.begin(), heel.end(), FaultType::noise);
+  ASSERT_NE(first, heel.end());
+  EXPECT_EQ(first - heel.begin(), 366);
+  heel.clear();
+  EXPECT_EQ(heel_landing(0.0, [](int) { return false; }, 500, &heel), std::make_pair(-1, -1));
+  ASSERT_EQ(heel.size(), 600u);
+  EXPECT_EQ(std::find(heel.begin(), heel.end(), FaultType::noise) - heel.begin(), 526);
+  EXPECT_TRUE(std::all_of(heel.begin(), heel.begin() + 340, [](FaultType f) { return f == FaultType::none; }));
+}
+
+}  // namespace
+}  // namespace ftsense::biped

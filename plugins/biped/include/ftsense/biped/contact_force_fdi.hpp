@@ -81,7 +81,10 @@
 //             than smooth like a load: sum d2^2 > sum d1^2 (white noise: 6 sigma^2 against
 //             2 sigma^2; a load moving at the tick rate, as at 200 Hz: d2 << d1); not raised
 //             within touchdown_guard_s of any foot's touchdown (a landing foot bounces on its
-//             pads, and at a fast gait logged at 200 Hz the other foot's pads ring with it).
+//             pads, and at a fast gait logged at 200 Hz the other foot's pads ring with it); a
+//             d2 beside the air level (any of its three readings) inside the pad's own landing
+//             guard is not counted, unless the channel is flagged noise (its contact chatters as
+//             its foot rolls onto it: a heavy robot's outer heel lets go every 6 ms).
 //   airborne  |mean N_j| > airborne_threshold_N, the mean of the readings taken once the pad has
 //             been airborne for airborne_settle_s, over at least 0.02 s and 10 readings:
 //             offset, drift or frozen-at-load; the mean measures the fault directly.
@@ -92,8 +95,11 @@
 //             sum residual; a rolling foot's pads change only a few N per tick), nor while the
 //             pad rings after its own landing (a pad on the ground left no load by the others, on
 //             its zero level, that takes load back: tens of N in one tick at 200 Hz, chatter on
-//             and off): until its changes have stayed below jump_threshold_N for jump_window_s,
-//             at most touchdown_guard_s after the landing (a ring that has died out is over),
+//             and off; "no load": a healthy pad's leave-one-out force within the total force's
+//             error, a flagged one's within airborne_threshold_N): until its changes have stayed
+//             below jump_threshold_N for jump_window_s, or while it steps to or from its air
+//             level (its contact lost and made again: a heavy robot's heel bounces 8-10 ms
+//             apart), at most touchdown_guard_s after the landing (a ring that has died out is over),
 //             nor on a tick another pad of its foot lands so or, ringing, jumps (a heel landing
 //             late jolts its neighbours on that tick, which F_z misses as it does a foot's
 //             impact; a pad chattering on and off trades its load with them);
@@ -611,18 +617,31 @@ class ContactForceFdi {
   // residual.
   void unread_load_test(std::span<const double> height, bool usable, double t) noexcept;
   // Pad c (reading x, at `height`) takes its load back on this tick, on the ground: from its zero
-  // level, while the others left it none, to beyond airborne_threshold_N (its own landing).
-  // (Run for every channel on every tick: the rarest conditions first.)
+  // level, while the others left it none, to beyond airborne_threshold_N (its own landing). "None":
+  // for a healthy pad, its leave-one-out force within the total force's error and a driver's zero
+  // clamp (zero_evidence_above_N_, "unloaded" as the frozen test takes it: a 180 kg biped's
+  // leave-one-out force strays by 15 N where its sensors' 4 sigma is 8 N); for a flagged one,
+  // within airborne_threshold_N, since its steps are the evidence of its fault's end (a drift's
+  // end on a loading pad was held 1.2 s with the wider bar). (Run for every channel on every
+  // tick: the rarest conditions first.)
   [[nodiscard]] bool pad_lands(const Channel& c, double x, double height) const noexcept {
     return std::abs(c.previous) <= params_.airborne_threshold_N && x > params_.airborne_threshold_N &&
            !(height > params_.airborne_height_m) && std::isfinite(c.last_virtual) &&
-           c.last_virtual < params_.airborne_threshold_N;
+           c.last_virtual < (c.type == FaultType::none ? zero_evidence_above_N_ : params_.airborne_threshold_N);
   }
   // Pad c, on the ground, rings after its landing (as the jump test judged it until the tick
-  // before) and jumps by jump_threshold_N on this tick.
+  // before, or its contact is lost or made again: contact_step) and jumps by jump_threshold_N on
+  // this tick.
   [[nodiscard]] bool ring_step(const Channel& c, double x, double height, double t) const noexcept {
-    return t - c.last_landing_ring_s < params_.jump_window_s && t - c.last_pad_landing_s < params_.touchdown_guard_s &&
-           std::abs(x - c.previous) > params_.jump_threshold_N && !(height > params_.airborne_height_m);
+    return t - c.last_pad_landing_s < params_.touchdown_guard_s && std::abs(x - c.previous) > params_.jump_threshold_N &&
+           (t - c.last_landing_ring_s < params_.jump_window_s || contact_step(c, x)) &&
+           !(height > params_.airborne_height_m);
+  }
+  // Reading x steps to or from pad c's air level: inside its landing's guard, its contact lost or
+  // made again, however long after the last ring (a 180 kg biped's heel bounces off the ground
+  // for a tick 8-10 ms apart, a jump window or more), not a sensor's jump or spike.
+  [[nodiscard]] bool contact_step(const Channel& c, double x) const noexcept {
+    return std::abs(x) <= params_.airborne_threshold_N || std::abs(c.previous) <= params_.airborne_threshold_N;
   }
   // This tick's jump candidates (net step jump_sum in the residual's terms) may be load handed to
   // a pad of their loaded foot that does not read it: a healthy pad on the ground at its air
