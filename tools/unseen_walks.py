@@ -200,7 +200,10 @@ def planned_com_height(bin_dir, work, robot):
                 "duration_s": 0.05, "seed": 1, "body": robot["body"], "gait": robot["gaits"][0], "faults": []}
     path, log = os.path.join(work, "com_height_probe.json"), os.path.join(work, "com_height_probe.csv")
     json.dump(scenario, open(path, "w"), indent=1)
-    subprocess.run([os.path.join(bin_dir, "ftsense-sim"), "--scenario", path, "--out", log, "--quiet"], check=True)
+    done = subprocess.run([os.path.join(bin_dir, "ftsense-sim"), "--scenario", path, "--out", log, "--quiet"],
+                          capture_output=True, text=True)
+    if done.returncode != 0:
+        sys.exit(f"the CoM height probe failed: ftsense-sim: {done.stderr.strip()[:300]}")
     with open(log) as f:
         header, first = f.readline().strip().split(","), f.readline().strip().split(",")
     return round(float(first[header.index("plan/com_z_m")]), 3)

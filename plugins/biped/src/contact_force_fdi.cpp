@@ -707,13 +707,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       const double innovation = x - 2.0 * c.previous + c.previous2;
       // A pad making its contact (inside its landing's guard) whose reading leaves or regains its
-      // air level within these three readings: its contact chatters (a 180 kg biped's outer heel
-      // lets go for a tick every 6 ms for 0.14 s as its foot rolls onto it), the sensor is not
-      // noisy. A noise burst's readings seldom fall to the air level under load: it still shows
-      // (and one already flagged keeps being judged on every tick, as beside an unread neighbour).
-      const bool contact_chatter = in_landing_guard && (std::abs(x) <= params_.airborne_threshold_N ||
-                                                        std::abs(c.previous) <= params_.airborne_threshold_N ||
-                                                        std::abs(c.previous2) <= params_.airborne_threshold_N);
+      // air level within these three readings, none below it: its contact chatters (a 180 kg
+      // biped's outer heel lets go for a tick every 6 ms for 0.14 s as its foot rolls onto it), the
+      // sensor is not noisy. A contact does not pull, a noise burst does (on an unloaded pad half
+      // its readings lie below the air level), and under load a burst's readings seldom fall to
+      // it: a burst still shows (and one already flagged keeps being judged on every tick, as
+      // beside an unread neighbour).
+      const bool contact_chatter =
+          in_landing_guard && std::abs(std::min({x, c.previous, c.previous2})) <= params_.airborne_threshold_N;
       c.noisy_count -= c.noisy_tick[c.second_diff_next];
       c.second_diff[c.second_diff_next] = std::abs(innovation);
       c.noisy_tick[c.second_diff_next] = std::abs(innovation) > tick_noise &&

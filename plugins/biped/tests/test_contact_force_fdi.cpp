@@ -3238,7 +3238,8 @@ TEST(ContactForceFdi, AHeelThatBouncesAfterItsLandingsRingHasDiedOutIsNoSpike) {
 
 TEST(ContactForceFdi, AHeelWhoseContactChattersAsItsFootRollsIsNoNoiseBurst) {
   // From its landing, the heel lets go for a tick every 6 ticks for 0.14 s (the 180 kg biped's
-  // outer heel): large second differences on a third of the ticks, each beside its air level.
+  // outer heel): each dip makes three large second differences, half the ticks, each beside its
+  // air level (the noise test's 50-tick window holds 26 of them by tick 354).
   // Not a noise burst, nor spikes. (Before: flagged on tick 354.)
   const auto flagged = heel_landing(0.0, [](int k) { return k >= 300 && k < 440 && (k - 300) % 6 == 5; });
   EXPECT_EQ(flagged, std::make_pair(-1, -1)) << "tick " << flagged.first << ", channel " << flagged.second;
@@ -3260,6 +3261,65 @@ TEST(ContactForceFdi, ANoiseBurstThatBeginsInsideItsPadsLandingGuardIsStillOne) 
   ASSERT_EQ(heel.size(), 600u);
   EXPECT_EQ(std::find(heel.begin(), heel.end(), FaultType::noise) - heel.begin(), 526);
   EXPECT_TRUE(std::all_of(heel.begin(), heel.begin() + 340, [](FaultType f) { return f == FaultType::none; }));
+}
+
+}  // namespace
+}  // namespace ftsense::biped
+
+namespace ftsense::biped {
+namespace {
+
+TEST(ContactForceFdi, ALoadedPadsDownwardSpikeClippedAtItsZeroLevelIsASpikeNotALanding) {
+  // 1 kHz, both feet flat; pad 2 carries 70 N (its leave-one-out force too: below "no load" for a
+  // landing, the total force's error, 80 N) and reads 0 for one tick on tick 400 (a downward spike
+  // its driver clips at 0), F_z steady. One tick at the zero level is no unloading: the return
+  // is no landing, and the dip is a spike on the next tick. (With the wide bar and no second tick
+  // at the zero level asked for: taken as a landing, never flagged.)
+  Feet feet(suralp(), 1e-3);
+  for (int k = 0; k < 500; ++k) {
+    double fz = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) fz += feet.measured[j] = j == 2 ? 70.0 + (k % 2) : moving(j, k, 0.0);
+    if (k == 400) feet.measured[2] = 0.0;
+    feet.step(fz);
+    ASSERT_EQ(feet.type(2), k >= 401 ? FaultType::spikes : FaultType::none) << "tick " << k;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 2) {
+        ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+}
+
+// An unloaded pad on the ground (its leave-one-out force 0) reads a noise burst of `std_N` around
+// its zero level from tick 300, drawn by std::mt19937(seed 41); returns the tick it is first
+// flagged noise (-1: never) and checks no other channel is flagged.
+int unloaded_noise_burst_flagged_at(double std_N) {
+  Feet feet(suralp(), 1e-3);
+  std::mt19937 rng(41);
+  std::normal_distribution<double> burst(0.0, std_N);
+  for (int k = 0; k < 600; ++k) {
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = j == 2 ? (k % 2) : moving(j, k, 0.0);
+    if (k >= 300) feet.measured[2] = burst(rng);
+    double fz = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) fz += j == 2 ? 0.0 : feet.measured[j];
+    feet.step(fz);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 2) {
+        EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+    if (feet.type(2) == FaultType::noise) return k;
+  }
+  return -1;
+}
+
+TEST(ContactForceFdi, ANoiseBurstOnAnUnloadedPadIsNoContactChatter) {
+  // Its readings leave and regain the air level tick after tick, and each return from it is a
+  // landing (the pad's leave-one-out force is 0): inside that guard, the noise test would take
+  // them for a contact chattering, but half of them lie below the air level, which a contact
+  // cannot read. Seed: std::mt19937(41). A 30 N burst is flagged on tick 343 (without the chatter
+  // rule at all, 335; with the rule taking any reading at the air level as chatter, never).
+  EXPECT_EQ(unloaded_noise_burst_flagged_at(30.0), 343);
 }
 
 }  // namespace

@@ -82,9 +82,10 @@
 //             2 sigma^2; a load moving at the tick rate, as at 200 Hz: d2 << d1); not raised
 //             within touchdown_guard_s of any foot's touchdown (a landing foot bounces on its
 //             pads, and at a fast gait logged at 200 Hz the other foot's pads ring with it); a
-//             d2 beside the air level (any of its three readings) inside the pad's own landing
-//             guard is not counted, unless the channel is flagged noise (its contact chatters as
-//             its foot rolls onto it: a heavy robot's outer heel lets go every 6 ms).
+//             d2 whose lowest reading is at the air level (within airborne_threshold_N of 0: a
+//             contact does not pull) inside the pad's own landing guard is not counted, unless
+//             the channel is flagged noise (its contact chatters as its foot rolls onto it: a
+//             heavy robot's outer heel lets go every 6 ms).
 //   airborne  |mean N_j| > airborne_threshold_N, the mean of the readings taken once the pad has
 //             been airborne for airborne_settle_s, over at least 0.02 s and 10 readings:
 //             offset, drift or frozen-at-load; the mean measures the fault directly.
@@ -95,8 +96,9 @@
 //             sum residual; a rolling foot's pads change only a few N per tick), nor while the
 //             pad rings after its own landing (a pad on the ground left no load by the others, on
 //             its zero level, that takes load back: tens of N in one tick at 200 Hz, chatter on
-//             and off; "no load": a healthy pad's leave-one-out force within the total force's
-//             error, a flagged one's within airborne_threshold_N): until its changes have stayed
+//             and off; "no load": its leave-one-out force within airborne_threshold_N, or, for a
+//             healthy pad at its zero level for two ticks, within the total force's error): until
+//             its changes have stayed
 //             below jump_threshold_N for jump_window_s, or while it steps to or from its air
 //             level (its contact lost and made again: a heavy robot's heel bounces 8-10 ms
 //             apart), at most touchdown_guard_s after the landing (a ring that has died out is over),
@@ -618,16 +620,20 @@ class ContactForceFdi {
   void unread_load_test(std::span<const double> height, bool usable, double t) noexcept;
   // Pad c (reading x, at `height`) takes its load back on this tick, on the ground: from its zero
   // level, while the others left it none, to beyond airborne_threshold_N (its own landing). "None":
-  // for a healthy pad, its leave-one-out force within the total force's error and a driver's zero
-  // clamp (zero_evidence_above_N_, "unloaded" as the frozen test takes it: a 180 kg biped's
-  // leave-one-out force strays by 15 N where its sensors' 4 sigma is 8 N); for a flagged one,
-  // within airborne_threshold_N, since its steps are the evidence of its fault's end (a drift's
-  // end on a loading pad was held 1.2 s with the wider bar). (Run for every channel on every
-  // tick: the rarest conditions first.)
+  // its leave-one-out force within airborne_threshold_N; or, for a healthy pad that read its zero
+  // level on the two ticks before, within the total force's error and a driver's zero clamp
+  // (zero_evidence_above_N_, "unloaded" as the frozen test takes it: a 180 kg biped's leave-one-out
+  // force strays by 15 N where its 2 N sensors' 4 sigma is 8 N). Not so for a flagged pad, whose steps
+  // are the evidence of its fault's end (a drift's end on a loading pad was held 1.2 s with the
+  // wider bar), nor for one tick at the zero level (a loaded pad's downward spike clipped at a
+  // driver's zero clamp: a contact's bounce inside the guard is ring_step's). (Run for every
+  // channel on every tick: the rarest conditions first.)
   [[nodiscard]] bool pad_lands(const Channel& c, double x, double height) const noexcept {
     return std::abs(c.previous) <= params_.airborne_threshold_N && x > params_.airborne_threshold_N &&
            !(height > params_.airborne_height_m) && std::isfinite(c.last_virtual) &&
-           c.last_virtual < (c.type == FaultType::none ? zero_evidence_above_N_ : params_.airborne_threshold_N);
+           (c.last_virtual < params_.airborne_threshold_N ||
+            (c.type == FaultType::none && c.last_virtual < zero_evidence_above_N_ &&
+             std::abs(c.previous2) <= params_.airborne_threshold_N));
   }
   // Pad c, on the ground, rings after its landing (as the jump test judged it until the tick
   // before, or its contact is lost or made again: contact_step) and jumps by jump_threshold_N on
