@@ -63,11 +63,19 @@ SENSORS = [(0.001, 1.0, 0.0), (0.005, 3.0, 0.0), (0.002, 2.0, 2.0), (0.001, 2.0,
 
 
 FAULT_SEED = 7
+BIPED_CHANNELS = [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)]
+
+
+def biped_gaits(steps, foot_half_spacing_m, step_height_m):
+    """The gait of each (step length m, step time s, double support ratio) for a biped build."""
+    return [{"step_length_m": a, "step_time_s": b, "double_support_ratio": c,
+             "foot_half_spacing_m": foot_half_spacing_m, "step_height_m": step_height_m} for a, b, c in steps]
+
 # Per robot: its config, channels, gaits, sensor settings, seeds and fault sizes (docstring).
 ROBOTS = {
     "suralp": {
         "config": "suralp_robust.json",
-        "channels": [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)],
+        "channels": BIPED_CHANNELS,
         "gaits": [{"step_length_m": a, "step_time_s": b, "double_support_ratio": c} for a, b, c in GAITS],
         "sensors": SENSORS, "seeds": (300, 400),
         "offset_N": [40, 60, 100], "slope_N_s": [5, 10, 15], "noise_N": [15, 30, 40],
@@ -82,10 +90,8 @@ ROBOTS = {
         "config": "suralp_robust.json",
         "body": {"total_mass_kg": 48.0, "upper_leg_m": 0.22, "lower_leg_m": 0.21, "sole_ankle_m": 0.09,
                  "foot_length_m": 0.18, "foot_width_m": 0.11},
-        "channels": [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)],
-        "gaits": [{"step_length_m": a, "step_time_s": b, "double_support_ratio": c, "foot_half_spacing_m": 0.08,
-                   "step_height_m": 0.03}
-                  for a, b, c in [(0.10, 0.8, 0.3), (0.15, 0.6, 0.15), (0.12, 0.7, 0.25), (0.08, 0.65, 0.2)]],
+        "channels": BIPED_CHANNELS,
+        "gaits": biped_gaits([(0.10, 0.8, 0.3), (0.15, 0.6, 0.15), (0.12, 0.7, 0.25), (0.08, 0.65, 0.2)], 0.08, 0.03),
         "sensors": [(0.001, 0.5, 0.0), (0.005, 1.5, 0.0), (0.002, 1.0, 1.0), (0.001, 1.0, 2.5)], "seeds": (700, 800),
         "offset_N": [20, 30, 50], "slope_N_s": [3, 5, 8], "noise_N": [8, 15, 20],
         "spike_N": [50, 120], "ceiling_N": [110, 160],
@@ -96,10 +102,8 @@ ROBOTS = {
         "config": "suralp_robust.json",
         "body": {"total_mass_kg": 180.0, "upper_leg_m": 0.40, "lower_leg_m": 0.38, "sole_ankle_m": 0.15,
                  "foot_length_m": 0.30, "foot_width_m": 0.18},
-        "channels": [f"{foot}/p{pad}" for foot in ("l_foot", "r_foot") for pad in range(1, 5)],
-        "gaits": [{"step_length_m": a, "step_time_s": b, "double_support_ratio": c, "foot_half_spacing_m": 0.12,
-                   "step_height_m": 0.05}
-                  for a, b, c in [(0.25, 1.0, 0.3), (0.28, 0.8, 0.15), (0.30, 0.9, 0.25), (0.20, 0.85, 0.2)]],
+        "channels": BIPED_CHANNELS,
+        "gaits": biped_gaits([(0.25, 1.0, 0.3), (0.28, 0.8, 0.15), (0.30, 0.9, 0.25), (0.20, 0.85, 0.2)], 0.12, 0.05),
         "sensors": [(0.001, 2.0, 0.0), (0.005, 4.0, 0.0), (0.002, 3.0, 3.0), (0.001, 3.0, 8.0)], "seeds": (900, 950),
         "offset_N": [60, 100, 160], "slope_N_s": [8, 15, 24], "noise_N": [25, 45, 60],
         "spike_N": [160, 400], "ceiling_N": [400, 550],

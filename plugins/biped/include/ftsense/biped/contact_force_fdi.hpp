@@ -98,10 +98,10 @@
 //             its zero level, that takes load back: tens of N in one tick at 200 Hz, chatter on
 //             and off; "no load": its leave-one-out force within airborne_threshold_N, or, for a
 //             healthy pad at its zero level for two ticks, within the total force's error): until
-//             its changes have stayed
-//             below jump_threshold_N for jump_window_s, or while it steps to or from its air
-//             level (its contact lost and made again: a heavy robot's heel bounces 8-10 ms
-//             apart), at most touchdown_guard_s after the landing (a ring that has died out is over),
+//             its changes have stayed below jump_threshold_N for jump_window_s, or while it steps
+//             to or from its air level (its contact lost and made again: a heavy robot's heel
+//             bounces 8-10 ms apart), at most touchdown_guard_s after the landing (a ring that has
+//             died out is over),
 //             nor on a tick another pad of its foot lands so or, ringing, jumps (a heel landing
 //             late jolts its neighbours on that tick, which F_z misses as it does a foot's
 //             impact; a pad chattering on and off trades its load with them);
