@@ -2169,10 +2169,12 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // it is with the correction, both over the ticks since the correction was last set.
   // In stance, the same comparison for a gain and for an offset: an offset whose end stepped
   // under jump_threshold_N (no jump test sees it) leaves its correction in the residual while its
-  // foot stays down, and the air test would only drop it at the next swing. Not for a drift: its
-  // slope, fitted on a swing's readings, is extrapolated through the stance, and a correction
-  // grown wrong by that is no sign the fault is over (a 12 N/s drift at 200 Hz was dropped while
-  // 30 N, in a try). Only while it is the one correction the residual carries: with two, the
+  // foot stays down, and the air test would only drop it at the next swing. For a drift, not by
+  // that alone: its slope, fitted on a swing's readings, is extrapolated through the stance, and a
+  // correction grown wrong by that is no sign the fault is over (a 12 N/s drift at 200 Hz was
+  // dropped while 30 N, in a try). A drift's reading must also have stayed flat where the drift
+  // would have shown (StancePowers::trend): a pad that stays loaded to the end of a log (a robot that
+  // stops and stands) has no next swing, and its correction grew without bound. Only while it is the one correction the residual carries: with two, the
   // one that ended and the one that did not both move it, and the one still faulty could win
   // first (a +48 N offset beside a +60 N one fading out).
   const double stance_bound = params_.gain_min_load_N * params_.gain_min_load_N;
@@ -2181,7 +2183,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
     const Channel& c = channels_[j];
     const bool on_ground = height[j] <= params_.airborne_height_m;
-    const bool judged = (c.type == FaultType::gain || c.type == FaultType::offset) && on_ground;
+    const bool judged =
+        (c.type == FaultType::gain || c.type == FaultType::offset || c.type == FaultType::drift) && on_ground;
     StancePowers& stance = stance_powers_[j];
     StancePowers& run = stance_cusum_[j];
     // A new stance, or sums taken for another correction (not rewritten when already fresh: most
@@ -2221,8 +2224,20 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       }
     }
     if (!run.reading_leads()) run = StancePowers{.type = c.type};
-    const bool wins = stance.reading_wins(stance_min_ticks_, stance_bound) ||
-                      (c.type == FaultType::offset && run.reading_wins(stance_min_ticks_, stance_bound));
+    // A drift, only since the reading last led and only where the reading stayed flat: its slope
+    // extrapolated through a stance may grow wrong while the drift goes on. A window that shows a
+    // slope is closed and the next one judged afresh (the load's own moves in a walking stance
+    // before the robot stood still are no drift after it).
+    bool flat = false;
+    if (c.type == FaultType::drift) {
+      const StancePowers::Trend trend = run.trend(c.slope * period_s_, relation_z_);
+      flat = trend == StancePowers::Trend::flat;
+      if (trend == StancePowers::Trend::sloped) run.restart_trend();
+    }
+    const bool wins = c.type == FaultType::drift
+                          ? flat && run.reading_wins(stance_min_ticks_, stance_bound)
+                          : stance.reading_wins(stance_min_ticks_, stance_bound) ||
+                                (c.type == FaultType::offset && run.reading_wins(stance_min_ticks_, stance_bound));
     if (wins && corrections == 1) {
       clear(channels_[j]);
       restart_gain_window();

@@ -226,12 +226,17 @@
 //             within one stance, once it has clear_s of usable ticks, when the correction leaves
 //             4 times the residual power the reading leaves as it is, and moved the reading by
 //             gain_min_load_N RMS or more: the two explanations of that stance, compared (for an
-//             offset too, whose end stepped under jump_threshold_N; not a drift, whose slope is
-//             extrapolated through the stance; an offset raised by a jump under load and not
-//             yet seen in the air must beat the gain its onset implies too, which must have moved
-//             the reading by gain_min_load_N RMS), over the stance so far or (an offset) since
-//             the CUSUM of the reading's lead was last at 0 (a fault that ends late in a long
-//             stance); only while it is the one correction the residual carries (with two, the
+//             offset too, whose end stepped under jump_threshold_N; an offset raised by a jump
+//             under load and not yet seen in the air must beat the gain its onset implies too,
+//             which must have moved the reading by gain_min_load_N RMS), over the stance so far or
+//             (an offset) since the CUSUM of the reading's lead was last at 0 (a fault that ends
+//             late in a long stance); a drift, whose slope is extrapolated through the stance and
+//             may grow wrong while it goes on, only since that CUSUM was last at 0 and only once
+//             the reading as it is stayed flat over a window that could have shown the drift
+//             going on at a quarter of its fitted rate (StancePowers::trend: neither the
+//             window's slope nor its bend beyond relation_z_ of its standard error; a window that
+//             shows either is closed and the next judged afresh): a pad that stays loaded to the
+//             end of a log has no next swing to judge it; only while it is the one correction the residual carries (with two, the
 //             one still faulty can win first). A
 //             gain that ended in the air, or a gain inferred in the air from an offset that ended
 //             there (both read 0 in the air), would otherwise scale a healthy reading by 1 / k
@@ -862,8 +867,8 @@ class ContactForceFdi {
   // The margin by which the reading as it is must beat a correction to drop it: the correction
   // leaves this many times its residual power (twice its RMS).
   static constexpr double kReadingWinsPowerRatio = 4.0;
-  // The same powers summed (not weighted) over usable ticks on the ground while held as a gain or
-  // an offset, for a correction gone wrong in a stance: <r_raw, r_raw>, <r, r>, the correction's
+  // The same powers summed (not weighted) over usable ticks on the ground while held as a gain, an
+  // offset or a drift, for a correction gone wrong in a stance: <r_raw, r_raw>, <r, r>, the correction's
   // own power <N_j - N^_j, N_j - N^_j>, and, for an offset raised by a jump under load and not
   // yet measured in the air, <r_gain, r_gain> with the reading taken as the gain that same onset
   // implies (r_gain = r - N^_j + N_j / k; it may yet be a gain, whose error shrinks as its pad
@@ -876,12 +881,20 @@ class ContactForceFdi {
     // As constructed for `t`: every sum grows only through add (which counts a tick) or
     // add_gain_model (which sets gain_model), so these three say it.
     [[nodiscard]] bool fresh_for(FaultType t) const noexcept { return ticks == 0 && !gain_model && type == t; }
+    // r_raw's sums over the ticks k = 0, 1, ... of the present trend window (for a drift's end,
+    // below); the sums of k's own powers follow from the count.
+    int trend_ticks = 0;
+    double raw_sum = 0.0, k_raw_sum = 0.0, kk_raw_sum = 0.0, trend_rr = 0.0;
     void add(double raw, double held, double correction) noexcept {
       raw_rr += raw * raw;
       held_rr += held * held;
       correction_cc += correction * correction;
       ticks = ticks < std::numeric_limits<int>::max() ? ticks + 1 : ticks;
+      const double k = static_cast<double>(trend_ticks);
+      raw_sum += raw, k_raw_sum += k * raw, kk_raw_sum += k * k * raw, trend_rr += raw * raw;
+      trend_ticks = trend_ticks < std::numeric_limits<int>::max() ? trend_ticks + 1 : trend_ticks;
     }
+    void restart_trend() noexcept { trend_ticks = 0, raw_sum = k_raw_sum = kk_raw_sum = trend_rr = 0.0; }
     // The gain explanation's residual and its own correction N_j - N_j / k.
     void add_gain_model(double as_gain, double correction) noexcept {
       gain_rr += as_gain * as_gain;
@@ -898,6 +911,32 @@ class ContactForceFdi {
     [[nodiscard]] bool reading_wins(int min_ticks, double bound_sq) const noexcept {
       const double bound = static_cast<double>(ticks) * bound_sq;
       return ticks >= min_ticks && reading_leads() && correction_cc >= bound && (!gain_model || gain_cc >= bound);
+    }
+    // A drift's end: does the reading as it is stay flat where the drift, had it gone on, would
+    // have shown? Over the trend window's n ticks, r_raw's line and bend on the discrete orthogonal
+    // polynomials p1 = k - m, p2 = (k - m)^2 - (n^2 - 1) / 12 (m = (n - 1) / 2):
+    //   c_i = sum r p_i / sum p_i^2,  sum p1^2 = n (n^2 - 1) / 12,  sum p2^2 = n (n^2 - 1) (n^2 - 4) / 180,
+    // each with its standard error se_i = s / sqrt(sum p_i^2), s^2 the residual variance about
+    // both (n - 3 degrees of freedom). Undecided while z se_1 is more than a quarter of the fitted
+    // drift's slope per tick (the window could not yet show a drift going on at a quarter of its
+    // fitted rate); then flat when neither the slope c_1 nor the bend c_2 is beyond z of its
+    // standard error, else sloped (a bend: the reading fell and rose again within the window,
+    // which a line through it would call flat).
+    enum class Trend { undecided, flat, sloped };
+    [[nodiscard]] Trend trend(double drift_per_tick, double z) const noexcept {
+      if (trend_ticks < 4) return Trend::undecided;
+      const double n = static_cast<double>(trend_ticks);
+      const double m = 0.5 * (n - 1.0);
+      const double p1p1 = n * (n * n - 1.0) / 12.0;
+      const double p2p2 = n * (n * n - 1.0) * (n * n - 4.0) / 180.0;
+      const double rp1 = k_raw_sum - m * raw_sum;
+      const double rp2 = kk_raw_sum - 2.0 * m * k_raw_sum + (m * m - (n * n - 1.0) / 12.0) * raw_sum;
+      const double c1 = rp1 / p1p1, c2 = rp2 / p2p2;
+      const double ssr = trend_rr - raw_sum * raw_sum / n - c1 * rp1 - c2 * rp2;
+      const double s = std::sqrt(std::max(ssr, 0.0) / (n - 3.0));
+      const double se1 = s / std::sqrt(p1p1), se2 = s / std::sqrt(p2p2);
+      if (!(z * se1 <= 0.25 * std::abs(drift_per_tick))) return Trend::undecided;
+      return std::abs(c1) <= z * se1 && std::abs(c2) <= z * se2 ? Trend::flat : Trend::sloped;
     }
   };
   // Over the present stance of the channel's point, and (an offset) since the CUSUM of the
