@@ -97,6 +97,7 @@ void LipmComEstimator::reset() noexcept {
     a.gated_zmp_ticks = 0;
     a.zmp_used_last_tick = true;
     a.resets = 0.0;
+    a.recursion.valid = false;
   }
   initialised_ = false;
 }
@@ -118,7 +119,8 @@ double sparse_dot(const Eigen::RowVector3d& h, const double* x) noexcept {
 }
 }  // namespace
 
-void LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept {
+bool LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance, double& s_out,
+                              Eigen::Vector3d& k_out) noexcept {
   // Written out in scalars, each value computed as the Eigen expressions
   // ph = P h^T, s = h ph + r, k = ph / s, x += k nu, P -= k ph^T, P = (P + P^T) / 2 compute it
   // (the same operations per element), without their packed loads and stores.
@@ -128,12 +130,14 @@ void LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z,
     ph[i] = sparse_dot(h, row);
   }
   const double s = sparse_dot(h, ph) + variance;
-  if (!(s > 0.0) || !std::isfinite(z)) return;
+  s_out = s;
+  if (!(s > 0.0) || !std::isfinite(z)) return false;
   const double innovation = z - sparse_dot(h, axis.s.data());
   // Gate: an innovation beyond 100 standard deviations is a broken reading, not information.
-  if (!(innovation * innovation <= kGateSigma2 * s)) return;
+  if (!(innovation * innovation <= kGateSigma2 * s)) return false;
   double k[3];
   for (int i = 0; i < 3; ++i) k[i] = ph[i] / s;
+  for (int i = 0; i < 3; ++i) k_out(i) = k[i];
   for (int i = 0; i < 3; ++i) axis.s(i) += k[i] * innovation;
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) axis.P(i, j) -= k[i] * ph[j];
@@ -142,6 +146,7 @@ void LipmComEstimator::update(Axis& axis, const Eigen::RowVector3d& h, double z,
     for (int i = j + 1; i < 3; ++i) axis.P(i, j) = axis.P(j, i) = 0.5 * (axis.P(i, j) + axis.P(j, i));
   }
   for (int i = 0; i < 3; ++i) axis.P(i, i) = 0.5 * (axis.P(i, i) + axis.P(i, i));
+  return true;
 }
 
 double LipmComEstimator::solve_steady_state_com_variance() const noexcept {
@@ -189,6 +194,10 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
   const Eigen::RowVector3d h_acc(0.0, 0.0, 1.0);
   const Eigen::RowVector3d h_zmp(1.0, 0.0, -1.0 / omega2_);
   const Eigen::RowVector3d h_com(1.0, 0.0, 0.0);
+  const std::array<Eigen::RowVector3d, kUpdates> h = {h_acc, h_zmp, h_com};
+  const std::array<double, kUpdates> noise_variance = {params_.acc_noise_m_s2 * params_.acc_noise_m_s2,
+                                                       params_.zmp_noise_m * params_.zmp_noise_m,
+                                                       params_.kinematic_com_noise_m * params_.kinematic_com_noise_m};
   const double ready_variance = params_.max_com_std_ratio * params_.max_com_std_ratio * steady_state_com_variance_;
   for (int i = 0; i < 2; ++i) {
     Axis& a = axes_[i];
@@ -233,12 +242,41 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
     const double zmp_rate = (p - a.previous_zmp) / period_s_;
     a.s = transition_ * a.s;
     a.s(2) -= period_s_ * omega2_ * zmp_rate;
-    a.P = transition_ * a.P * transition_.transpose() + process_noise_;
     a.previous_zmp = p;
-    update(a, h_acc, acc[i], params_.acc_noise_m_s2 * params_.acc_noise_m_s2);
-    if (zmp_ok) update(a, h_zmp, p, params_.zmp_noise_m * params_.zmp_noise_m);
-    if (params_.use_kinematic_com) {
-      update(a, h_com, io.in(kKinematicCom)[i], params_.kinematic_com_noise_m * params_.kinematic_com_noise_m);
+    // The updates in order; one not made this tick reads NaN (update() skips it, P untouched).
+    const std::array<double, kUpdates> z = {
+        acc[i], zmp_ok ? p : std::numeric_limits<double>::quiet_NaN(),
+        params_.use_kinematic_com ? io.in(kKinematicCom)[i] : std::numeric_limits<double>::quiet_NaN()};
+    Axis::CovarianceTick& r = a.recursion;
+    std::size_t u = 0;
+    if (r.valid && a.P == r.P_in) {
+      // Replay while each update applies exactly as it did then (its s and k are that tick's).
+      for (; u < kUpdates; ++u) {
+        const double s = r.innovation_variance[u];
+        bool applies = s > 0.0 && std::isfinite(z[u]);
+        double innovation = 0.0;
+        if (applies) {
+          innovation = z[u] - sparse_dot(h[u], a.s.data());
+          applies = innovation * innovation <= kGateSigma2 * s;
+        }
+        if (applies != r.applied[u]) break;
+        if (applies) {
+          for (int m = 0; m < 3; ++m) a.s(m) += r.gain[u](m) * innovation;
+        }
+      }
+      a.P = u == kUpdates ? r.P_out : r.P_before[u];
+    } else {
+      r.P_in = a.P;
+      a.P = transition_ * a.P * transition_.transpose() + process_noise_;
+    }
+    if (u < kUpdates) {
+      // The recursion from the first update that differs (all of them on a new P), recorded.
+      for (; u < kUpdates; ++u) {
+        r.P_before[u] = a.P;
+        r.applied[u] = update(a, h[u], z[u], noise_variance[u], r.innovation_variance[u], r.gain[u]);
+      }
+      r.P_out = a.P;
+      r.valid = true;
     }
   }
   const auto com = io.out(kCom);

@@ -45,6 +45,11 @@
 // that is not ready, the axis re-acquires as at the start but mid-motion, c'' from the IMU and
 // c = p + c''/omega0^2, c' = 0 with the initial covariance: the state that drifted on the IMU alone
 // has a velocity error that would otherwise take seconds to correct. Allocation-free.
+//
+// Cost: the covariance recursion (prediction and updates) depends on P and on which updates
+// apply, not on the data; once P sits at its fixed point (bitwise, most ticks of a walk) each tick
+// replays the gains recorded on the last tick that ran it, and updates only the state (exact: the
+// same operations on the same numbers).
 
 #include <array>
 #include <string_view>
@@ -88,6 +93,11 @@ class LipmComEstimator {
 
   // The state covariance P of axis 0 (x) or 1 (y) after the last tick [m^2, m^2/s, ...].
   [[nodiscard]] const Eigen::Matrix3d& covariance(std::size_t axis) const noexcept { return axes_[axis].P; }
+  // Drops the covariance recursion kept for replay (Axis::CovarianceTick): the next tick runs it
+  // in full. The outputs do not change (the replay is exact); tests compare the two paths by it.
+  void forget_covariance_recursion() noexcept {
+    for (Axis& a : axes_) a.recursion.valid = false;
+  }
 
   LipmComEstimator(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
@@ -95,6 +105,8 @@ class LipmComEstimator {
   void step(const StepIO& io) noexcept;
 
  private:
+  // The scalar updates of a tick, in order: IMU acceleration, ZMP, kinematic CoM.
+  static constexpr std::size_t kUpdates = 3;
   struct Axis {
     Eigen::Vector3d s = Eigen::Vector3d::Zero();
     Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
@@ -104,9 +116,26 @@ class LipmComEstimator {
     int gated_zmp_ticks = 0;  // consecutive ZMP readings rejected by the gate
     bool zmp_used_last_tick = true;  // false while the ZMP is missing or dropped
     double resets = 0.0;  // restarts after a non-finite state or a covariance that is not positive definite
+    // The covariance recursion of the last tick that ran it, to replay: it depends on P and on
+    // which updates applied, never on the data. When P before the prediction is bitwise what it
+    // was then (at its fixed point, most ticks of a walk), the same updates give the same gains
+    // and the same P, so only the state is updated; an update that applies now and did not then
+    // (or the reverse: a gate, a missing reading) runs the recursion from there. Exact: a replayed
+    // tick computes what the recursion would, to the bit.
+    struct CovarianceTick {
+      bool valid = false;
+      Eigen::Matrix3d P_in = Eigen::Matrix3d::Zero();  // P before the prediction
+      std::array<Eigen::Matrix3d, kUpdates> P_before{};  // P before each update
+      std::array<bool, kUpdates> applied{};              // the update changed the state and P
+      std::array<double, kUpdates> innovation_variance{};  // s = h P h^T + r
+      std::array<Eigen::Vector3d, kUpdates> gain{};      // k = P h^T / s
+      Eigen::Matrix3d P_out = Eigen::Matrix3d::Zero();
+    } recursion;
   };
-  // One scalar Kalman update; skipped when z is not finite or its innovation fails the 100-sigma gate.
-  void update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance) noexcept;
+  // One scalar Kalman update; skipped when z is not finite or its innovation fails the 100-sigma
+  // gate. Returns whether it applied; s and k as it computed them (s always, k when applied).
+  bool update(Axis& axis, const Eigen::RowVector3d& h, double z, double variance, double& s_out,
+              Eigen::Vector3d& k_out) noexcept;
   // Iterates the covariance recursion with every measurement until P(0,0) settles.
   [[nodiscard]] double solve_steady_state_com_variance() const noexcept;
   static constexpr double kGateSigma2 = 1e4;
