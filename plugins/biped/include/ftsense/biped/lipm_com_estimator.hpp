@@ -47,9 +47,9 @@
 // has a velocity error that would otherwise take seconds to correct. Allocation-free.
 //
 // Cost: the covariance recursion (prediction and updates) depends on P and on which updates
-// apply, not on the data; once P sits at its fixed point (bitwise, most ticks of a walk) each tick
-// replays the gains recorded on the last tick that ran it, and updates only the state (exact: the
-// same operations on the same numbers).
+// apply, not on the data; once P sits at its fixed point (every entry equal from tick to tick, most
+// ticks of a walk) each tick replays the gains recorded on the last tick that ran it, and updates
+// only the state (exact: the same operations on the same numbers).
 
 #include <array>
 #include <string_view>
@@ -117,11 +117,11 @@ class LipmComEstimator {
     bool zmp_used_last_tick = true;  // false while the ZMP is missing or dropped
     double resets = 0.0;  // restarts after a non-finite state or a covariance that is not positive definite
     // The covariance recursion of the last tick that ran it, to replay: it depends on P and on
-    // which updates applied, never on the data. When P before the prediction is bitwise what it
-    // was then (at its fixed point, most ticks of a walk), the same updates give the same gains
-    // and the same P, so only the state is updated; an update that applies now and did not then
-    // (or the reverse: a gate, a missing reading) runs the recursion from there. Exact: a replayed
-    // tick computes what the recursion would, to the bit.
+    // which updates applied, never on the data. When P before the prediction equals, entry by
+    // entry, what it was then (at its fixed point, most ticks of a walk), the same updates give the
+    // same gains and the same P, so only the state is updated; an update that applies now and did
+    // not then (or the reverse: a gate, a missing reading) runs the recursion from there. Exact: a
+    // replayed tick computes what the recursion would (-0.0 and +0.0 match, and give equal values).
     struct CovarianceTick {
       bool valid = false;
       Eigen::Matrix3d P_in = Eigen::Matrix3d::Zero();  // P before the prediction
