@@ -2173,8 +2173,9 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // that alone: its slope, fitted on a swing's readings, is extrapolated through the stance, and a
   // correction grown wrong by that is no sign the fault is over (a 12 N/s drift at 200 Hz was
   // dropped while 30 N, in a try). A drift's reading must also have stayed flat where the drift
-  // would have shown (StancePowers::trend): a pad that stays loaded to the end of a log (a robot that
-  // stops and stands) has no next swing, and its correction grew without bound. Only while it is the one correction the residual carries: with two, the
+  // would have shown (StancePowers::trend): a pad that stays loaded to the end of a log (a robot
+  // that stops and stands) has no next swing, and its correction grew without bound. Only while
+  // it is the one correction the residual carries: with two, the
   // one that ended and the one that did not both move it, and the one still faulty could win
   // first (a +48 N offset beside a +60 N one fading out).
   const double stance_bound = params_.gain_min_load_N * params_.gain_min_load_N;

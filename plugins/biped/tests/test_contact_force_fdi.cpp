@@ -920,6 +920,17 @@ TEST(ContactForceFdi, TwoGainsThatEndedTogetherAreDroppedTogether) {
   EXPECT_EQ(two_gains_cleared_at(false), -1);
 }
 
+// Tick k of a walk whose left foot swings (3 cm up) or stands: the left pads read 0 N in the air
+// and 100 N down, the right ones 200 N while the left swings and 100 N otherwise (800 N in all),
+// each +-0.5 N alternating tick by tick.
+void left_swing_loads(Feet& feet, int k, bool swinging) {
+  feet.left_foot_at(swinging ? 0.03 : 0.0);
+  const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    feet.measured[j] = (j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + wiggle;
+  }
+}
+
 // The left foot swings over ticks [100, land); l_foot/p1 reads an offset of `before` N from tick
 // 150, raised in the air, which becomes `after` N at tick 400, still in the air. Returns the tick
 // the channel is re-admitted (-1: never) and its fault estimate 50 ticks after the landing.
@@ -928,11 +939,7 @@ int offset_changed_in_flight(double before, double after, int land, double& esti
   int cleared = -1;
   for (int k = 0; k < land + 100; ++k) {
     const bool swinging = k >= 100 && k < land;
-    feet.left_foot_at(swinging ? 0.03 : 0.0);
-    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + wiggle;
-    }
+    left_swing_loads(feet, k, swinging);
     if (k >= 150) feet.measured[0] += k < 400 ? before : after;
     feet.step(800.0);
     if (k >= 200 && k < 400) {
@@ -987,11 +994,7 @@ FaultType fault_in_a_short_swing(double slope_N_s, int& drift_from, double& esti
   drift_from = -1;
   for (int k = 0; k < 400; ++k) {
     const bool swinging = k >= 100 && k < 350;
-    feet.left_foot_at(swinging ? 0.03 : 0.0);
-    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + wiggle;
-    }
+    left_swing_loads(feet, k, swinging);
     if (k >= 150) feet.measured[0] += 10.0 + slope_N_s * (k - 150) * 1e-3;
     feet.step(800.0);
     if (drift_from < 0 && feet.type(0) == FaultType::drift) drift_from = k;
@@ -1033,11 +1036,7 @@ TEST(ContactForceFdi, ADriftStaysADriftAtTheStartOfItsNextSwing) {
   int drift_from = -1;
   for (int k = 0; k < 900; ++k) {
     const bool swinging = (k >= 100 && k < 350) || (k >= 600 && k < 850);
-    feet.left_foot_at(swinging ? 0.03 : 0.0);
-    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + wiggle;
-    }
+    left_swing_loads(feet, k, swinging);
     if (k >= 150) feet.measured[0] += 10.0 + 40.0 * (k - 150) * 1e-3;
     feet.step(800.0);
     if (drift_from < 0 && feet.type(0) == FaultType::drift) drift_from = k;
@@ -1064,11 +1063,7 @@ int drift_fades_in_a_long_stance(double regrow_N_s, unsigned seed, bool& drift_a
   bool drift = false;
   for (int k = 0; k < 4000; ++k) {
     const bool swinging = k >= 100 && k < 350;
-    feet.left_foot_at(swinging ? 0.03 : 0.0);
-    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : 100.0) : (swinging ? 200.0 : 100.0)) + wiggle;
-    }
+    left_swing_loads(feet, k, swinging);
     const double fault = k < 150    ? 0.0
                          : k < 1000 ? 10.0 + 40.0 * (k - 150) * 1e-3
                          : k < 1200 ? (10.0 + 40.0 * 0.85) * (1200 - k) / 200.0
