@@ -24,13 +24,13 @@ namespace {
 using generic::CusumDetector;
 
 // Runs a one-channel detector tick by tick.
-struct OneChannel {
+struct OneCusumChannel {
   CusumDetector detector;
   std::vector<double> r{0.0}, fault{0.0}, type{0.0}, statistic{0.0}, direction{0.0}, judged{0.0};
   double t = 0.0;
   double period;
 
-  OneChannel(const CusumDetector::Params& p, double period_s)
+  OneCusumChannel(const CusumDetector::Params& p, double period_s)
       : detector(p, StageContext(period_s, "cusum", {{"residual", 1}})), period(period_s) {
     detector.reset();
   }
@@ -75,7 +75,7 @@ TEST(CusumDetector, AConstantShiftRaisesOnTheExactTickAndClearsOnTheExactTick) {
   p.noise_std = {2.0};
   p.min_change = {4.0};  // k = 1
   p.false_alarm_interval_s = 10.0;
-  OneChannel c(p, 1e-3);
+  OneCusumChannel c(p, 1e-3);
   const double h = c.detector.threshold(0);
   ASSERT_EQ(c.detector.samples_per_tick(), 1.0);  // white
   // A residual of 3 sigma = 6 adds 3 - k = 2 per tick: raised on tick ceil(h / 2).
@@ -105,11 +105,11 @@ TEST(CusumDetector, NegativeShiftsAndCentresAreSymmetric) {
   p.noise_std = {1.0};
   p.min_change = {2.0};
   p.centers = {10.0};
-  OneChannel c(p, 1e-3);
+  OneCusumChannel c(p, 1e-3);
   for (int n = 0; n < 1000 && c.fault[0] == 0.0; ++n) c.step(10.0 - 3.0);
   EXPECT_EQ(c.fault[0], 1.0);
   EXPECT_EQ(c.direction[0], -1.0);
-  OneChannel still(p, 1e-3);
+  OneCusumChannel still(p, 1e-3);
   for (int n = 0; n < 100000; ++n) still.step(10.0);
   EXPECT_EQ(still.fault[0], 0.0);
   EXPECT_EQ(still.statistic[0], 0.0);
@@ -117,7 +117,7 @@ TEST(CusumDetector, NegativeShiftsAndCentresAreSymmetric) {
 
 TEST(CusumDetector, ANonFiniteResidualIsNotJudgedAndHoldsTheState) {
   CusumDetector::Params p;
-  OneChannel c(p, 1e-3);
+  OneCusumChannel c(p, 1e-3);
   c.step(3.0);
   const double s = c.statistic[0];
   ASSERT_GT(s, 0.0);
@@ -135,7 +135,7 @@ TEST(CusumDetector, ANonFiniteResidualIsNotJudgedAndHoldsTheState) {
 TEST(CusumDetector, NoFlagDuringWarmup) {
   CusumDetector::Params p;
   p.warmup_s = 0.01;  // 10 ticks
-  OneChannel c(p, 1e-3);
+  OneCusumChannel c(p, 1e-3);
   for (int n = 0; n < 10; ++n) {
     c.step(1e6);
     EXPECT_EQ(c.fault[0], 0.0) << n;
@@ -154,7 +154,7 @@ double measured_false_alarm_interval_s(double period_s, double tau_c, double tar
   p.min_change = {3.0};  // k = 1
   p.correlation_time_s = tau_c;
   p.false_alarm_interval_s = target_s;
-  OneChannel c(p, period_s);
+  OneCusumChannel c(p, period_s);
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   const double rho = tau_c > 0.0 ? std::exp(-period_s / tau_c) : 0.0;
@@ -230,7 +230,7 @@ TEST(CusumDetector, SmoothResidualCalibratedByEFoldingMeetsTheTarget) {
     p.min_change = {3.0 * stats.standard_deviation()};
     p.correlation_time_s = e_folding ? stats.correlation_time_s() : lag_one_time;
     p.false_alarm_interval_s = 20.0;
-    OneChannel c(p, period);
+    OneCusumChannel c(p, period);
     int alarms = 0;
     const long ticks = 8000000;
     for (long n = 0; n < ticks; ++n) {
@@ -270,7 +270,7 @@ TEST(CusumDetector, DetectionDelayInSecondsIsTheSameAtEveryRate) {
   double delays[2];
   const double periods[2] = {1e-3, 5e-3};
   for (int i = 0; i < 2; ++i) {
-    OneChannel c(p, periods[i]);
+    OneCusumChannel c(p, periods[i]);
     int n = 0;
     while (c.fault[0] == 0.0 && n < 100000) {
       c.step(3.0);

@@ -34,7 +34,7 @@ namespace ftsense {
 namespace {
 
 using generic::FaultMerge;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNotANumber = std::numeric_limits<double>::quiet_NaN();
 
 struct Merged {
   std::vector<double> fault, type, source, cannot_judge;
@@ -100,7 +100,7 @@ TEST(FaultMerge, DefaultOrderPutsCertainEvidenceFirst) {
 TEST(FaultMerge, AFlagWithoutATypeIsUnclassifiedAndANaNFlagIsNoFlag) {
   // ch 0: flagged with code none; ch 1: flagged with a code that is no type (42);
   // ch 2: flag NaN with a type (not a flag); ch 3: flag Inf (not a flag).
-  const Merged m = merge_once({}, {1, 1, kNaN, std::numeric_limits<double>::infinity(), 0, 0, 0, 0},
+  const Merged m = merge_once({}, {1, 1, kNotANumber, std::numeric_limits<double>::infinity(), 0, 0, 0, 0},
                               {code(FaultType::none), 42.0, code(FaultType::offset), code(FaultType::offset),  //
                                0, 0, 0, 0});
   EXPECT_EQ(m.fault, (std::vector<double>{1, 1, 0, 0}));
@@ -138,7 +138,7 @@ TEST(FaultMerge, CannotJudgeHoldsOnlyWhileNoSourceFlagsTheChannel) {
   // ch 2: judged -> 0; ch 3: NaN -> 0; ch 4: 0.5 (nonzero) -> 1; ch 5: Inf -> 0.
   const double inf = std::numeric_limits<double>::infinity();
   const Merged m = merge_once(p, {0, 1, 0, 0, 0, 0, /**/ 0, 0, 0, 0, 0, 0},
-                              {0, code(FaultType::invalid), 0, 0, 0, 0, /**/ 0, 0, 0, 0, 0, 0}, {1, 1, 0, kNaN, 0.5, inf});
+                              {0, code(FaultType::invalid), 0, 0, 0, 0, /**/ 0, 0, 0, 0, 0, 0}, {1, 1, 0, kNotANumber, 0.5, inf});
   EXPECT_EQ(m.cannot_judge, (std::vector<double>{1, 0, 0, 0, 1, 0}));
   EXPECT_EQ(m.type[1], code(FaultType::invalid));
 }

@@ -15,7 +15,7 @@ namespace ftsense::report {
 namespace {
 
 // 10 samples at 1 s.
-const std::vector<double> kTime{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+const std::vector<double> kTenSeconds{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
 
 TEST(ReportAlarms, StretchesAfterWarmupWithTheTypeShownMost) {
   MetricOptions o;
@@ -24,7 +24,7 @@ TEST(ReportAlarms, StretchesAfterWarmupWithTheTypeShownMost) {
   // once, one still raised at the end with no type (unclassified).
   const std::vector<double> flag{1, 0, 0, 1, 1, 1, 0, 0, 1, 1};
   const std::vector<double> type{2, 0, 0, 2, 3, 2, 0, 0, 0, 0};
-  const auto a = channel_alarms("c", kTime, flag, type, o);
+  const auto a = channel_alarms("c", kTenSeconds, flag, type, o);
   ASSERT_EQ(a.size(), 2u);
   EXPECT_EQ(a[0].channel, "c");
   EXPECT_EQ(a[0].start_s, 3.0);
@@ -36,11 +36,11 @@ TEST(ReportAlarms, StretchesAfterWarmupWithTheTypeShownMost) {
   EXPECT_EQ(a[1].type, FaultType::unclassified);
   // An alarm raised in the warm-up that lasts beyond it is listed from its start.
   const std::vector<double> early{0, 1, 1, 1, 0, 0, 0, 0, 0, 0};
-  const auto b = channel_alarms("c", kTime, early, std::vector<double>(10, 4.0), o);
+  const auto b = channel_alarms("c", kTenSeconds, early, std::vector<double>(10, 4.0), o);
   ASSERT_EQ(b.size(), 1u);
   EXPECT_EQ(b[0].start_s, 1.0);
   EXPECT_EQ(b[0].type, FaultType::frozen);
-  EXPECT_TRUE(channel_alarms("c", kTime, std::vector<double>(10, 0.0), type, o).empty());
+  EXPECT_TRUE(channel_alarms("c", kTenSeconds, std::vector<double>(10, 0.0), type, o).empty());
 }
 
 TEST(ReportDocument, MarkdownTablesEscapePipes) {

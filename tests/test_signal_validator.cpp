@@ -33,14 +33,14 @@ namespace {
 
 using generic::SignalValidator;
 
-struct OneChannel {
+struct OneValidatedChannel {
   SignalValidator validator;
   bool with_reference;
   std::vector<double> x{0.0}, r{0.0}, fault{0.0}, type{0.0};
   double t = 0.0;
   double period;
 
-  OneChannel(const SignalValidator::Params& p, double period_s)
+  OneValidatedChannel(const SignalValidator::Params& p, double period_s)
       : validator(p, StageContext(period_s, "v", p.reference ? std::vector<std::pair<std::string, std::size_t>>{{"signal", 1}, {"reference", 1}}
                                                             : std::vector<std::pair<std::string, std::size_t>>{{"signal", 1}})),
         with_reference(p.reference),
@@ -77,7 +77,7 @@ TEST(SignalValidator, InvalidAndSaturationOnTheirTick) {
   p.noise_std = {100.0};  // so that the jumps below are not spikes
   p.resolution = {1.0};
   p.upper_limit = {100.0};
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   EXPECT_EQ(c.step(10.0), FaultType::none);
   EXPECT_EQ(c.step(std::nan("")), FaultType::invalid);
   EXPECT_EQ(c.step(11.0), FaultType::none);
@@ -100,7 +100,7 @@ TEST(SignalValidator, AFrozenReadingIsFlaggedOnTheTickItsLastMovesLeaveTheWindow
   p.noise_std = {1.0};
   p.window_s = 0.05;
   p.noise_margin = 1.0;  // the bound as computed below; NoiseMargin* tests the margin
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   const std::size_t n = c.validator.window_ticks();
   ASSERT_EQ(n, 50u);
   const double nu = 36.0 * 50.0 / 70.0;
@@ -129,7 +129,7 @@ TEST(SignalValidator, ACoarselyQuantisedHealthySensorThatRepeatsItselfIsNotFroze
   SignalValidator::Params p;
   p.noise_std = {1.0};
   p.resolution = {5.0};
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   constexpr unsigned kSeed = 11;
   std::printf("seed %u\n", kSeed);
   std::mt19937_64 rng(kSeed);
@@ -151,7 +151,7 @@ TEST(SignalValidator, HealthyNoisyQuantisedSensorsRaiseNothingAtAnyRate) {
     SignalValidator::Params p;
     p.noise_std = {3.0};
     p.resolution = {5.0};
-    OneChannel c(p, period);
+    OneValidatedChannel c(p, period);
     std::mt19937_64 rng(kSeed);
     std::normal_distribution<double> noise(0.0, 3.0);
     int flagged = 0;
@@ -172,7 +172,7 @@ TEST(SignalValidator, AFrozenOutputThatStillCarriesNoiseIsCaughtAgainstTheRefere
   p.reference = true;
   p.reference_noise_std = {5.0};
   p.window_s = 0.1;
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   constexpr unsigned kSeed = 13;
   std::printf("seed %u\n", kSeed);
   std::mt19937_64 rng(kSeed);
@@ -199,7 +199,7 @@ TEST(SignalValidator, ASpikeIsFlaggedOneTickLateAndHeldForSpikeHold) {
   p.noise_std = {1.0};
   p.window_s = 0.02;      // 20 ticks
   p.spike_hold_s = 0.04;  // 40 ticks: a first spike's rate is unknown
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   constexpr unsigned kSeed = 16;
   std::printf("seed %u\n", kSeed);
   std::mt19937_64 rng(kSeed);
@@ -220,7 +220,7 @@ TEST(SignalValidator, ASpikeTrainIsHeldThroughItsGapsAndClearsAfterTheGapItsRate
   SignalValidator::Params p;
   p.noise_std = {1.0};
   p.window_s = 0.1;
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   int first = -1, last = -1, flagged = 0;
   for (int k = 0; k < 4000; ++k) {
     const bool spike = k >= 1000 && k <= 2000 && (k - 1000) % 50 == 0;
@@ -271,7 +271,7 @@ TEST(SignalValidator, AStepIsNeitherASpikeNorNoise) {
   // fault (the residual detectors judge offsets).
   SignalValidator::Params p;
   p.noise_std = {1.0};
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   constexpr unsigned kSeed = 14;
   std::printf("seed %u\n", kSeed);
   std::mt19937_64 rng(kSeed);
@@ -285,7 +285,7 @@ TEST(SignalValidator, ANoiseBurstIsFlaggedWithinAWindowAndClearsAfterIt) {
   SignalValidator::Params p;
   p.noise_std = {1.0};
   p.window_s = 0.1;
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   constexpr unsigned kSeed = 15;
   std::printf("seed %u\n", kSeed);
   std::mt19937_64 rng(kSeed);
@@ -314,7 +314,7 @@ TEST(SignalValidator, ABurstIsNoiseThoughItsSamplesLookLikeSpikesAndSparseSpikes
   SignalValidator::Params p;
   p.noise_std = {1.0};
   p.window_s = 0.1;
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   constexpr unsigned kSeed = 16;
   std::printf("seed %u\n", kSeed);
   std::mt19937_64 rng(kSeed);
@@ -345,7 +345,7 @@ TEST(SignalValidator, OnlyTheChosenTestsRunBesidesInvalidAndSaturation) {
   p.noise_std = {1.0};
   p.upper_limit = {1000.0};
   p.tests = {"frozen"};
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   constexpr unsigned kSeed = 17;
   std::printf("seed %u\n", kSeed);
   std::mt19937_64 rng(kSeed);
@@ -372,7 +372,7 @@ TEST(SignalValidator, WithoutTheFrozenTestAStillReadingIsNotFrozen) {
     p.reference = true;
     p.reference_noise_std = {1.0};
     if (!with_frozen) p.tests = {"spikes", "noise"};
-    OneChannel still(p, 1e-3), unfollowing(p, 1e-3);
+    OneValidatedChannel still(p, 1e-3), unfollowing(p, 1e-3);
     FaultType last_still = FaultType::none, last_unfollowing = FaultType::none;
     for (int k = 0; k < 500; ++k) {
       const double load = 100.0 + 200.0 * std::sin(0.01 * k);  // 200 N swings, 0.6 s period
@@ -399,7 +399,7 @@ TEST(SignalValidator, ARunOnTheRestValueIsNoFrozenEvidenceButARunElsewhereStillI
     p.window_s = 0.05;
     p.noise_margin = 1.0;  // the stale bound of the test above
     if (with_rest) p.rest_value = {0.0};
-    OneChannel c(p, 1e-3);
+    OneValidatedChannel c(p, 1e-3);
     const int n = static_cast<int>(c.validator.window_ticks());
     constexpr int kAir = 300, kLanding = 800, kFreeze = 1200;
     double last = 0.0;
@@ -427,7 +427,7 @@ TEST(SignalValidator, StuckAgainAtThePreviousEpisodesValueIsSaturationElsewhereF
   p.noise_std = {1.0};
   p.window_s = 0.05;
   p.noise_margin = 1.0;  // the stale bound of the tests above
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   const int n = static_cast<int>(c.validator.window_ticks());
   for (int k = 0; k < 1100; ++k) {
     const int start = k >= 900 ? 900 : k >= 500 && k < 700 ? 500 : k >= 100 && k < 300 ? 100 : -1;
@@ -447,7 +447,7 @@ TEST(SignalValidator, AReadingStuckOnItsRestValueIsFrozenWhenItsReferenceMoves) 
   p.rest_value = {0.0};
   p.reference = true;
   p.reference_noise_std = {1.0};
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   int flagged_in_air = 0;
   for (int k = 0; k < 1000; ++k) flagged_in_air += c.step(0.0, 0.0) != FaultType::none;
   EXPECT_EQ(flagged_in_air, 0);
@@ -469,7 +469,7 @@ TEST(SignalValidator, NoiseMarginKeepsAHealthySensorNoisierOrQuieterThanStatedUn
       SignalValidator::Params p;
       p.noise_std = {1.0};
       p.noise_margin = margin;
-      OneChannel c(p, 1e-3);
+      OneValidatedChannel c(p, 1e-3);
       std::mt19937_64 rng(kSeed);
       std::normal_distribution<double> noise(0.0, ratio);
       int flagged = 0;
@@ -486,7 +486,7 @@ TEST(SignalValidator, NoiseMarginKeepsAHealthySensorNoisierOrQuieterThanStatedUn
   }
   SignalValidator::Params p;
   p.noise_std = {1.0};
-  OneChannel c(p, 1e-3);
+  OneValidatedChannel c(p, 1e-3);
   std::mt19937_64 rng(kSeed);
   std::normal_distribution<double> noise(0.0, 1.0);
   FaultType last = FaultType::none;

@@ -9,9 +9,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "scenario_dir.hpp"
+
 namespace {
 namespace fs = std::filesystem;
-const fs::path kDir = FTSENSE_SIM_SCENARIO_DIR;
+using ftsense::sim::testing::kScenarioDir;
 
 struct Result {
   int status;

@@ -10,7 +10,7 @@
 using namespace ftsense::sim;
 
 namespace {
-constexpr std::uint64_t kSeed = 20240611;
+constexpr std::uint64_t kKinematicsSeed = 20240611;
 
 LegAngles random_angles(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -28,8 +28,8 @@ TEST(LegKinematics, RpyRoundTrip) {
 }
 
 TEST(LegKinematics, InverseOfForwardRecoversAnglesAndPose) {
-  std::printf("seed %llu\n", static_cast<unsigned long long>(kSeed));
-  std::mt19937_64 rng(kSeed);
+  std::printf("seed %llu\n", static_cast<unsigned long long>(kKinematicsSeed));
+  std::mt19937_64 rng(kKinematicsSeed);
   const LegGeometry g;
   for (int i = 0; i < 2000; ++i) {
     Pose hip;
@@ -61,7 +61,7 @@ TEST(LegKinematics, ForwardMatchesMujocoModel) {
   MjModelPtr m = load_mjcf_string(suralp_mjcf(rp));
   MjDataPtr d(mj_makeData(m.get()));
   const LegGeometry g{rp.upper_leg_m, rp.lower_leg_m, rp.sole_ankle_m};
-  std::mt19937_64 rng(kSeed + 1);
+  std::mt19937_64 rng(kKinematicsSeed + 1);
   const char* joints[2][6] = {
       {"l_hip_yaw", "l_hip_roll", "l_hip_pitch", "l_knee", "l_ankle_pitch", "l_ankle_roll"},
       {"r_hip_yaw", "r_hip_roll", "r_hip_pitch", "r_knee", "r_ankle_pitch", "r_ankle_roll"}};

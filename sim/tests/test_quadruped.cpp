@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scenario_dir.hpp"
 #include "csv_table.hpp"
 #include "ftsense/robot_model/kinematic_tree.hpp"
 #include "ftsense/sim/crawl_gait.hpp"
@@ -31,11 +32,11 @@ using nlohmann::json;
 
 namespace {
 namespace fs = std::filesystem;
-const fs::path kDir = FTSENSE_SIM_SCENARIO_DIR;
-const fs::path kUrdf = kDir / ".." / "quadruped" / "quadruped.urdf";
-constexpr std::uint64_t kSeed = 1;
+using ftsense::sim::testing::kScenarioDir;
+const fs::path kUrdf = kScenarioDir / ".." / "quadruped" / "quadruped.urdf";
+constexpr std::uint64_t kQuadrupedSeed = 1;
 
-std::string run(const Scenario& sc, SimulationSummary& sum, std::uint64_t seed = kSeed) {
+std::string run(const Scenario& sc, SimulationSummary& sum, std::uint64_t seed = kQuadrupedSeed) {
   std::ostringstream os;
   sum = simulate(sc, seed, os);
   std::printf("%s: %s | cpu %.2f s for %.1f s | stance sum/mg %.5f | CoM err rms %.4f max %.4f m | tilt max %.4f rad\n",
@@ -45,7 +46,7 @@ std::string run(const Scenario& sc, SimulationSummary& sum, std::uint64_t seed =
 }
 
 Scenario clean(double duration_s) {
-  Scenario sc = load_scenario(kDir / "quadruped_clean.json");
+  Scenario sc = load_scenario(kScenarioDir / "quadruped_clean.json");
   sc.duration_s = duration_s;
   return sc;
 }
@@ -307,10 +308,10 @@ TEST(QuadrupedScenario, DefaultsAndShippedFiles) {
   EXPECT_EQ(s.sensors.force_noise_std_N, kQuadrupedForceNoiseStdN);
   EXPECT_EQ(parse_scenario(json::parse(R"({"duration_s": 10, "gait": {"step_length_m": 0.15, "step_time_s": 1.0,
       "double_support_ratio": 0.2}, "faults": []})")).robot_kind, RobotKind::suralp);
-  const Scenario c = load_scenario(kDir / "quadruped_clean.json");
+  const Scenario c = load_scenario(kScenarioDir / "quadruped_clean.json");
   EXPECT_TRUE(c.faults.empty());
   EXPECT_GE(c.duration_s, 30.0);
-  const Scenario f = load_scenario(kDir / "quadruped_faults.json");
+  const Scenario f = load_scenario(kScenarioDir / "quadruped_faults.json");
   EXPECT_GE(f.duration_s, 30.0);
   const CrawlPlan plan(f.crawl, f.quadruped.hip_x_m, f.quadruped.foot_radius_m, f.duration_s);
   std::set<ftsense::FaultType> types;

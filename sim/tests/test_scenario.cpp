@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scenario_dir.hpp"
 #include "ftsense/sim/scenario.hpp"
 
 using namespace ftsense::sim;
@@ -15,7 +16,7 @@ using ftsense::FaultType;
 using nlohmann::json;
 
 namespace {
-const std::filesystem::path kDir = FTSENSE_SIM_SCENARIO_DIR;
+using ftsense::sim::testing::kScenarioDir;
 
 json minimal() {
   return json::parse(R"({"duration_s": 10, "gait": {"step_length_m": 0.15, "step_time_s": 1.0,
@@ -34,12 +35,12 @@ std::vector<std::string> problems_of(const json& doc) {
 
 TEST(Scenario, ShippedScenariosLoad) {
   for (const char* name : {"paper.json", "clean.json", "mixed.json"}) {
-    EXPECT_NO_THROW((void)load_scenario(kDir / name)) << name;
+    EXPECT_NO_THROW((void)load_scenario(kScenarioDir / name)) << name;
   }
 }
 
 TEST(Scenario, PaperScenarioHasTheFourFaultsAtFiveSeconds) {
-  const Scenario s = load_scenario(kDir / "paper.json");
+  const Scenario s = load_scenario(kScenarioDir / "paper.json");
   ASSERT_EQ(s.faults.size(), 4u);
   for (const auto& f : s.faults) {
     EXPECT_EQ(f.start_s, 5.0);
@@ -54,7 +55,7 @@ TEST(Scenario, PaperScenarioHasTheFourFaultsAtFiveSeconds) {
 }
 
 TEST(Scenario, MixedScenarioCoversEveryOtherFaultTypeOnBothFeet) {
-  const Scenario s = load_scenario(kDir / "mixed.json");
+  const Scenario s = load_scenario(kScenarioDir / "mixed.json");
   std::set<FaultType> types;
   bool left = false, right = false, intermittent = false, frozen_last = false;
   for (const auto& f : s.faults) {
@@ -71,7 +72,7 @@ TEST(Scenario, MixedScenarioCoversEveryOtherFaultTypeOnBothFeet) {
 }
 
 TEST(Scenario, CleanScenarioIsLongAndFaultFree) {
-  const Scenario s = load_scenario(kDir / "clean.json");
+  const Scenario s = load_scenario(kScenarioDir / "clean.json");
   EXPECT_GE(s.duration_s, 30.0);
   EXPECT_TRUE(s.faults.empty());
 }
@@ -206,7 +207,7 @@ TEST(Scenario, RootMustBeAnObject) {
 TEST(Scenario, SyntaxErrorsAndMissingFilesAreScenarioErrors) {
   EXPECT_THROW((void)parse_scenario_text("{\"duration_s\": "), ScenarioError);
   try {
-    (void)load_scenario(kDir / "does_not_exist.json");
+    (void)load_scenario(kScenarioDir / "does_not_exist.json");
     FAIL();
   } catch (const ScenarioError& e) {
     ASSERT_EQ(e.problems().size(), 1u);

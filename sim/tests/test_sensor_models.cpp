@@ -11,7 +11,7 @@ using namespace ftsense::sim;
 using ftsense::FaultType;
 
 namespace {
-constexpr std::uint64_t kSeed = 42;
+constexpr std::uint64_t kSensorSeed = 42;
 constexpr double kDt = 0.001;
 
 double truth(std::int64_t k) { return 300.0 + 200.0 * std::sin(0.003 * static_cast<double>(k)); }
@@ -31,7 +31,7 @@ struct Trace {
 };
 
 Trace run(const FaultSpec& f, std::int64_t n = 4000, double noise = 0.0) {
-  ForceChannelModel ch(f.channel, noise, {f}, kDt, kSeed);
+  ForceChannelModel ch(f.channel, noise, {f}, kDt, kSensorSeed);
   Trace tr;
   for (std::int64_t k = 0; k < n; ++k) {
     const auto o = ch.step(k, truth(k));
@@ -43,8 +43,8 @@ Trace run(const FaultSpec& f, std::int64_t n = 4000, double noise = 0.0) {
 }  // namespace
 
 TEST(Rng, IsDeterministicAndStreamsDiffer) {
-  std::printf("seed %llu\n", static_cast<unsigned long long>(kSeed));
-  Rng a(kSeed, 1), b(kSeed, 1), c(kSeed, 2);
+  std::printf("seed %llu\n", static_cast<unsigned long long>(kSensorSeed));
+  Rng a(kSensorSeed, 1), b(kSensorSeed, 1), c(kSensorSeed, 2);
   for (int i = 0; i < 100; ++i) {
     const double x = a.normal();
     EXPECT_EQ(x, b.normal());
@@ -56,7 +56,7 @@ TEST(Rng, StandardMt19937_64AndUniformRange) {
   std::mt19937_64 e;  // the standard fixes its 10000th output
   e.discard(9999);
   EXPECT_EQ(e(), 9981545732273789042ULL);
-  Rng r(kSeed, 3);
+  Rng r(kSensorSeed, 3);
   for (int i = 0; i < 10000; ++i) {
     const double u = r.uniform();
     ASSERT_GE(u, 0.0);
@@ -65,7 +65,7 @@ TEST(Rng, StandardMt19937_64AndUniformRange) {
 }
 
 TEST(Rng, NormalHasUnitMomentsOverManySamples) {
-  Rng r(kSeed, 4);
+  Rng r(kSensorSeed, 4);
   const int n = 200000;
   double s1 = 0, s2 = 0, s4 = 0;
   for (int i = 0; i < n; ++i) {
@@ -80,7 +80,7 @@ TEST(Rng, NormalHasUnitMomentsOverManySamples) {
 }
 
 TEST(ForceChannel, NoiseOnlyWithoutFaults) {
-  ForceChannelModel ch(0, 2.0, {}, kDt, kSeed);
+  ForceChannelModel ch(0, 2.0, {}, kDt, kSensorSeed);
   double s2 = 0.0;
   for (std::int64_t k = 0; k < 20000; ++k) {
     const auto o = ch.step(k, truth(k));
@@ -180,7 +180,7 @@ TEST(ForceChannel, SameSeedSameOutputDifferentSeedDifferent) {
   f.amplitude_N = 10.0;
   const Trace a = run(f, 2000, 2.0), b = run(f, 2000, 2.0);
   EXPECT_EQ(a.y, b.y);
-  ForceChannelModel other(f.channel, 2.0, {f}, kDt, kSeed + 1);
+  ForceChannelModel other(f.channel, 2.0, {f}, kDt, kSensorSeed + 1);
   EXPECT_NE(other.step(0, truth(0)).value, a.y[0]);
 }
 
@@ -205,8 +205,8 @@ TEST(ForceChannel, FrozenWithNoiseKeepsItsValueAsTheMeanAndTheNoiseAsTheSpread) 
 TEST(ForceChannel, ResolutionQuantisesEveryReadingFaultsIncluded) {
   FaultSpec f = fault(FaultType::offset, 1.0, 2.0);
   f.offset_N = 12.3;
-  ForceChannelModel ch(f.channel, 2.0, {f}, kDt, kSeed, kDt, 5.0);
-  ForceChannelModel exact(f.channel, 2.0, {f}, kDt, kSeed);  // the same noise, not quantised
+  ForceChannelModel ch(f.channel, 2.0, {f}, kDt, kSensorSeed, kDt, 5.0);
+  ForceChannelModel exact(f.channel, 2.0, {f}, kDt, kSensorSeed);  // the same noise, not quantised
   for (std::int64_t k = 0; k < 3000; ++k) {
     const double y = ch.step(k, truth(k)).value;
     const double x = exact.step(k, truth(k)).value;
@@ -214,7 +214,7 @@ TEST(ForceChannel, ResolutionQuantisesEveryReadingFaultsIncluded) {
     EXPECT_FALSE(std::signbit(y) && y == 0.0) << k;  // never -0
   }
   FaultSpec dropout = fault(FaultType::invalid, 0.0);
-  ForceChannelModel nan_channel(dropout.channel, 2.0, {dropout}, kDt, kSeed, kDt, 5.0);
+  ForceChannelModel nan_channel(dropout.channel, 2.0, {dropout}, kDt, kSensorSeed, kDt, 5.0);
   EXPECT_TRUE(std::isnan(nan_channel.step(0, 100.0).value));
 }
 
@@ -224,8 +224,8 @@ TEST(ForceChannel, ZeroClampReadsExactZerosBelowItFaultsIncluded) {
   // 1.5 N, else exactly 0 (the offset's negative readings too). After quantisation (q = 1).
   FaultSpec f = fault(FaultType::offset, 3.0, 3.5);
   f.offset_N = -80.0;
-  ForceChannelModel ch(f.channel, 0.5, {f}, kDt, kSeed, kDt, 1.0, 1.5);
-  ForceChannelModel plain(f.channel, 0.5, {f}, kDt, kSeed, kDt, 1.0);  // the same noise, no clamp
+  ForceChannelModel ch(f.channel, 0.5, {f}, kDt, kSensorSeed, kDt, 1.0, 1.5);
+  ForceChannelModel plain(f.channel, 0.5, {f}, kDt, kSensorSeed, kDt, 1.0);  // the same noise, no clamp
   int zeros_unloaded = 0;
   for (std::int64_t k = 0; k < 4000; ++k) {
     const double load = k < 2000 ? 0.0 : 50.0;
@@ -242,6 +242,6 @@ TEST(ForceChannel, ZeroClampReadsExactZerosBelowItFaultsIncluded) {
   // 0.13 %; of 2000 ticks at least 1990 read exactly 0.
   EXPECT_GE(zeros_unloaded, 1990);
   FaultSpec dropout = fault(FaultType::invalid, 0.0);
-  ForceChannelModel nan_channel(dropout.channel, 0.5, {dropout}, kDt, kSeed, kDt, 0.0, 1.5);
+  ForceChannelModel nan_channel(dropout.channel, 0.5, {dropout}, kDt, kSensorSeed, kDt, 0.0, 1.5);
   EXPECT_TRUE(std::isnan(nan_channel.step(0, 100.0).value));
 }

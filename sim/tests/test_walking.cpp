@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "scenario_dir.hpp"
 #include "csv_table.hpp"
 #include "ftsense/sim/leg_kinematics.hpp"
 #include "ftsense/sim/simulator.hpp"
@@ -17,15 +18,15 @@ using ftsense::FaultType;
 using ftsense::sim::testing::CsvTable;
 
 namespace {
-const std::filesystem::path kDir = FTSENSE_SIM_SCENARIO_DIR;
-constexpr std::uint64_t kSeed = 1;
+using ftsense::sim::testing::kScenarioDir;
+constexpr std::uint64_t kWalkSeed = 1;
 
 struct SimRun {
   SimulationSummary sum;
   std::string csv;
 };
 
-SimRun run(const Scenario& sc, std::uint64_t seed = kSeed) {
+SimRun run(const Scenario& sc, std::uint64_t seed = kWalkSeed) {
   std::ostringstream os;
   SimRun r;
   r.sum = simulate(sc, seed, os);
@@ -59,7 +60,7 @@ std::vector<double> edges(const CsvTable& t, const std::string& col, double from
 }  // namespace
 
 TEST(Standing, PadForcesSumToWeightWithinOnePercent) {
-  Scenario sc = load_scenario(kDir / "clean.json");
+  Scenario sc = load_scenario(kScenarioDir / "clean.json");
   sc.name = "standing";
   sc.duration_s = 3.0;
   sc.gait.num_steps = 0;
@@ -105,7 +106,7 @@ struct Gait {
 class Walking : public ::testing::TestWithParam<Gait> {};
 
 TEST_P(Walking, ThirtySecondsWithoutFallingWithCleanContactsAndForces) {
-  Scenario sc = load_scenario(kDir / "clean.json");
+  Scenario sc = load_scenario(kScenarioDir / "clean.json");
   sc.gait.step_length_m = GetParam().length;
   sc.gait.step_time_s = GetParam().time;
   sc.name = "clean " + std::to_string(GetParam().length) + " m / " + std::to_string(GetParam().time) + " s";
@@ -205,7 +206,7 @@ TEST(Walking, ALighterBipedOfAnotherBuildWalksAndItsPadsCarryItsWeight) {
 }
 
 TEST(Determinism, SameScenarioAndSeedGiveByteIdenticalLogs) {
-  Scenario sc = load_scenario(kDir / "paper.json");
+  Scenario sc = load_scenario(kScenarioDir / "paper.json");
   sc.duration_s = 8.0;
   const SimRun a = run(sc, 7), b = run(sc, 7), c = run(sc, 8);
   EXPECT_EQ(a.csv, b.csv);
@@ -218,7 +219,7 @@ TEST(Determinism, SameScenarioAndSeedGiveByteIdenticalLogs) {
 }
 
 TEST(LogFormat, ColumnsTimeAndNaNSpelling) {
-  Scenario sc = load_scenario(kDir / "mixed.json");
+  Scenario sc = load_scenario(kScenarioDir / "mixed.json");
   sc.duration_s = 8.6;
   const SimRun r = run(sc);
   const auto header = r.csv.substr(0, r.csv.find('\n'));
@@ -236,7 +237,7 @@ TEST(LogFormat, ColumnsTimeAndNaNSpelling) {
 }
 
 TEST(Faults, EveryInjectedSignalMatchesItsDefinitionAgainstTruth) {
-  Scenario sc = load_scenario(kDir / "mixed.json");
+  Scenario sc = load_scenario(kScenarioDir / "mixed.json");
   sc.sensors.force_noise_std_N = 0.0;  // exact comparisons
   const SimRun r = run(sc, 3);
   ASSERT_FALSE(r.sum.fell);
@@ -306,7 +307,7 @@ TEST(Faults, EveryInjectedSignalMatchesItsDefinitionAgainstTruth) {
 }
 
 TEST(Faults, PaperScenarioOffsetsDriftAndFrozenZeroWithNoise) {
-  Scenario sc = load_scenario(kDir / "paper.json");
+  Scenario sc = load_scenario(kScenarioDir / "paper.json");
   sc.duration_s = 9.0;
   const SimRun r = run(sc);
   const CsvTable t = CsvTable::parse(r.csv);
@@ -332,7 +333,7 @@ TEST(Faults, PaperScenarioOffsetsDriftAndFrozenZeroWithNoise) {
 }
 
 TEST(Readme, LibraryExample) {
-  const std::filesystem::path dir = kDir;
+  const std::filesystem::path dir = kScenarioDir;
   // --- as in sim/README.md ---
   ftsense::sim::Scenario sc = ftsense::sim::load_scenario(dir / "clean.json");  // throws ScenarioError
   sc.duration_s = 5.0;
