@@ -50,9 +50,6 @@ std::string pipeline_document_markdown() {
   return os.str();
 }
 
-// The tick period the port tables' example stages are built for (ports rarely depend on it).
-constexpr double kExampleSamplePeriodS = 0.001;
-
 std::string unit_text(std::string_view unit) {
   if (unit == kAnyUnit) return "any";
   if (unit == kAnyUnitSquared) return "any^2";
@@ -83,7 +80,8 @@ void port_table(std::ostringstream& os, std::string_view direction, const std::v
 std::string ports_markdown(const PluginInfo& plugin) {
   std::ostringstream os;
   Diagnostics diag;
-  const std::optional<Ports> ports = plugin.example_ports ? plugin.example_ports(kExampleSamplePeriodS, diag) : std::nullopt;
+  const std::optional<Ports> ports =
+      plugin.example_ports ? plugin.example_ports(kExamplePortsSamplePeriodS, diag) : std::nullopt;
   if (!ports) {
     os << "Ports: declared when the stage is built (the example parameters do not construct it";
     if (!diag.errors().empty()) os << ": " << diag.errors().front().text();

@@ -11,8 +11,6 @@ namespace ftsense {
 namespace {
 
 constexpr std::string_view kIdentifierPattern = "^[A-Za-z_][A-Za-z0-9_]*$";
-// The tick period the example stages are built with to list their input ports.
-constexpr double kExampleSamplePeriodS = 0.001;
 
 std::string ref(std::string_view definition) { return "#/definitions/" + std::string(definition); }
 
@@ -170,7 +168,7 @@ Json plugin_params_schema(const PluginInfo& plugin) {
 Json plugin_stage_rule(const PluginInfo& plugin) {
   Json then{{"properties", {{"params", ref_to("params." + plugin.name)}}}};
   Diagnostics ignored;
-  if (const std::optional<Ports> ports = plugin.example_ports ? plugin.example_ports(kExampleSamplePeriodS, ignored)
+  if (const std::optional<Ports> ports = plugin.example_ports ? plugin.example_ports(kExamplePortsSamplePeriodS, ignored)
                                                                : std::nullopt) {
     then["properties"]["inputs"] = {{"propertyNames", {{"enum", ports->input_names()}}}};
   }

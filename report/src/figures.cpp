@@ -14,12 +14,13 @@
 #include "ftsense/json_text.hpp"
 #include "ftsense/params.hpp"
 #include "ftsense/text_file.hpp"
+#include "gnuplot_text.hpp"
 
 namespace ftsense::report {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kGap = std::numeric_limits<double>::quiet_NaN();  // gnuplot leaves a gap at NaN
 constexpr std::size_t kMaxRows = 2500;  // data rows per figure: enough for 1400 px
 constexpr double kMinStretchS = 0.05;           // shorter type stretches are widened to show
 constexpr double kMergeGapS = 0.2;              // shaded stretches closer than this are one
@@ -45,16 +46,6 @@ std::string two_decimals(double v) {
   std::ostringstream os;
   os << std::fixed << std::setprecision(2) << v;
   return os.str();
-}
-
-// gnuplot single-quoted string: a quote is doubled.
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    out += c;
-    if (c == '\'') out += '\'';
-  }
-  return out + "'";
 }
 
 // A stretch of samples [first, last] with one code.
@@ -184,7 +175,7 @@ std::vector<Panel> figure_channels(const ScoredRun& run, const std::vector<Chann
 }
 
 void run_gnuplot(const std::string& script, const std::string& log) {
-  const std::string command = "gnuplot " + quoted(script) + " 2> " + quoted(log);
+  const std::string command = "gnuplot " + gnuplot_quoted(script) + " 2> " + gnuplot_quoted(log);
   if (std::system(command.c_str()) != 0) {
     throw std::runtime_error("gnuplot failed (see " + log + "); install gnuplot-nox, or use --no-figures");
   }
@@ -225,12 +216,12 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
       for (const Panel& p : panels) {
         const RunChannel& ch = run.channels[p.channel];
         const double measured = ch[MonitorColumn::measured][k];
-        const double true_force = ch.true_force != nullptr ? (*ch.true_force)[k] : kNaN;
+        const double true_force = ch.true_force != nullptr ? (*ch.true_force)[k] : kGap;
         put(measured);
         put(ch[MonitorColumn::virtual_value][k]);
         put(true_force);
         put(ch[MonitorColumn::fault_estimate][k]);
-        put(ch.raw_fault_estimate != nullptr ? (*ch.raw_fault_estimate)[k] : kNaN);
+        put(ch.raw_fault_estimate != nullptr ? (*ch.raw_fault_estimate)[k] : kGap);
         put(measured - true_force);
         put(ch[MonitorColumn::recovered][k]);
       }
@@ -254,7 +245,7 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
 
   std::vector<RunFigure> figures;
   std::ostringstream gp;
-  const std::string dat_q = quoted(dat);
+  const std::string dat_q = gnuplot_quoted(dat);
   gp << "set datafile missing 'NaN'\nset grid\nset key outside right top vertical box opaque\n"
      << "set xlabel 'time [s]'\nset lmargin 12\nset rmargin 34\n";
   const double t_first = time.empty() ? 0.0 : time.front();
@@ -274,14 +265,14 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
     if (std::isfinite(m.onset_s)) {
       gp << "set arrow from " << number(m.onset_s) << ", graph 0 to " << number(m.onset_s)
          << ", graph 1 nohead front lc rgb '#c0392b' dt 2 lw 2\n"
-         << "set label " << quoted("onset " + two_decimals(m.onset_s) + " s") << " at " << number(m.onset_s)
+         << "set label " << gnuplot_quoted("onset " + two_decimals(m.onset_s) + " s") << " at " << number(m.onset_s)
          << ", graph 0.92 " << (late(m.onset_s) ? "right offset -0.4,0" : "offset 0.4,0") << " front tc rgb '#c0392b'\n";
     }
     if (std::isfinite(m.detection_delay_s)) {
       const double t = m.onset_s + m.detection_delay_s;
       gp << "set arrow from " << number(t) << ", graph 0 to " << number(t)
          << ", graph 1 nohead front lc rgb '#1e8449' dt 3 lw 2\n"
-         << "set label " << quoted("flagged +" + two_decimals(m.detection_delay_s) + " s") << " at " << number(t)
+         << "set label " << gnuplot_quoted("flagged +" + two_decimals(m.detection_delay_s) + " s") << " at " << number(t)
          << ", graph 0.08 " << (late(t) ? "right offset -0.4,0" : "offset 0.4,0") << " front tc rgb '#1e8449'\n";
     }
   };
@@ -293,26 +284,26 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
   auto per_channel = [&](FigureKind kind, const std::string& ylabel, const std::vector<Series>& series, bool band_lines) {
     RunFigure fig = new_figure(kind, truth);
     gp << "set terminal pngcairo noenhanced size 1400," << 80 + 300 * panels.size() << " font 'DejaVu Sans,11'\n"
-       << "set output " << quoted(out_dir + "/" + fig.file) << "\n"
-       << "set multiplot layout " << panels.size() << ",1 title " << quoted(fig.title) << " font ',14'\n"
-       << "set ylabel " << quoted(ylabel) << "\nset yrange [*:*]\n";
+       << "set output " << gnuplot_quoted(out_dir + "/" + fig.file) << "\n"
+       << "set multiplot layout " << panels.size() << ",1 title " << gnuplot_quoted(fig.title) << " font ',14'\n"
+       << "set ylabel " << gnuplot_quoted(ylabel) << "\nset yrange [*:*]\n";
     for (std::size_t i = 0; i < panels.size(); ++i) {
       const std::size_t c = panels[i].channel;
       fig.channels.push_back(run.channels[c].name);
       fig.why.push_back(panels[i].why);
       decorate_panel(c);
-      gp << "set title " << quoted(run.channels[c].name + " (" + panels[i].why + ")") << "\nplot ";
+      gp << "set title " << gnuplot_quoted(run.channels[c].name + " (" + panels[i].why + ")") << "\nplot ";
       bool first = true;
       for (const Series& s : series) {
         if (!truth && (s.offset == 2 || s.offset == 5)) continue;  // true force, injected fault
         if (s.offset == 4 && run.channels[c].raw_fault_estimate == nullptr) continue;  // not written by the run
         gp << (first ? "" : ", ") << dat_q << " using 1:" << column(i, s.offset) << " with lines " << s.style
-           << " title " << quoted(s.title);
+           << " title " << gnuplot_quoted(s.title);
         first = false;
         if (band_lines && s.offset == 3 && band.known()) {  // the band right after the filtered estimate
           const double lo = band.centre[c] - band.threshold[c], hi = band.centre[c] + band.threshold[c];
           gp << ", " << number(hi) << " with lines lc rgb '#c0392b' dt 4 lw 1.5 title "
-             << quoted(band.centre[c] != 0.0 ? "band " + two_decimals(band.centre[c]) + " +- " + two_decimals(band.threshold[c])
+             << gnuplot_quoted(band.centre[c] != 0.0 ? "band " + two_decimals(band.centre[c]) + " +- " + two_decimals(band.threshold[c])
                                              : "threshold +-" + two_decimals(band.threshold[c]))
              << ", " << number(lo) << " with lines lc rgb '#c0392b' dt 4 lw 1.5 notitle";
         }
@@ -342,10 +333,10 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
   {
     RunFigure fig = new_figure(FigureKind::flags, truth);
     gp << "set terminal pngcairo noenhanced size 1400," << 140 + 45 * n << " font 'DejaVu Sans,11'\n"
-       << "set output " << quoted(out_dir + "/" + fig.file) << "\nset title " << quoted(fig.title) << " font ',14'\n"
+       << "set output " << gnuplot_quoted(out_dir + "/" + fig.file) << "\nset title " << gnuplot_quoted(fig.title) << " font ',14'\n"
        << "set ylabel ''\nset yrange [-0.5:" << n << "]\nset ytics (";
     auto row_of = [n](std::size_t c) { return n - 1 - c; };  // channel 0 on top, as in Fig. 8
-    for (std::size_t c = 0; c < n; ++c) gp << (c ? ", " : "") << quoted(run.channels[c].name) << " " << row_of(c);
+    for (std::size_t c = 0; c < n; ++c) gp << (c ? ", " : "") << gnuplot_quoted(run.channels[c].name) << " " << row_of(c);
     gp << ")\nunset object\n";
     for (std::size_t c = 0; c < n; ++c) {
       fig.channels.push_back(run.channels[c].name);
@@ -395,32 +386,32 @@ std::vector<RunFigure> prepare_figures(const ScoredRun& run, const std::vector<C
     if (boxes == 0) f << "NaN NaN NaN NaN NaN NaN 0 0\n";  // gnuplot needs a point; nothing is drawn
     f.close();
     gp << "set terminal pngcairo noenhanced size 1400," << 160 + (truth ? 70 : 40) * n << " font 'DejaVu Sans,11'\n"
-       << "set output " << quoted(out_dir + "/" + fig.file) << "\nset title " << quoted(fig.title) << " font ',14'\n"
+       << "set output " << gnuplot_quoted(out_dir + "/" + fig.file) << "\nset title " << gnuplot_quoted(fig.title) << " font ',14'\n"
        << "set ylabel ''\nset lmargin 20\nset yrange [" << -0.6 * row << ":" << (static_cast<double>(n) - 0.4) * row
        << "]\nset ytics (";
     for (std::size_t c = 0; c < n; ++c) {
       if (truth) {
-        gp << (c ? ", " : "") << quoted(run.channels[c].name + " named") << " " << row_y(c) + 0.25 << ", "
-           << quoted("injected") << " " << row_y(c) - 0.25;
+        gp << (c ? ", " : "") << gnuplot_quoted(run.channels[c].name + " named") << " " << row_y(c) + 0.25 << ", "
+           << gnuplot_quoted("injected") << " " << row_y(c) - 0.25;
       } else {
-        gp << (c ? ", " : "") << quoted(run.channels[c].name) << " " << row_y(c);
+        gp << (c ? ", " : "") << gnuplot_quoted(run.channels[c].name) << " " << row_y(c);
       }
     }
     gp << ")\n";
     if (boxes == 0) {
-      gp << "set label " << quoted(truth ? "no channel flagged, no fault injected" : "no channel flagged")
+      gp << "set label " << gnuplot_quoted(truth ? "no channel flagged, no fault injected" : "no channel flagged")
          << " at graph 0.5, graph 0.5 center front\n";
     }
     // The named type solid, the injected one lighter beneath it.
     gp << "set grid noytics\n" << (boxes == 0 ? "unset key" : "set key outside right top vertical box opaque") << "\nplot "
-       << quoted(types_dat)
+       << gnuplot_quoted(types_dat)
        << " using 1:($8 == 0 ? $2 : NaN):3:4:5:6:7 with boxxyerror fs solid 1.0 noborder lc rgb variable notitle, "
-       << quoted(types_dat) << " using 1:($8 == 1 ? $2 : NaN):3:4:5:6:7 with boxxyerror fs transparent solid 0.45 noborder "
+       << gnuplot_quoted(types_dat) << " using 1:($8 == 1 ? $2 : NaN):3:4:5:6:7 with boxxyerror fs transparent solid 0.45 noborder "
        << "lc rgb variable notitle";
     for (std::size_t t = 1; t < present.size(); ++t) {
       if (present[t]) {
         gp << ", keyentry with boxes fs solid 1.0 lc rgb '" << colour_text(kTypeColours[t]) << "' title "
-           << quoted(std::string(kFaultTypes[t].name));
+           << gnuplot_quoted(std::string(kFaultTypes[t].name));
       }
     }
     gp << "\nunset label\nset yrange [*:*]\nset ytics autofreq\nset grid ytics\nset lmargin 12\n";

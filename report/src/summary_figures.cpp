@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "ftsense/report/figures.hpp"
+#include "gnuplot_text.hpp"
 
 namespace ftsense::report {
 
@@ -15,15 +16,6 @@ namespace {
 constexpr double kZeroDelayS = 1e-3;   // a delay of 0 drawn here on the log axis
 constexpr double kMissedRowS = 100.0;  // missed faults drawn on this row
 constexpr std::array<const char*, 6> kPipelineColours{"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"};
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    out += c;
-    if (c == '\'') out += '\'';
-  }
-  return out + "'";
-}
 
 std::string type_name(FaultType t) { return t == FaultType::none ? "not flagged" : std::string(to_string(t)); }
 
@@ -86,7 +78,7 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
     }
     f.close();
     gp << "set terminal pngcairo noenhanced size " << std::max<std::size_t>(1400, pipelines.size() * 500)
-       << ",600 font 'DejaVu Sans,10'\nset output " << quoted(out_dir + "/confusion_matrix.png") << "\n"
+       << ",600 font 'DejaVu Sans,10'\nset output " << gnuplot_quoted(out_dir + "/confusion_matrix.png") << "\n"
        << "set multiplot layout 1," << pipelines.size()
        << " title 'Injected vs named fault type, every faulty channel of every scenario (diagonal: named right)' font ',14'\n"
        << "set palette defined (0 '#ffffff', 1 '#c6dbef', " << most << " '#08519c')\nset cbrange [0:" << most
@@ -94,11 +86,11 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
        << "set xtics rotate by 40 right\nset tics scale 0\nunset key\n";
     for (std::size_t p = 0; p < pipelines.size(); ++p) {
       const Confusion& c = matrices[p];
-      gp << "set title " << quoted(pipelines[p].label) << "\nset xrange [-0.5:" << c.named.size() - 0.5
+      gp << "set title " << gnuplot_quoted(pipelines[p].label) << "\nset xrange [-0.5:" << c.named.size() - 0.5
          << "]\nset yrange [" << c.injected.size() - 0.5 << ":-0.5]\nset xtics (";
-      for (std::size_t k = 0; k < c.named.size(); ++k) gp << (k ? ", " : "") << quoted(type_name(c.named[k])) << " " << k;
+      for (std::size_t k = 0; k < c.named.size(); ++k) gp << (k ? ", " : "") << gnuplot_quoted(type_name(c.named[k])) << " " << k;
       gp << ")\nset ytics (";
-      for (std::size_t r = 0; r < c.injected.size(); ++r) gp << (r ? ", " : "") << quoted(type_name(c.injected[r])) << " " << r;
+      for (std::size_t r = 0; r < c.injected.size(); ++r) gp << (r ? ", " : "") << gnuplot_quoted(type_name(c.injected[r])) << " " << r;
       gp << ")\nunset object\n";
       for (std::size_t r = 0; r < c.injected.size(); ++r) {
         gp << "set object rect from " << r - 0.5 << "," << r - 0.5 << " to " << r + 0.5 << "," << r + 0.5
@@ -108,7 +100,7 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
         gp << "set label 'no faulty channel' at graph 0.5, graph 0.5 center\nplot NaN notitle\nunset label\n";
         continue;
       }
-      gp << "plot " << quoted(matrix_dat) << " index " << p << " using 1:2:3 with image, '' index " << p
+      gp << "plot " << gnuplot_quoted(matrix_dat) << " index " << p << " using 1:2:3 with image, '' index " << p
          << " using 1:2:($3 > 0 ? sprintf('%d', $3) : '') with labels font ',12'\n";
     }
     gp << "unset multiplot\nunset object\nset xtics norotate autojustify autofreq\nset ytics autofreq\nset tics scale default\n"
@@ -146,11 +138,11 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
     const double bar = width * 0.9;
     // The delays get two thirds of the height, the false alarms the rest.
     gp << "set terminal pngcairo noenhanced size 1400,860 font 'DejaVu Sans,11'\nset output "
-       << quoted(out_dir + "/scenario_chart.png") << "\nset multiplot title "
-       << quoted("Per scenario: detection delay of each faulty channel, type named right or wrong, and false alarms")
+       << gnuplot_quoted(out_dir + "/scenario_chart.png") << "\nset multiplot title "
+       << gnuplot_quoted("Per scenario: detection delay of each faulty channel, type named right or wrong, and false alarms")
        << " font ',14'\nset grid\nset key outside right top vertical box opaque\nset lmargin 12\nset rmargin 58\n"
        << "set xrange [-0.5:" << scenarios.size() - 0.5 << "]\nset xtics (";
-    for (std::size_t s = 0; s < scenarios.size(); ++s) gp << (s ? ", " : "") << quoted(scenarios[s]) << " " << s;
+    for (std::size_t s = 0; s < scenarios.size(); ++s) gp << (s ? ", " : "") << gnuplot_quoted(scenarios[s]) << " " << s;
     gp << ")\nset size 1,0.6\nset origin 0,0.34\n"
        << "set title 'Detection delay (filled: type named right; open: wrong type; cross: missed)'\n"
        << "set logscale y\nset yrange [" << kZeroDelayS / 2 << ":" << kMissedRowS * 3 << "]\n"
@@ -160,9 +152,9 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
     const std::array<std::pair<int, std::string>, 3> marks{{{7, "type right"}, {6, "type wrong"}, {2, "missed"}}};
     for (std::size_t p = 0; p < pipelines.size(); ++p) {
       for (std::size_t k = 0; k < marks.size(); ++k) {
-        gp << (p + k ? ", " : "") << quoted(delays_dat) << " using 1:(($3 == " << p << " && $4 == " << k
+        gp << (p + k ? ", " : "") << gnuplot_quoted(delays_dat) << " using 1:(($3 == " << p << " && $4 == " << k
            << ") ? $2 : NaN) with points pt " << marks[k].first << " ps 1.6 lw 2 lc rgb '"
-           << kPipelineColours[p % kPipelineColours.size()] << "' title " << quoted(pipelines[p].label + ": " + marks[k].second);
+           << kPipelineColours[p % kPipelineColours.size()] << "' title " << gnuplot_quoted(pipelines[p].label + ": " + marks[k].second);
       }
     }
     gp << "\nunset logscale y\nunset arrow\nunset label\nset title 'False alarms (after the warm-up, outside each fault "
@@ -170,9 +162,9 @@ std::vector<Figure> write_summary_figures(const std::vector<ScoredScenario>& run
           "set boxwidth "
        << bar << "\nplot ";
     for (std::size_t p = 0; p < pipelines.size(); ++p) {
-      gp << (p ? ", " : "") << quoted(alarms_dat) << " using 1:(($3 == " << p << ") ? $2 : NaN) with boxes lc rgb '"
-         << kPipelineColours[p % kPipelineColours.size()] << "' title " << quoted(pipelines[p].label) << ", "
-         << quoted(alarms_dat) << " using 1:(($3 == " << p << ") ? $2 : NaN):(sprintf('%d', $2)) with labels offset 0,0.7 notitle";
+      gp << (p ? ", " : "") << gnuplot_quoted(alarms_dat) << " using 1:(($3 == " << p << ") ? $2 : NaN) with boxes lc rgb '"
+         << kPipelineColours[p % kPipelineColours.size()] << "' title " << gnuplot_quoted(pipelines[p].label) << ", "
+         << gnuplot_quoted(alarms_dat) << " using 1:(($3 == " << p << ") ? $2 : NaN):(sprintf('%d', $2)) with labels offset 0,0.7 notitle";
     }
     gp << "\nunset multiplot\n";
   }

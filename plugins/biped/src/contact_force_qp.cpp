@@ -22,8 +22,6 @@ constexpr std::array<std::pair<ContactQpStatus, std::string_view>, 5> kStatusNam
     {ContactQpStatus::solver_failure, "solver_failure"},
 }};
 
-constexpr std::uint32_t bit(int l) noexcept { return std::uint32_t{1} << l; }
-
 std::string format_double(double value) {
   std::ostringstream os;
   os.precision(17);
@@ -236,7 +234,7 @@ void set_zero_solution(int n, ContactQpStatus status, ContactQpSolution& out) no
 
 void run_primal_active_set(int n, double fz, double gradient_scale, int max_iterations,
                            EqualityQpSubproblem& subproblem, ContactQpSolution& out) noexcept {
-  const std::uint32_t all = bit(n) - 1U;
+  const std::uint32_t all = detail::contact_bit(n) - 1U;
   std::uint32_t fixed = out.active_set & all;
   if (fixed == all) fixed = 0;
   const int free_count = n - std::popcount(fixed);
@@ -245,7 +243,7 @@ void run_primal_active_set(int n, double fz, double gradient_scale, int max_iter
   const double release_tolerance = 1e-10 * gradient_scale;
 
   ContactVector forces(n);
-  for (int l = 0; l < n; ++l) forces(l) = (fixed & bit(l)) != 0U ? 0.0 : fz / free_count;
+  for (int l = 0; l < n; ++l) forces(l) = (fixed & detail::contact_bit(l)) != 0U ? 0.0 : fz / free_count;
   ContactVector x(n);
   ContactVector mu(n);
   double lambda = 0.0;
@@ -261,7 +259,7 @@ void run_primal_active_set(int n, double fz, double gradient_scale, int max_iter
     double alpha = 1.0;
     int blocking = -1;
     for (int l = 0; l < n; ++l) {
-      if ((fixed & bit(l)) != 0U || !(x(l) < 0.0)) continue;
+      if ((fixed & detail::contact_bit(l)) != 0U || !(x(l) < 0.0)) continue;
       const double ratio = forces(l) / (forces(l) - x(l)); // denominator > 0: forces(l) >= 0 > x(l)
       if (ratio < alpha) {
         alpha = ratio;
@@ -270,11 +268,11 @@ void run_primal_active_set(int n, double fz, double gradient_scale, int max_iter
     }
     if (blocking >= 0) {
       for (int l = 0; l < n; ++l) {
-        if ((fixed & bit(l)) != 0U) continue;
+        if ((fixed & detail::contact_bit(l)) != 0U) continue;
         forces(l) += alpha * (x(l) - forces(l));
         if (l == blocking || (x(l) < 0.0 && forces(l) <= zero_tolerance)) {
           forces(l) = 0.0;
-          fixed |= bit(l);
+          fixed |= detail::contact_bit(l);
         }
       }
       continue;
@@ -283,7 +281,7 @@ void run_primal_active_set(int n, double fz, double gradient_scale, int max_iter
     int release = -1;
     double most_negative = -release_tolerance;
     for (int l = 0; l < n; ++l) {
-      if ((fixed & bit(l)) != 0U && mu(l) < most_negative) {
+      if ((fixed & detail::contact_bit(l)) != 0U && mu(l) < most_negative) {
         most_negative = mu(l);
         release = l;
       }
@@ -297,12 +295,12 @@ void run_primal_active_set(int n, double fz, double gradient_scale, int max_iter
       out.active_set = fixed;
       return;
     }
-    fixed &= ~bit(release);
+    fixed &= ~detail::contact_bit(release);
   }
   out.forces = forces; // primal feasible, not proven optimal
   out.bound_multipliers.setZero(n);
   for (int l = 0; l < n; ++l) {
-    if ((fixed & bit(l)) != 0U) out.bound_multipliers(l) = mu(l);
+    if ((fixed & detail::contact_bit(l)) != 0U) out.bound_multipliers(l) = mu(l);
   }
   out.sum_multiplier = lambda;
   out.status = ContactQpStatus::iteration_limit;
@@ -336,7 +334,7 @@ bool ActiveSetContactQp::Subproblem::solve(std::uint32_t fixed, const ContactVec
                                            double& lambda, ContactVector& mu) noexcept {
   Eigen::Matrix<double, 6, 1> sum = Eigen::Matrix<double, 6, 1>::Zero();
   for (int l = 0; l < n_; ++l) {
-    if ((fixed & bit(l)) == 0U) sum += outer_.col(l);
+    if ((fixed & detail::contact_bit(l)) == 0U) sum += outer_.col(l);
   }
   Eigen::Matrix3d k;
   k << sum(0), sum(1), sum(2), //
@@ -347,7 +345,7 @@ bool ActiveSetContactQp::Subproblem::solve(std::uint32_t fixed, const ContactVec
   const Eigen::Vector3d p = llt.solve(rhs);
   for (int l = 0; l < n_; ++l) {
     const double s = p(0) + points_(0, l) * p(1) + points_(1, l) * p(2);
-    if ((fixed & bit(l)) == 0U) {
+    if ((fixed & detail::contact_bit(l)) == 0U) {
       x(l) = s / weights_(l);
       mu(l) = 0.0;
     } else {

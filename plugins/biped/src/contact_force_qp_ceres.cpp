@@ -12,8 +12,6 @@
 namespace ftsense::biped {
 namespace {
 
-constexpr std::uint32_t bit(int l) noexcept { return std::uint32_t{1} << l; }
-
 // Residuals r = [C N - d ; sqrt(w) .* N] (2 + n), Jacobian constant [C ; diag(sqrt(w))].
 class MomentResidual final : public ceres::CostFunction {
 public:
@@ -130,7 +128,7 @@ struct CeresContactQp::Impl final : detail::EqualityQpSubproblem {
     std::array<int, kMaxContactPoints> free{};
     int free_count = 0;
     for (int l = 0; l < n; ++l) {
-      if ((fixed & bit(l)) == 0U) free[free_count++] = l;
+      if ((fixed & detail::contact_bit(l)) == 0U) free[free_count++] = l;
     }
     if (free_count == 1) {
       x.setZero(n);
@@ -142,14 +140,14 @@ struct CeresContactQp::Impl final : detail::EqualityQpSubproblem {
       std::copy(start.data(), start.data() + n, parameters.begin());
       ceres::Solve(solver_options, &problem, &summary);
       if (summary.termination_type != ceres::CONVERGENCE) return false;
-      for (int l = 0; l < n; ++l) x(l) = (fixed & bit(l)) != 0U ? 0.0 : parameters[static_cast<std::size_t>(l)];
+      for (int l = 0; l < n; ++l) x(l) = (fixed & detail::contact_bit(l)) != 0U ? 0.0 : parameters[static_cast<std::size_t>(l)];
     }
     if (!x.allFinite()) return false;
     const ContactVector gradient = hessian * x + linear_term;
     lambda = 0.0;
     for (int j = 0; j < free_count; ++j) lambda += gradient(free[j]);
     lambda /= free_count;
-    for (int l = 0; l < n; ++l) mu(l) = (fixed & bit(l)) != 0U ? gradient(l) - lambda : 0.0;
+    for (int l = 0; l < n; ++l) mu(l) = (fixed & detail::contact_bit(l)) != 0U ? gradient(l) - lambda : 0.0;
     return true;
   }
 

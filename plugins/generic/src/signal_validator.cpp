@@ -105,7 +105,6 @@ void SignalValidator::Params::validate(Diagnostics& diag, std::string_view path)
 
 SignalValidator::SignalValidator(const Params& params, const StageContext& context)
     : sample_period_s_(context.sample_period_s()),
-      window_s_(params.window_s),
       follow_ratio_(params.follow_ratio),
       reference_(params.reference),
       guard_(params.guard) {

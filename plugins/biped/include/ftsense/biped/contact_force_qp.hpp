@@ -199,6 +199,9 @@ ContactQpKkt check_kkt(const ContactQpProblem& problem, const Eigen::Ref<const E
                        double tolerance);
 
 namespace detail {
+/// The bit of contact point l in an active set's bitmask (l < 32; at most kMaxContactPoints).
+constexpr std::uint32_t contact_bit(int l) noexcept { return std::uint32_t{1} << l; }
+
 /// Equality-constrained subproblem oracle for the shared active-set loop: minimise the QP with
 /// the points in `fixed` (bitmask) held at zero and 1^T N = F_z. `start` is feasible for it.
 /// Writes x (0 on fixed points), lambda, and mu_l for fixed points (0 on free ones).

@@ -186,7 +186,6 @@ class SignalValidator {
   std::vector<double> lp_storage_;    // channels x 2 windows of n + 1
   std::size_t window_ = 10;
   double sample_period_s_;
-  double window_s_;
   double spike_hold_max_ticks_ = 800.0;  // round(spike_hold_s / T): the first spike's hold, the longest h
   SpikeHoldRule spike_rule_;             // in ticks: that, window_s, ln(1 / spike_gap_probability)
   double lp_gain_ = 0.0;
