@@ -2234,6 +2234,20 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       const StancePowers::Trend trend = run.trend(c.slope * period_s_, relation_z_);
       flat = trend == StancePowers::Trend::flat;
       if (trend == StancePowers::Trend::sloped) run.restart_trend();
+      // The reading as it is, flat over the stance where the drift would have shown, yet off the
+      // load by more than the residual's own error can mimic (gain_min_load_N): the drift has
+      // stopped and left its level, which the reading keeps (a plateau). An offset at that level
+      // (the window's mean lead of the reading) from here on: the slope extrapolated would grow
+      // past it until the reading, still that far off, won the comparison and was re-admitted.
+      // Over the stance's own window, not the one since the reading last led: while the
+      // correction is still about right the reading does not lead.
+      const StancePowers::Trend stance_trend = stance.trend(c.slope * period_s_, relation_z_);
+      if (stance_trend == StancePowers::Trend::sloped) stance.restart_trend();
+      if (stance_trend == StancePowers::Trend::flat && corrections == 1 &&
+          std::abs(stance.trend_mean()) > params_.gain_min_load_N) {
+        hold_as_offset(channels_[j], stance.trend_mean());
+        continue;
+      }
     }
     const bool wins = c.type == FaultType::drift
                           ? flat && run.reading_wins(stance_min_ticks_, stance_bound)
@@ -2353,6 +2367,14 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   // The window's residuals were computed with the old correction: start a new one.
   restart_gain_window();
+}
+
+void ContactForceFdi::hold_as_offset(Channel& c, double level) noexcept {
+  c.type = FaultType::offset;
+  c.offset = level;
+  c.slope = 0.0;
+  c.fit.clear(last_tick_s_);
+  c.air_refit = c.fit_has_air;  // the air's next reading fits afresh, not on the drift's swings
 }
 
 void ContactForceFdi::restart_gain_window() noexcept {

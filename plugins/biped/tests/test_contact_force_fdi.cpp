@@ -1050,40 +1050,52 @@ TEST(ContactForceFdi, ADriftStaysADriftAtTheStartOfItsNextSwing) {
 }
 
 // l_foot/p1's drift of fault_in_a_short_swing (40 N/s from tick 150, typed drift on tick 321),
-// on a foot that lands on tick 350 and then stays down to the end (a robot that stops and stands).
-// From tick 1000 the fault fades out over 200 ticks, too gently for the jump test (0.22 N a tick);
-// with regrow_N_s > 0 it grows again at that rate from tick 1200. The total force carries an error
-// of N(0, 2 N), std::mt19937(seed). Returns the first tick the channel shows no fault after it
-// showed drift (-1: none), and in `drift_at_end` whether it shows drift on the last tick.
-int drift_fades_in_a_long_stance(double regrow_N_s, unsigned seed, bool& drift_at_end) {
+// on a foot that lands on tick 350 and then stays down to tick 4000 (a robot that stops and
+// stands). From tick 1000 the fault follows `after` (its size [N] at tick k >= 1000; 44 N, the
+// drift's level, at tick 1000). The total force carries an error of N(0, 2 N),
+// std::mt19937(seed); no other channel may be flagged.
+struct LongStance {
+  int cleared = -1;  // the first tick the channel shows no fault after it showed drift (-1: none)
+  FaultType type_at_end = FaultType::none;
+  double estimate_at_end_N = 0.0;  // its fault estimate on the last tick
+  double recovered_rms_N = 0.0;    // its recovered load's error over the last 1000 ticks
+};
+template <class After>
+LongStance drift_in_a_long_stance(const After& after, unsigned seed) {
   Feet feet(suralp(), 1e-3);
   std::mt19937 rng(seed);
   std::normal_distribution<double> total_error(0.0, 2.0);
-  int cleared = -1;
+  LongStance out;
   bool drift = false;
+  double squared_error = 0.0;
   for (int k = 0; k < 4000; ++k) {
     const bool swinging = k >= 100 && k < 350;
     left_swing_loads(feet, k, swinging);
-    const double fault = k < 150    ? 0.0
-                         : k < 1000 ? 10.0 + 40.0 * (k - 150) * 1e-3
-                         : k < 1200 ? (10.0 + 40.0 * 0.85) * (1200 - k) / 200.0
-                                    : regrow_N_s * (k - 1200) * 1e-3;
-    feet.measured[0] += fault;
+    const double load = feet.measured[0];
+    feet.measured[0] += k < 150 ? 0.0 : k < 1000 ? 10.0 + 40.0 * (k - 150) * 1e-3 : after(k);
     feet.step(800.0 + total_error(rng));
     drift = drift || feet.type(0) == FaultType::drift;
-    if (drift && cleared < 0 && feet.type(0) == FaultType::none) cleared = k;
+    if (drift && out.cleared < 0 && feet.type(0) == FaultType::none) out.cleared = k;
     for (std::size_t j = 1; j < kChannels; ++j) EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+    const double error = feet.outs[ContactForceFdi::kRecovered][0] - load;
+    if (k >= 3000) squared_error += error * error;
   }
-  drift_at_end = feet.type(0) == FaultType::drift;
-  return cleared;
+  out.type_at_end = feet.type(0);
+  out.estimate_at_end_N = feet.outs[ContactForceFdi::kFaultEstimate][0];
+  out.recovered_rms_N = std::sqrt(squared_error / 1000.0);
+  return out;
 }
 
+// The drift's level at tick 1000, where `after` takes over.
+constexpr double kDriftLevelAt1000 = 10.0 + 40.0 * 0.85;
+
 TEST(ContactForceFdi, ADriftThatEndsWhileItsPadStaysLoadedIsReadmittedOnceTheReadingStaysFlat) {
-  // The drift's correction goes on through the stance; once the fault has faded, the reading as it
-  // is leaves a quarter of its power (from about tick 1127), but that alone does not re-admit a
-  // drift (its slope may have grown wrong while it goes on): the reading must also stay flat, no
-  // slope and no bend beyond z = 5.71 of their standard errors, over a window long enough that
-  // z se of the slope is within a quarter of the drift's fitted slope per tick (with 2 N of error,
+  // The drift's correction goes on through the stance; once the fault has faded (over ticks
+  // 1000-1200, 0.22 N a tick: too gently for the jump test), the reading as it is leaves a
+  // quarter of its power (from about tick 1127), but that alone does not re-admit a drift (its
+  // slope may have grown wrong while it goes on): the reading must also stay flat, no slope and
+  // no bend beyond z = 5.71 of their standard errors, over a window long enough that z se of the
+  // slope is within a quarter of the drift's fitted slope per tick (with 2 N of error,
   // se = 2 N sqrt(12 / n^3): some 250 ticks at 40 N/s, more at the slope refitted through the
   // stance). The window that holds the fade's tail is closed as sloped; the next one is flat: the
   // channel is re-admitted within 1 s of the fade's end (tick 2026 with this seed). Before, a
@@ -1091,19 +1103,40 @@ TEST(ContactForceFdi, ADriftThatEndsWhileItsPadStaysLoadedIsReadmittedOnceTheRea
   // without bound.
   const unsigned seed = 5;
   std::printf("total force error N(0, 2 N), std::mt19937(%u)\n", seed);
-  bool drift_at_end = false;
-  const int cleared = drift_fades_in_a_long_stance(0.0, seed, drift_at_end);
-  std::printf("a drift faded out over ticks 1000-1200: re-admitted at tick %d\n", cleared);
-  EXPECT_GE(cleared, 1200 + 250);
-  EXPECT_LE(cleared, 2200);
-  EXPECT_FALSE(drift_at_end);
+  const auto fades = [](int k) { return k < 1200 ? kDriftLevelAt1000 * (1200 - k) / 200.0 : 0.0; };
+  const LongStance faded = drift_in_a_long_stance(fades, seed);
+  std::printf("a drift faded out over ticks 1000-1200: re-admitted at tick %d\n", faded.cleared);
+  EXPECT_GE(faded.cleared, 1200 + 250);
+  EXPECT_LE(faded.cleared, 2200);
+  EXPECT_EQ(faded.type_at_end, FaultType::none);
   // Faded, then growing again at 15 N/s: the correction leaves more than the reading as it is,
   // but the reading falls and rises within the first window (a line through it is flat, its bend
   // is not) and slopes in every window after: not re-admitted by the stance comparison.
-  const int regrown = drift_fades_in_a_long_stance(15.0, seed, drift_at_end);
-  std::printf("faded, then growing again at 15 N/s: re-admitted at tick %d\n", regrown);
-  EXPECT_EQ(regrown, -1);
-  EXPECT_TRUE(drift_at_end);
+  const auto regrows = [&](int k) { return k < 1200 ? fades(k) : 15.0 * (k - 1200) * 1e-3; };
+  const LongStance regrown = drift_in_a_long_stance(regrows, seed);
+  std::printf("faded, then growing again at 15 N/s: re-admitted at tick %d\n", regrown.cleared);
+  EXPECT_EQ(regrown.cleared, -1);
+  EXPECT_EQ(regrown.type_at_end, FaultType::drift);
+}
+
+TEST(ContactForceFdi, ADriftThatStopsAtItsLevelWhileItsPadStaysLoadedIsHeldAsAnOffsetThere) {
+  // From tick 1000 the drift stays at its level, 44 N (a plateau). Its reading as it is stays
+  // flat, 44 N above the load, beyond gain_min_load_N (30 N in these tests): an offset of that
+  // level from then on, estimated as the flat window's mean lead of the reading (the total force's
+  // error averages out; 2 N RMS here). Before, the drift's slope was extrapolated through the
+  // stance until the correction, some three times the level, left four times the reading's
+  // power: re-admitted then, the reading 44 N too high to the end.
+  const unsigned seed = 5;
+  std::printf("total force error N(0, 2 N), std::mt19937(%u)\n", seed);
+  const LongStance held = drift_in_a_long_stance([](int) { return kDriftLevelAt1000; }, seed);
+  std::printf("a drift that stops at %.0f N: re-admitted at tick %d, %s at the end (estimate %.2f N), "
+              "recovered %.2f N RMS over the last second\n",
+              kDriftLevelAt1000, held.cleared, std::string(to_string(held.type_at_end)).c_str(),
+              held.estimate_at_end_N, held.recovered_rms_N);
+  EXPECT_EQ(held.cleared, -1);
+  EXPECT_EQ(held.type_at_end, FaultType::offset);
+  EXPECT_NEAR(held.estimate_at_end_N, kDriftLevelAt1000, 2.0);
+  EXPECT_LT(held.recovered_rms_N, 2.0);
 }
 
 TEST(ContactForceFdi, AnOffsetOnAQuantisersLevelBoundaryIsNoDrift) {

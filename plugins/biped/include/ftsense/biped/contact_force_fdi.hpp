@@ -236,8 +236,12 @@
 //             going on at a quarter of its fitted rate (StancePowers::trend: neither the
 //             window's slope nor its bend beyond relation_z_ of its standard error; a window that
 //             shows either is closed and the next judged afresh): a pad that stays loaded to the
-//             end of a log has no next swing to judge it; only while it is the one correction the residual carries (with two, the
-//             one still faulty can win first). A
+//             end of a log has no next swing to judge it; only while it is the one correction
+//             the residual carries (with two, the one still faulty can win first). A drift whose
+//             reading stays flat over such a window of its stance (the same test) but off its
+//             load by more than gain_min_load_N, the window's mean of r_raw, has stopped at that
+//             level (a plateau): held as an offset there (hold_as_offset), not re-admitted by
+//             the comparison once its extrapolated correction has overshot. A
 //             gain that ended in the air, or a gain inferred in the air from an offset that ended
 //             there (both read 0 in the air), would otherwise scale a healthy reading by 1 / k
 //             through the next stances until the window decides. The window
@@ -616,6 +620,8 @@ class ContactForceFdi {
                        std::span<const double> height, double residual,
                        bool usable, double t) noexcept;
   void restart_gain_window() noexcept;
+  // A drift that has stopped, its reading `level` [N] off its load: held as an offset there.
+  void hold_as_offset(Channel& c, double level) noexcept;
   void clear(Channel& c) noexcept;
   // The still-reading test (header comment), once the corrected sum residual of this tick is known.
   void still_reading_test(std::span<const double> measured, std::span<const double> height, double residual,
@@ -895,6 +901,10 @@ class ContactForceFdi {
       trend_ticks = trend_ticks < std::numeric_limits<int>::max() ? trend_ticks + 1 : trend_ticks;
     }
     void restart_trend() noexcept { trend_ticks = 0, raw_sum = k_raw_sum = kk_raw_sum = trend_rr = 0.0; }
+    // r_raw's mean over the trend window [N] (0 before its first tick).
+    [[nodiscard]] double trend_mean() const noexcept {
+      return trend_ticks > 0 ? raw_sum / static_cast<double>(trend_ticks) : 0.0;
+    }
     // The gain explanation's residual and its own correction N_j - N_j / k.
     void add_gain_model(double as_gain, double correction) noexcept {
       gain_rr += as_gain * as_gain;
