@@ -17,8 +17,8 @@ target_link_libraries(ftsense_contact_force_qp PUBLIC Eigen3::Eigen PRIVATE Cere
 target_compile_features(ftsense_contact_force_qp PUBLIC cxx_std_20)
 target_compile_options(ftsense_contact_force_qp PRIVATE -Wall -Wextra -Wpedantic)
 set_target_properties(ftsense_contact_force_qp PROPERTIES POSITION_INDEPENDENT_CODE ON)
-# Its Impl holds types of the file's anonymous namespace: inside a unity batch (the sanitize
-# preset's unity build) GCC would warn -Wsubobject-linkage, so the file compiles alone.
+# Its Impl holds types of the file's anonymous namespace: inside a unity batch (both presets
+# build so) GCC would warn -Wsubobject-linkage, so the file compiles alone.
 set_source_files_properties("${FTSENSE_CONTACT_FORCE_QP_DIR}/src/contact_force_qp_ceres.cpp"
                             PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
 
