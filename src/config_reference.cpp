@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "ftsense/pipeline_document.hpp"
+#include "example_ports_period.hpp"
 
 namespace ftsense {
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ftsense/pipeline_document.hpp"
+#include "example_ports_period.hpp"
 
 namespace ftsense {
 

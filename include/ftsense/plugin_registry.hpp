@@ -12,10 +12,6 @@
 
 namespace ftsense {
 
-// The tick period the generated references (config reference, config schema) build example stages
-// with to list their ports; ports rarely depend on it.
-inline constexpr double kExamplePortsSamplePeriodS = 0.001;
-
 struct PluginInfo {
   std::string name;
   std::string summary;

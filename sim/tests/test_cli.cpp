@@ -9,11 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "scenario_dir.hpp"
-
 namespace {
 namespace fs = std::filesystem;
-using ftsense::sim::testing::kScenarioDir;
 
 struct Result {
   int status;

@@ -2234,18 +2234,26 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       const StancePowers::Trend trend = run.trend(c.slope * period_s_, relation_z_);
       flat = trend == StancePowers::Trend::flat;
       if (trend == StancePowers::Trend::sloped) run.restart_trend();
-      // The reading as it is, flat over the stance where the drift would have shown, yet off the
-      // load by more than the residual's own error can mimic (gain_min_load_N): the drift has
-      // stopped and left its level, which the reading keeps (a plateau). An offset at that level
-      // (the window's mean lead of the reading) from here on: the slope extrapolated would grow
-      // past it until the reading, still that far off, won the comparison and was re-admitted.
-      // Over the stance's own window, not the one since the reading last led: while the
-      // correction is still about right the reading does not lead.
+      // The reading as it is, flat over the stance where the drift would have shown, after a window
+      // of the same stance in which it rose with the drift (its slope the fitted drift's sign),
+      // and off the load by more than the residual's own error can mimic (gain_min_load_N): the
+      // drift went on into this stance and stopped there, leaving its level, which the reading
+      // keeps (a plateau). An offset at that level (the window's mean lead of the reading, over
+      // clear_s at least) from here on: the slope extrapolated would grow past it until the
+      // reading, still that far off, won the comparison and was re-admitted. A drift that ended
+      // by fading out fell before its flat window (the reading's lead then is the total force's
+      // own bias, not a fault: left to the comparison). Over the stance's own window, not the
+      // one since the reading last led: while the correction is still about right the reading
+      // does not lead.
       const StancePowers::Trend stance_trend = stance.trend(c.slope * period_s_, relation_z_);
-      if (stance_trend == StancePowers::Trend::sloped) stance.restart_trend();
-      if (stance_trend == StancePowers::Trend::flat && corrections == 1 &&
-          std::abs(stance.trend_mean()) > params_.gain_min_load_N) {
+      if (stance_trend == StancePowers::Trend::sloped) {
+        stance.rose_with_drift = stance.trend_slope() * c.slope > 0.0;
+        stance.restart_trend();
+      }
+      if (stance_trend == StancePowers::Trend::flat && stance.rose_with_drift && corrections == 1 &&
+          stance.trend_ticks >= stance_min_ticks_ && std::abs(stance.trend_mean()) > params_.gain_min_load_N) {
         hold_as_offset(channels_[j], stance.trend_mean());
+        restart_gain_window();  // its window holds residuals taken with the drift's correction
         continue;
       }
     }
@@ -2375,6 +2383,7 @@ void ContactForceFdi::hold_as_offset(Channel& c, double level) noexcept {
   c.slope = 0.0;
   c.fit.clear(last_tick_s_);
   c.air_refit = c.fit_has_air;  // the air's next reading fits afresh, not on the drift's swings
+  c.end_pending = false;        // an end judged by the drift's size: the next step is judged anew
 }
 
 void ContactForceFdi::restart_gain_window() noexcept {

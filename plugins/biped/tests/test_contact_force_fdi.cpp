@@ -1053,7 +1053,7 @@ TEST(ContactForceFdi, ADriftStaysADriftAtTheStartOfItsNextSwing) {
 // on a foot that lands on tick 350 and then stays down to tick 4000 (a robot that stops and
 // stands). From tick 1000 the fault follows `after` (its size [N] at tick k >= 1000; 44 N, the
 // drift's level, at tick 1000). The total force carries an error of N(0, 2 N),
-// std::mt19937(seed); no other channel may be flagged.
+// std::mt19937(seed), and a bias of total_bias_N; no other channel may be flagged.
 struct LongStance {
   int cleared = -1;  // the first tick the channel shows no fault after it showed drift (-1: none)
   FaultType type_at_end = FaultType::none;
@@ -1061,7 +1061,7 @@ struct LongStance {
   double recovered_rms_N = 0.0;    // its recovered load's error over the last 1000 ticks
 };
 template <class After>
-LongStance drift_in_a_long_stance(const After& after, unsigned seed) {
+LongStance drift_in_a_long_stance(const After& after, unsigned seed, double total_bias_N = 0.0) {
   Feet feet(suralp(), 1e-3);
   std::mt19937 rng(seed);
   std::normal_distribution<double> total_error(0.0, 2.0);
@@ -1073,7 +1073,7 @@ LongStance drift_in_a_long_stance(const After& after, unsigned seed) {
     left_swing_loads(feet, k, swinging);
     const double load = feet.measured[0];
     feet.measured[0] += k < 150 ? 0.0 : k < 1000 ? 10.0 + 40.0 * (k - 150) * 1e-3 : after(k);
-    feet.step(800.0 + total_error(rng));
+    feet.step(800.0 + total_bias_N + total_error(rng));
     drift = drift || feet.type(0) == FaultType::drift;
     if (drift && out.cleared < 0 && feet.type(0) == FaultType::none) out.cleared = k;
     for (std::size_t j = 1; j < kChannels; ++j) EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
@@ -1109,6 +1109,16 @@ TEST(ContactForceFdi, ADriftThatEndsWhileItsPadStaysLoadedIsReadmittedOnceTheRea
   EXPECT_GE(faded.cleared, 1200 + 250);
   EXPECT_LE(faded.cleared, 2200);
   EXPECT_EQ(faded.type_at_end, FaultType::none);
+  // With the total force 40 N off either way (within sum_threshold_N, 80 N here), the faded
+  // reading leads the load by -40 or +40 N as the sum residual sees it, flat, beyond
+  // gain_min_load_N: but the window before it fell, so it is no plateau, and the comparison
+  // re-admits it (later: the correction must overshoot that lead too).
+  for (const double bias : {-40.0, 40.0}) {
+    const LongStance biased = drift_in_a_long_stance(fades, seed, bias);
+    std::printf("the same with the total force %+.0f N off: re-admitted at tick %d\n", bias, biased.cleared);
+    EXPECT_GE(biased.cleared, 1200) << "total force " << bias << " N off";
+    EXPECT_EQ(biased.type_at_end, FaultType::none) << "total force " << bias << " N off";
+  }
   // Faded, then growing again at 15 N/s: the correction leaves more than the reading as it is,
   // but the reading falls and rises within the first window (a line through it is flat, its bend
   // is not) and slopes in every window after: not re-admitted by the stance comparison.

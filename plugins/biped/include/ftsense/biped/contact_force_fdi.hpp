@@ -238,7 +238,8 @@
 //             shows either is closed and the next judged afresh): a pad that stays loaded to the
 //             end of a log has no next swing to judge it; only while it is the one correction
 //             the residual carries (with two, the one still faulty can win first). A drift whose
-//             reading stays flat over such a window of its stance (the same test) but off its
+//             reading stays flat over such a window of its stance (the same test, clear_s at
+//             least), after a window of that stance in which it rose the drift's way, but off its
 //             load by more than gain_min_load_N, the window's mean of r_raw, has stopped at that
 //             level (a plateau): held as an offset there (hold_as_offset), not re-admitted by
 //             the comparison once its extrapolated correction has overshot. A
@@ -338,7 +339,8 @@
 // Type: invalid > frozen/saturation > noise > spikes > gain > drift > offset (a noise burst
 // also trips the spike test). A foot touches down when all its pads come below
 // touchdown_height_m. Offset and drift are
-// told apart by a line fitted to the fault's direct measurements (airborne means, onset jump):
+// told apart by a line fitted to the fault's direct measurements (airborne means, onset jump;
+// and a drift seen to stop in a stance is held as an offset at the level it stopped at, above):
 // a drift when, once the swing's air mean has settled (three of its windows), the line's slope
 // s stands out of the readings' noise: |s| sqrt(sum (t - mean t)^2) > z sigma_x, z the
 // two-sided normal quantile of alpha = T / false_alarm_interval_s (the decision is taken every
@@ -887,8 +889,8 @@ class ContactForceFdi {
     // As constructed for `t`: every sum grows only through add (which counts a tick) or
     // add_gain_model (which sets gain_model), so these three say it.
     [[nodiscard]] bool fresh_for(FaultType t) const noexcept { return ticks == 0 && !gain_model && type == t; }
-    // r_raw's sums over the ticks k = 0, 1, ... of the present trend window (for a drift's end,
-    // below); the sums of k's own powers follow from the count.
+    // r_raw's sums over the ticks k = 0, 1, ... of the present trend window (for a drift's end or
+    // its plateau, below); the sums of k's own powers follow from the count.
     int trend_ticks = 0;
     double raw_sum = 0.0, k_raw_sum = 0.0, kk_raw_sum = 0.0, trend_rr = 0.0;
     void add(double raw, double held, double correction) noexcept {
@@ -905,6 +907,15 @@ class ContactForceFdi {
     [[nodiscard]] double trend_mean() const noexcept {
       return trend_ticks > 0 ? raw_sum / static_cast<double>(trend_ticks) : 0.0;
     }
+    // r_raw's least-squares slope over the trend window [N per tick] (0 before its second tick).
+    [[nodiscard]] double trend_slope() const noexcept {
+      const double n = static_cast<double>(trend_ticks);
+      const double p1p1 = n * (n * n - 1.0) / 12.0;
+      return trend_ticks >= 2 ? (k_raw_sum - 0.5 * (n - 1.0) * raw_sum) / p1p1 : 0.0;
+    }
+    // The last window closed as sloped rose the way the drift does (a plateau's flat window
+    // follows the drift going on; a fade's follows its fall).
+    bool rose_with_drift = false;
     // The gain explanation's residual and its own correction N_j - N_j / k.
     void add_gain_model(double as_gain, double correction) noexcept {
       gain_rr += as_gain * as_gain;
