@@ -70,6 +70,10 @@ TEST(ChiSquare, QuantilesMatchTables) {
   // chi2 tables: nu = 30, p = 0.05: 18.493; p = 0.95: 43.773 (Wilson-Hilferty within 0.1 %).
   EXPECT_NEAR(generic::chi_square_quantile(30.0, 0.05) / 18.493, 1.0, 1e-3);
   EXPECT_NEAR(generic::chi_square_quantile(30.0, 0.95) / 43.773, 1.0, 1e-3);
+  // Given z itself: p = 0.95 is z = 1.644854.
+  EXPECT_NEAR(generic::chi_square_quantile_at_z(30.0, 1.644854) / 43.773, 1.0, 1e-3);
+  EXPECT_NEAR(generic::chi_square_quantile_at_z(30.0, generic::normal_quantile(0.95)),
+              generic::chi_square_quantile(30.0, 0.95), 1e-12);
 }
 
 TEST(SignalValidator, InvalidAndSaturationOnTheirTick) {

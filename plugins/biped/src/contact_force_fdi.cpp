@@ -294,6 +294,10 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   const double sigma =
       std::sqrt(params.noise_std_N * params.noise_std_N + params.resolution_N * params.resolution_N / 12.0);
   reading_sigma_N_ = sigma;
+  if (const double q = params.resolution_N; q > 0.0) {
+    const double pi = 3.141592653589793;
+    quantiser_bias_N_ = q / pi * std::exp(-2.0 * pi * pi * params.noise_std_N * params.noise_std_N / (q * q));
+  }
   const auto derive = [](double& value, double derived) {
     if (value == 0.0) value = derived;
   };
@@ -490,6 +494,7 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.sign_fault = false;
   c.reads_as_gain = false;
   c.negative_fit = SlopeFit{};
+  c.air_levels.clear();  // the fault's swings are no healthy level
 }
 
 bool ContactForceFdi::unread(std::size_t j, std::span<const double> height) const noexcept {
@@ -861,12 +866,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // next (one line through the readings before and after a step would average the two
       // levels: a fault that ended mid-swing was kept at half its size).
       if (c.airborne_ticks > 0 && ticks_since_start > 0 && std::abs(x - c.previous) > params_.jump_threshold_N) {
+        close_air_window(c);
         c.restart_air_readings();
         c.air_refit = c.fit_has_air;
       }
       ++c.airborne_ticks;
       if (c.airborne_ticks * period_s_ >= params_.airborne_settle_s) {
         c.airborne_sum += x;
+        c.airborne_time_sum += t;
         ++c.airborne_count;
         // The latest block of min_airborne_samples readings: does it read zero? (A fault that
         // ends mid-swing, by a step too small to restart the mean, leaves the swing's mean
@@ -879,6 +886,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         }
       }
     } else {
+      close_air_window(c);
       c.restart_air_readings();  // (air_refit stays until the air's fit next takes a reading)
     }
     c.max_seen = std::max(c.max_seen, x);
@@ -1313,6 +1321,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.fit.clear(t);
         c.fit_has_air = false;
         c.air_block_reads_zero = false;  // a block read before the raise says nothing of the fault
+        type_air_onset(c, x, t);
       }
       if (c.type == FaultType::offset || c.type == FaultType::drift) {
         const bool reads_zero = std::abs(mean) < params_.airborne_clear_N;
@@ -1339,7 +1348,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           clear(c);  // reads zero in the air again (this swing, or its latest block): the offset or drift is over
           // Judged healthy from here: the swing's mean, which still holds the fault's readings,
           // starts again (else the raise below would take it back at once).
-          c.airborne_sum = 0.0;
+          c.airborne_sum = c.airborne_time_sum = 0.0;
           c.airborne_count = 0;
         } else {
           // The air measures directly: drop the jump's estimate, or the level before a step in flight.
@@ -1990,6 +1999,44 @@ void ContactForceFdi::raise_stuck(Channel& c, double t) noexcept {
   raise(c, FaultType::frozen, t);
   c.frozen_by_follow = true;
   c.following = false;
+}
+
+generic::LevelPoint ContactForceFdi::air_level(const Channel& c, double drop_reading, double drop_time) const noexcept {
+  // The mean of n readings has the readings' sigma^2 / n, and the quantiser's bias that the
+  // noise does not dither away, which no n removes: for Gaussian noise sigma_n on a quantiser of
+  // step q it is at most (q / pi) exp(-2 pi^2 sigma_n^2 / q^2) (the first harmonic of the
+  // quantisation error; 0.005 N for 1 N of noise on 2 N steps, 0.7 N on 5 N steps).
+  const double n = c.airborne_count - (std::isnan(drop_reading) ? 0.0 : 1.0);
+  if (!(n > 0.0)) return {0.0, 0.0, 0.0};
+  return {(c.airborne_time_sum - (std::isnan(drop_reading) ? 0.0 : drop_time)) / n,
+          (c.airborne_sum - (std::isnan(drop_reading) ? 0.0 : drop_reading)) / n,
+          reading_sigma_N_ * reading_sigma_N_ / n + quantiser_bias_N_ * quantiser_bias_N_};
+}
+
+void ContactForceFdi::close_air_window(Channel& c) noexcept {
+  if (c.type != FaultType::none || c.airborne_count < min_airborne_samples_) return;
+  c.air_levels.push(air_level(c, std::numeric_limits<double>::quiet_NaN(), 0.0));
+}
+
+void ContactForceFdi::type_air_onset(Channel& c, double x, double t) noexcept {
+  std::array<generic::LevelPoint, generic::LevelHistory::kCapacity + 1> points{};
+  const std::size_t healthy = c.air_levels.ordered(points);
+  c.air_levels.clear();
+  // This swing's window without the tick's reading (the air's fit takes that one itself).
+  const generic::LevelPoint now = air_level(c, x, t);
+  if (healthy == 0 || !(now.variance > 0.0)) return;
+  points[healthy] = now;
+  const generic::OnsetShape shape = generic::onset_shape(std::span(points.data(), healthy + 1), relation_z_);
+  if (!shape.ramp) return;
+  // The fit weighs a reading 1: a level counts as the readings its variance is worth.
+  const double reading_variance = reading_sigma_N_ * reading_sigma_N_;
+  c.type = FaultType::drift;
+  c.fit.clear(t);
+  for (std::size_t i = shape.first_faulty; i <= healthy; ++i) {
+    c.fit.add(points[i].t_s, points[i].level, reading_variance / points[i].variance);
+  }
+  c.fit_has_air = true;
+  c.air_refit = false;
 }
 
 void ContactForceFdi::raise_jump_onset(Channel& c, double jump, double load_before, double t) noexcept {

@@ -1049,6 +1049,63 @@ TEST(ContactForceFdi, ADriftStaysADriftAtTheStartOfItsNextSwing) {
   EXPECT_NEAR(feet.outs[ContactForceFdi::kFaultEstimate][0], 10.0 + 40.0 * 0.749, 1.0);
 }
 
+// The left foot swings five times, over ticks [100 + 600 i, 350 + 600 i), i = 0..4, its pads
+// reading 0 N +- 0.5 N in the air; l_foot/p1 reads `fault(k)` [N] on top of its load. Returns
+// the first tick it is flagged (-1: never), the type it shows on that tick and on the tick before
+// the fourth landing (2149), and its fault estimate there.
+struct SwingsFault {
+  int raised = -1;
+  FaultType type_when_raised = FaultType::none;
+  FaultType type_before_landing = FaultType::none;
+  double estimate_before_landing_N = 0.0;
+};
+template <class Fault>
+SwingsFault fault_over_swings(const Fault& fault) {
+  Feet feet(suralp(), 1e-3);
+  SwingsFault seen;
+  for (int k = 0; k < 2200; ++k) {
+    left_swing_loads(feet, k, k >= 100 && (k - 100) % 600 < 250);
+    feet.measured[0] += fault(k);
+    feet.step(800.0);
+    if (seen.raised < 0 && feet.type(0) != FaultType::none) {
+      seen.raised = k;
+      seen.type_when_raised = feet.type(0);
+    }
+    if (k == 2149) {
+      seen.type_before_landing = feet.type(0);
+      seen.estimate_before_landing_N = feet.outs[ContactForceFdi::kFaultEstimate][0];
+    }
+  }
+  return seen;
+}
+
+TEST(ContactForceFdi, ADriftFoundInTheAirAfterSwingsItGrewThroughIsADriftWhenRaised) {
+  // 5 N/s from tick 400: the second and third swings read about 2.2 and 5.2 N in the air, under
+  // airborne_threshold_N (8 N), and the fourth passes it as its mean grows. Its swing alone is too
+  // short to show the slope (0.16 s of 5 N/s: 0.8 N, under the 5.71 standard errors of 2 N); the
+  // levels of the swings before, with it, lie on one ramp that the step (an offset after the third
+  // swing) misses by far (onset_shape.hpp). Before: an offset of the fourth swing's level.
+  const SwingsFault drift = fault_over_swings([](int k) { return k >= 400 ? 5e-3 * (k - 400) : 0.0; });
+  std::printf("5 N/s drift from tick 400: raised on tick %d as %s\n", drift.raised,
+              std::string(to_string(drift.type_when_raised)).c_str());
+  EXPECT_GT(drift.raised, 1900);
+  EXPECT_EQ(drift.type_when_raised, FaultType::drift);
+  EXPECT_EQ(drift.type_before_landing, FaultType::drift);
+  EXPECT_NEAR(drift.estimate_before_landing_N, 5e-3 * (2149 - 400), 0.5);
+  // 9 N from tick 1700, in the stance after the third swing: the swings before read 0, a step.
+  const SwingsFault offset = fault_over_swings([](int k) { return k >= 1700 ? 9.0 : 0.0; });
+  EXPECT_GT(offset.raised, 1900);
+  EXPECT_EQ(offset.type_when_raised, FaultType::offset);
+  EXPECT_EQ(offset.type_before_landing, FaultType::offset);
+  EXPECT_NEAR(offset.estimate_before_landing_N, 9.0, 0.5);
+  // 4 N from tick 400 and 10 N from tick 1700: the levels 0, 4, 4, 10 fit neither a ramp nor one
+  // step within their noise; the fault is typed by what the air shows now, an offset.
+  const SwingsFault two_steps = fault_over_swings([](int k) { return k >= 1700 ? 10.0 : k >= 400 ? 4.0 : 0.0; });
+  EXPECT_GT(two_steps.raised, 1900);
+  EXPECT_EQ(two_steps.type_when_raised, FaultType::offset);
+  EXPECT_EQ(two_steps.type_before_landing, FaultType::offset);
+}
+
 // l_foot/p1's drift of fault_in_a_short_swing (40 N/s from tick 150, typed drift on tick 321),
 // on a foot that lands on tick 350 and then stays down to tick 4000 (a robot that stops and
 // stands). From tick 1000 the fault follows `after` (its size [N] at tick k >= 1000; 44 N, the

@@ -17,9 +17,11 @@ double normal_quantile(double p) noexcept {
   return 0.5 * (lo + hi);
 }
 
-double chi_square_quantile(double nu, double p) noexcept {
+double chi_square_quantile(double nu, double p) noexcept { return chi_square_quantile_at_z(nu, normal_quantile(p)); }
+
+double chi_square_quantile_at_z(double nu, double z) noexcept {
   const double c = 2.0 / (9.0 * nu);
-  const double root = 1.0 - c + normal_quantile(p) * std::sqrt(c);
+  const double root = 1.0 - c + z * std::sqrt(c);
   return nu * std::pow(std::max(root, 0.0), 3);
 }
 

@@ -345,7 +345,14 @@
 // s stands out of the readings' noise: |s| sqrt(sum (t - mean t)^2) > z sigma_x, z the
 // two-sided normal quantile of alpha = T / false_alarm_interval_s (the decision is taken every
 // tick, on fits whose ticks are correlated: conservative); until then the type stays (the line
-// spans the swings before);
+// spans the swings before). A fault the air test raises may have grown through the swings
+// before it, under airborne_threshold_N (a slow drift is found one swing after it passes the
+// threshold, and that swing alone is too short to show its slope): the air means of the
+// channel's healthy swings since it was last flagged (at most 12, each with its variance
+// sigma_x^2 / n plus the square of the quantiser's undithered bias (q / pi)
+// exp(-2 pi^2 sigma^2 / q^2)) and this swing's are tested for a ramp against a step
+// (generic/onset_shape.hpp, at z): a ramp makes it a drift at once, its line fitted from the
+// ramp's swings on (weighted as the readings their variance is worth);
 // a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
 // a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
@@ -407,6 +414,7 @@
 #include "ftsense/biped/unmeasured_contact_loads.hpp"
 #include "ftsense/calibration.hpp"
 #include "ftsense/fault_type.hpp"
+#include "ftsense/generic/onset_shape.hpp"
 #include "ftsense/generic/spike_episode.hpp"
 #include "ftsense/plugin.hpp"
 
@@ -526,6 +534,11 @@ class ContactForceFdi {
     int airborne_ticks = 0;
     double airborne_sum = 0.0;
     int airborne_count = 0;
+    double airborne_time_sum = 0.0;  // the sum of those readings' times [s]
+    // The air's levels of the swings (windows between steps in flight) the channel spent healthy
+    // since it was last flagged: the points before a fault the air test raises, which tell a
+    // drift that grew through them from an offset that stepped after them (onset_shape.hpp).
+    generic::LevelHistory air_levels;
     // the last jump candidate
     bool jump_pending = false;  // a candidate this tick
     bool jump_member = false;   // in the group awaiting confirmation
@@ -581,7 +594,7 @@ class ContactForceFdi {
     // reading without a value, a step in flight).
     void restart_air_readings() noexcept {
       airborne_ticks = airborne_count = 0;
-      airborne_sum = air_block_sum = 0.0;
+      airborne_sum = airborne_time_sum = air_block_sum = 0.0;
       air_block_count = 0;
       air_block_reads_zero = false;
     }
@@ -692,6 +705,16 @@ class ContactForceFdi {
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
   void raise_stuck(Channel& c, double t) noexcept;
+  // The air's window of readings closes (the pad lands, steps in flight or reads no value): a
+  // healthy channel keeps its level among its air_levels.
+  void close_air_window(Channel& c) noexcept;
+  // The level of the air's window so far: its mean time, mean and the mean's variance (without
+  // one reading at drop_time unless drop_reading is NaN; variance 0: no reading).
+  [[nodiscard]] generic::LevelPoint air_level(const Channel& c, double drop_reading, double drop_time) const noexcept;
+  // Raised by the air test (an offset so far): a drift instead when the levels of its healthy
+  // swings before, with this one, rise along a ramp the step does not explain (onset_shape.hpp);
+  // the air's fit then starts from the ramp's swings, x the tick's reading (added after).
+  void type_air_onset(Channel& c, double x, double t) noexcept;
   // The bar a landing's residual step must clear: z_g times the RMS of the healthy landings' steps,
   // at least floor_N.
   [[nodiscard]] double landing_step_bar(double floor_N) const noexcept;
@@ -780,6 +803,7 @@ class ContactForceFdi {
   // What a stuck reading's smoothed value spans: its noise, +-4 sigma after the low-pass, and a
   // quantisation level [N].
   double still_band_N_ = 0.0;
+  double quantiser_bias_N_ = 0.0;  // the most a mean of readings stays off by quantisation (air_level)
   double residual_near_N_ = 0.0;  // follow_ratio x sum_threshold_N: a residual move smaller is no move
   double still_window_settle_until_s_ = -1e300;
   // Per foot, for the substituted loads' split: its readable pads on the ground all read their
@@ -952,7 +976,7 @@ class ContactForceFdi {
       const double p2p2 = n * (n * n - 1.0) * (n * n - 4.0) / 180.0;
       const double rp1 = k_raw_sum - m * raw_sum;
       const double rp2 = kk_raw_sum - 2.0 * m * k_raw_sum + (m * m - (n * n - 1.0) / 12.0) * raw_sum;
-      const double c1 = rp1 / p1p1, c2 = rp2 / p2p2;
+      const double c1 = trend_slope(), c2 = rp2 / p2p2;  // c1 = rp1 / p1p1
       const double ssr = trend_rr - raw_sum * raw_sum / n - c1 * rp1 - c2 * rp2;
       const double s = std::sqrt(std::max(ssr, 0.0) / (n - 3.0));
       const double se1 = s / std::sqrt(p1p1), se2 = s / std::sqrt(p2p2);

@@ -14,5 +14,7 @@ namespace ftsense::generic {
 
 // x with P(chi^2_nu <= x) = p, nu > 0 (may be fractional), 0 < p < 1.
 [[nodiscard]] double chi_square_quantile(double nu, double p) noexcept;
+// The same at p = P(Z <= z), z given (no bisection: cheap enough for a step).
+[[nodiscard]] double chi_square_quantile_at_z(double nu, double z) noexcept;
 
 }  // namespace ftsense::generic
