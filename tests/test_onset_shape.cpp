@@ -1,9 +1,12 @@
 // onset_shape: a ramp (drift) is chosen over a step (offset) when its chi-square is lower by more
 // than z^2 and it fits within the chi-square bound; exact values on small hand-checked traces
 // (unit variances, so a chi-square is the sum of squared misfits). The ramp's chi-squares were
-// cross-checked by a brute-force search over the onset (least squares on a grid of 200,001 onsets).
+// checked once against a brute-force search over the onset (least squares on a grid of
+// 200,001 onsets; a one-off script, not kept).
 
 #include <array>
+#include <cmath>
+#include <limits>
 #include <span>
 
 #include <gtest/gtest.h>
@@ -97,9 +100,19 @@ TEST(OnsetShape, FewerThanThreePointsAreAStep) {
   EXPECT_FALSE(onset_shape(std::span<const LevelPoint>{}, 1.0).ramp);
 }
 
+TEST(OnsetShape, AVarianceThatIsNoPositiveNumberMakesAStep) {
+  // The ramp of the first test, one variance broken at a time.
+  for (const double broken : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    auto p = unit_points<5>({0.0, 0.0, 0.0, 3.0, 8.0});
+    p[1].variance = broken;
+    EXPECT_FALSE(onset_shape(p, 2.0).ramp) << "variance " << broken;
+  }
+}
+
 TEST(LevelHistory, KeepsTheLatestPointsOldestFirst) {
   LevelHistory history;
-  for (int i = 0; i < 14; ++i) history.push({static_cast<double>(i), 0.0, 1.0});
+  const int pushed = static_cast<int>(LevelHistory::kCapacity) + 2;
+  for (int i = 0; i < pushed; ++i) history.push({static_cast<double>(i), 0.0, 1.0});
   EXPECT_EQ(history.size(), LevelHistory::kCapacity);
   std::array<LevelPoint, LevelHistory::kCapacity> out{};
   ASSERT_EQ(history.ordered(out), LevelHistory::kCapacity);

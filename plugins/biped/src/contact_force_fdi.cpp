@@ -296,7 +296,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   reading_sigma_N_ = sigma;
   if (const double q = params.resolution_N; q > 0.0) {
     const double pi = 3.141592653589793;
-    quantiser_bias_N_ = q / pi * std::exp(-2.0 * pi * pi * params.noise_std_N * params.noise_std_N / (q * q));
+    quantiser_bias_N_ = 0.5 * q * std::exp(-2.0 * pi * pi * params.noise_std_N * params.noise_std_N / (q * q));
   }
   const auto derive = [](double& value, double derived) {
     if (value == 0.0) value = derived;
@@ -872,8 +872,13 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       }
       ++c.airborne_ticks;
       if (c.airborne_ticks * period_s_ >= params_.airborne_settle_s) {
+        if (c.airborne_count == 0) c.air_origin_s = t;
+        const double u = t - c.air_origin_s;
         c.airborne_sum += x;
-        c.airborne_time_sum += t;
+        c.airborne_u_sum += u;
+        c.airborne_uu_sum += u * u;
+        c.airborne_ux_sum += u * x;
+        c.air_window_flagged = c.air_window_flagged || c.type != FaultType::none;
         ++c.airborne_count;
         // The latest block of min_airborne_samples readings: does it read zero? (A fault that
         // ends mid-swing, by a step too small to restart the mean, leaves the swing's mean
@@ -1348,8 +1353,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
           clear(c);  // reads zero in the air again (this swing, or its latest block): the offset or drift is over
           // Judged healthy from here: the swing's mean, which still holds the fault's readings,
           // starts again (else the raise below would take it back at once).
-          c.airborne_sum = c.airborne_time_sum = 0.0;
+          c.airborne_sum = c.airborne_u_sum = c.airborne_uu_sum = c.airborne_ux_sum = 0.0;
           c.airborne_count = 0;
+          c.air_window_flagged = false;
         } else {
           // The air measures directly: drop the jump's estimate, or the level before a step in flight.
           if (!c.fit_has_air || c.air_refit) c.fit.clear(t);
@@ -2001,38 +2007,58 @@ void ContactForceFdi::raise_stuck(Channel& c, double t) noexcept {
   c.following = false;
 }
 
-generic::LevelPoint ContactForceFdi::air_level(const Channel& c, double drop_reading, double drop_time) const noexcept {
-  // The mean of n readings has the readings' sigma^2 / n, and the quantiser's bias that the
-  // noise does not dither away, which no n removes: for Gaussian noise sigma_n on a quantiser of
-  // step q it is at most (q / pi) exp(-2 pi^2 sigma_n^2 / q^2) (the first harmonic of the
-  // quantisation error; 0.005 N for 1 N of noise on 2 N steps, 0.7 N on 5 N steps).
-  const double n = c.airborne_count - (std::isnan(drop_reading) ? 0.0 : 1.0);
-  if (!(n > 0.0)) return {0.0, 0.0, 0.0};
-  return {(c.airborne_time_sum - (std::isnan(drop_reading) ? 0.0 : drop_time)) / n,
-          (c.airborne_sum - (std::isnan(drop_reading) ? 0.0 : drop_reading)) / n,
-          reading_sigma_N_ * reading_sigma_N_ / n + quantiser_bias_N_ * quantiser_bias_N_};
+std::size_t ContactForceFdi::air_levels_of_window(const Channel& c, double drop_reading, double drop_time,
+                                                  std::span<generic::LevelPoint> out) const noexcept {
+  // A mean of n readings is off by the readings' sigma^2 / n and by the quantiser's bias, which no
+  // n removes where the noise does not dither it: (q / 2) exp(-2 pi^2 sigma_n^2 / q^2), q / 2
+  // without noise, and above the first harmonic's amplitude (q / pi) exp(...) that dominates once
+  // the noise dithers (0.004 N for 1 N of noise on 2 N steps, 1.1 N on 5 N steps).
+  const bool drop = !std::isnan(drop_reading);
+  const double u_drop = drop ? drop_time - c.air_origin_s : 0.0;
+  const double n = c.airborne_count - (drop ? 1.0 : 0.0);
+  if (!(n >= 1.0)) return 0;
+  const double sum_x = c.airborne_sum - (drop ? drop_reading : 0.0);
+  const double sum_u = c.airborne_u_sum - u_drop;
+  const double mean_u = sum_u / n, mean_x = sum_x / n;
+  const double suu = c.airborne_uu_sum - (drop ? u_drop * u_drop : 0.0) - n * mean_u * mean_u;
+  const double sux = c.airborne_ux_sum - (drop ? u_drop * drop_reading : 0.0) - n * mean_u * mean_x;
+  const double bias_sq = quantiser_bias_N_ * quantiser_bias_N_;
+  const double reading_var = reading_sigma_N_ * reading_sigma_N_;
+  const double t_mean = c.air_origin_s + mean_u;
+  if (!(n >= 3.0 && suu > 0.0)) {
+    out[0] = {t_mean, mean_x, reading_var / n + bias_sq};
+    return 1;
+  }
+  const double slope = sux / suu;
+  const double d = std::sqrt(suu / n);
+  out[0] = {t_mean - d, mean_x - slope * d, 2.0 * reading_var / n + bias_sq};
+  out[1] = {t_mean + d, mean_x + slope * d, 2.0 * reading_var / n + bias_sq};
+  return 2;
 }
 
 void ContactForceFdi::close_air_window(Channel& c) noexcept {
-  if (c.type != FaultType::none || c.airborne_count < min_airborne_samples_) return;
-  c.air_levels.push(air_level(c, std::numeric_limits<double>::quiet_NaN(), 0.0));
+  if (c.type != FaultType::none || c.air_window_flagged || c.airborne_count < min_airborne_samples_) return;
+  std::array<generic::LevelPoint, 2> levels{};
+  const std::size_t count = air_levels_of_window(c, std::numeric_limits<double>::quiet_NaN(), 0.0, levels);
+  for (std::size_t i = 0; i < count; ++i) c.air_levels.push(levels[i]);
 }
 
 void ContactForceFdi::type_air_onset(Channel& c, double x, double t) noexcept {
-  std::array<generic::LevelPoint, generic::LevelHistory::kCapacity + 1> points{};
+  std::array<generic::LevelPoint, generic::LevelHistory::kCapacity + 2> points{};
   const std::size_t healthy = c.air_levels.ordered(points);
   c.air_levels.clear();
+  if (healthy == 0) return;
   // This swing's window without the tick's reading (the air's fit takes that one itself).
-  const generic::LevelPoint now = air_level(c, x, t);
-  if (healthy == 0 || !(now.variance > 0.0)) return;
-  points[healthy] = now;
-  const generic::OnsetShape shape = generic::onset_shape(std::span(points.data(), healthy + 1), relation_z_);
+  const std::size_t m =
+      healthy + air_levels_of_window(c, x, t, std::span(points.data() + healthy, 2));
+  if (m == healthy) return;
+  const generic::OnsetShape shape = generic::onset_shape(std::span(points.data(), m), relation_z_);
   if (!shape.ramp) return;
   // The fit weighs a reading 1: a level counts as the readings its variance is worth.
   const double reading_variance = reading_sigma_N_ * reading_sigma_N_;
   c.type = FaultType::drift;
   c.fit.clear(t);
-  for (std::size_t i = shape.first_faulty; i <= healthy; ++i) {
+  for (std::size_t i = shape.first_faulty; i < m; ++i) {
     c.fit.add(points[i].t_s, points[i].level, reading_variance / points[i].variance);
   }
   c.fit_has_air = true;

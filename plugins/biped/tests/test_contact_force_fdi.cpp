@@ -1104,6 +1104,15 @@ TEST(ContactForceFdi, ADriftFoundInTheAirAfterSwingsItGrewThroughIsADriftWhenRai
   EXPECT_GT(two_steps.raised, 1900);
   EXPECT_EQ(two_steps.type_when_raised, FaultType::offset);
   EXPECT_EQ(two_steps.type_before_landing, FaultType::offset);
+  // 12 N from tick 1480, late in the third swing (its window: ticks 1319-1549), a step under
+  // jump_threshold_N (20 N) that restarts nothing: that window's mean, 3.6 N, lies between 0 and
+  // 12 N as a ramp's would, but its two levels (its line's, 0.6 N and 6.7 N about 0.07 s apart)
+  // show the steep step it is, which no ramp through the fourth swing's 12 N fits: an offset.
+  const SwingsFault late_step = fault_over_swings([](int k) { return k >= 1480 ? 12.0 : 0.0; });
+  EXPECT_GT(late_step.raised, 1900);
+  EXPECT_EQ(late_step.type_when_raised, FaultType::offset);
+  EXPECT_EQ(late_step.type_before_landing, FaultType::offset);
+  EXPECT_NEAR(late_step.estimate_before_landing_N, 12.0, 0.5);
 }
 
 // l_foot/p1's drift of fault_in_a_short_swing (40 N/s from tick 150, typed drift on tick 321),

@@ -73,6 +73,9 @@ OnsetShape onset_shape(std::span<const LevelPoint> points, double z) noexcept {
   OnsetShape best;
   const std::size_t m = points.size();
   if (m < 2) return best;
+  for (const LevelPoint& p : points) {
+    if (!(p.variance > 0.0) || !std::isfinite(p.variance)) return best;
+  }
   const double origin = points.back().t_s;  // times about the last point (no cancellation)
   const double shift = points.back().level;  // levels about the last (no cancellation)
   // The healthy points [0, j): their chi-square about their level c (less the shift).

@@ -347,12 +347,15 @@
 // tick, on fits whose ticks are correlated: conservative); until then the type stays (the line
 // spans the swings before). A fault the air test raises may have grown through the swings
 // before it, under airborne_threshold_N (a slow drift is found one swing after it passes the
-// threshold, and that swing alone is too short to show its slope): the air means of the
-// channel's healthy swings since it was last flagged (at most 12, each with its variance
-// sigma_x^2 / n plus the square of the quantiser's undithered bias (q / pi)
-// exp(-2 pi^2 sigma^2 / q^2)) and this swing's are tested for a ramp against a step
-// (generic/onset_shape.hpp, at z): a ramp makes it a drift at once, its line fitted from the
-// ramp's swings on (weighted as the readings their variance is worth);
+// threshold, and that swing alone is too short to show its slope): the air windows of the
+// channel's healthy swings since it was last flagged (the last 8) and this swing's are tested
+// for a ramp against a step (generic/onset_shape.hpp, at z). Each window is two levels, its
+// least-squares line read at mean t -+ D (D^2 = sum (t - mean t)^2 / n), uncorrelated, of
+// variance 2 sigma_x^2 / n each, plus b_q^2, b_q = (q / 2) exp(-2 pi^2 sigma^2 / q^2) the
+// quantiser's bias that averaging does not remove (q / 2 without noise): so a step under
+// jump_threshold_N inside a window (a mean between two levels, which a ramp would fit) shows as
+// the steep slope it is, and fits no ramp. A ramp makes the fault a drift at once, its line
+// fitted from the ramp's levels on (each weighted as the readings its variance is worth);
 // a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
 // a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
@@ -534,7 +537,11 @@ class ContactForceFdi {
     int airborne_ticks = 0;
     double airborne_sum = 0.0;
     int airborne_count = 0;
-    double airborne_time_sum = 0.0;  // the sum of those readings' times [s]
+    // The same readings' times u = t - air_origin_s [s]: sum u, sum u^2, sum u x (the window's
+    // line, for its two levels); and whether the channel was flagged on any of its ticks.
+    double air_origin_s = 0.0;
+    double airborne_u_sum = 0.0, airborne_uu_sum = 0.0, airborne_ux_sum = 0.0;
+    bool air_window_flagged = false;
     // The air's levels of the swings (windows between steps in flight) the channel spent healthy
     // since it was last flagged: the points before a fault the air test raises, which tell a
     // drift that grew through them from an offset that stepped after them (onset_shape.hpp).
@@ -594,7 +601,8 @@ class ContactForceFdi {
     // reading without a value, a step in flight).
     void restart_air_readings() noexcept {
       airborne_ticks = airborne_count = 0;
-      airborne_sum = airborne_time_sum = air_block_sum = 0.0;
+      airborne_sum = airborne_u_sum = airborne_uu_sum = airborne_ux_sum = air_block_sum = 0.0;
+      air_window_flagged = false;
       air_block_count = 0;
       air_block_reads_zero = false;
     }
@@ -705,12 +713,16 @@ class ContactForceFdi {
   // Raises a reading the sum residual shows stuck (still or unread) as frozen; the follow test
   // re-admits it when its reading follows the load again.
   void raise_stuck(Channel& c, double t) noexcept;
-  // The air's window of readings closes (the pad lands, steps in flight or reads no value): a
-  // healthy channel keeps its level among its air_levels.
+  // The air's window of readings closes (the pad lands or steps in flight): a channel healthy
+  // on all its ticks keeps its levels among its air_levels.
   void close_air_window(Channel& c) noexcept;
-  // The level of the air's window so far: its mean time, mean and the mean's variance (without
-  // one reading at drop_time unless drop_reading is NaN; variance 0: no reading).
-  [[nodiscard]] generic::LevelPoint air_level(const Channel& c, double drop_reading, double drop_time) const noexcept;
+  // The air's window so far as levels: its least-squares line a + s (t - mean t) read at
+  // mean t -+ D, D^2 = sum (t - mean t)^2 / n, two uncorrelated levels of variance 2 sigma^2 / n
+  // each that carry the window's mean and its slope (one level, its mean, when its times do not
+  // spread), plus the quantiser's bias squared; without the reading drop_reading at drop_time
+  // unless that is NaN. Writes them to `out` (room for 2); returns how many (0: too few readings).
+  std::size_t air_levels_of_window(const Channel& c, double drop_reading, double drop_time,
+                                   std::span<generic::LevelPoint> out) const noexcept;
   // Raised by the air test (an offset so far): a drift instead when the levels of its healthy
   // swings before, with this one, rise along a ramp the step does not explain (onset_shape.hpp);
   // the air's fit then starts from the ramp's swings, x the tick's reading (added after).

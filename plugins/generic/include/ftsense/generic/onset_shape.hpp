@@ -29,7 +29,8 @@
 // within the noise; where the points scatter beyond their stated variance (unmodelled errors) no
 // shape fits and the answer is the step, what a detector that saw only the last level would say.
 //
-// Plain arithmetic on at most LevelHistory::kCapacity + 1 points, O(m^2); no allocation.
+// Plain arithmetic, O(m^2) for m points (a few dozen at most); no allocation. A variance that is
+// not a positive finite number makes the answer a step (nothing to weigh the level by).
 
 #include <array>
 #include <cstddef>
@@ -47,7 +48,7 @@ struct LevelPoint {
 // is dropped when full (a ramp needs its last healthy point and the ones after it, not history).
 class LevelHistory {
  public:
-  static constexpr std::size_t kCapacity = 12;
+  static constexpr std::size_t kCapacity = 16;
   void push(const LevelPoint& point) noexcept;
   void clear() noexcept { count_ = next_ = 0; }
   [[nodiscard]] std::size_t size() const noexcept { return count_; }
