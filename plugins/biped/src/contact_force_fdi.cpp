@@ -2012,7 +2012,9 @@ std::size_t ContactForceFdi::air_levels_of_window(const Channel& c, double drop_
   // A mean of n readings is off by the readings' sigma^2 / n and by the quantiser's bias, which no
   // n removes where the noise does not dither it: (q / 2) exp(-2 pi^2 sigma_n^2 / q^2), q / 2
   // without noise, and above the first harmonic's amplitude (q / pi) exp(...) that dominates once
-  // the noise dithers (0.004 N for 1 N of noise on 2 N steps, 1.1 N on 5 N steps).
+  // the noise dithers (0.007 N for 1 N of noise on 2 N steps, 1.1 N on 5 N steps). It is one
+  // bias for the window, shared by its two levels: each carries it twice over, so that their
+  // mean carries it whole.
   const bool drop = !std::isnan(drop_reading);
   const double u_drop = drop ? drop_time - c.air_origin_s : 0.0;
   const double n = c.airborne_count - (drop ? 1.0 : 0.0);
@@ -2022,7 +2024,7 @@ std::size_t ContactForceFdi::air_levels_of_window(const Channel& c, double drop_
   const double mean_u = sum_u / n, mean_x = sum_x / n;
   const double suu = c.airborne_uu_sum - (drop ? u_drop * u_drop : 0.0) - n * mean_u * mean_u;
   const double sux = c.airborne_ux_sum - (drop ? u_drop * drop_reading : 0.0) - n * mean_u * mean_x;
-  const double bias_sq = quantiser_bias_N_ * quantiser_bias_N_;
+  const double bias_sq = quantiser_bias_N_ * quantiser_bias_N_;  // the mean's; a level's is twice it
   const double reading_var = reading_sigma_N_ * reading_sigma_N_;
   const double t_mean = c.air_origin_s + mean_u;
   if (!(n >= 3.0 && suu > 0.0)) {
@@ -2031,8 +2033,8 @@ std::size_t ContactForceFdi::air_levels_of_window(const Channel& c, double drop_
   }
   const double slope = sux / suu;
   const double d = std::sqrt(suu / n);
-  out[0] = {t_mean - d, mean_x - slope * d, 2.0 * reading_var / n + bias_sq};
-  out[1] = {t_mean + d, mean_x + slope * d, 2.0 * reading_var / n + bias_sq};
+  out[0] = {t_mean - d, mean_x - slope * d, 2.0 * (reading_var / n + bias_sq)};
+  out[1] = {t_mean + d, mean_x + slope * d, 2.0 * (reading_var / n + bias_sq)};
   return 2;
 }
 
@@ -2053,7 +2055,10 @@ void ContactForceFdi::type_air_onset(Channel& c, double x, double t) noexcept {
       healthy + air_levels_of_window(c, x, t, std::span(points.data() + healthy, 2));
   if (m == healthy) return;
   const generic::OnsetShape shape = generic::onset_shape(std::span(points.data(), m), relation_z_);
-  if (!shape.ramp) return;
+  // A ramp that begins within this swing is this swing's alone: a step inside it under
+  // jump_threshold_N (one level between, one full) fits that ramp exactly. The swings before
+  // must show the fault growing.
+  if (!shape.ramp || shape.first_faulty >= healthy) return;
   // The fit weighs a reading 1: a level counts as the readings its variance is worth.
   const double reading_variance = reading_sigma_N_ * reading_sigma_N_;
   c.type = FaultType::drift;

@@ -1106,13 +1106,21 @@ TEST(ContactForceFdi, ADriftFoundInTheAirAfterSwingsItGrewThroughIsADriftWhenRai
   EXPECT_EQ(two_steps.type_before_landing, FaultType::offset);
   // 12 N from tick 1480, late in the third swing (its window: ticks 1319-1549), a step under
   // jump_threshold_N (20 N) that restarts nothing: that window's mean, 3.6 N, lies between 0 and
-  // 12 N as a ramp's would, but its two levels (its line's, 0.6 N and 6.7 N about 0.07 s apart)
+  // 12 N as a ramp's would, but its two levels (its line's, -0.8 N and 8.0 N, 0.13 s apart)
   // show the steep step it is, which no ramp through the fourth swing's 12 N fits: an offset.
   const SwingsFault late_step = fault_over_swings([](int k) { return k >= 1480 ? 12.0 : 0.0; });
   EXPECT_GT(late_step.raised, 1900);
   EXPECT_EQ(late_step.type_when_raised, FaultType::offset);
   EXPECT_EQ(late_step.type_before_landing, FaultType::offset);
   EXPECT_NEAR(late_step.estimate_before_landing_N, 12.0, 0.5);
+  // 12 N from tick 1940, early in the fourth swing, the one that raises it: that window's own two
+  // levels (one between, one full) fit a ramp that began within it exactly; the swings before
+  // read 0, so nothing grew through them: an offset.
+  const SwingsFault early_step = fault_over_swings([](int k) { return k >= 1940 ? 12.0 : 0.0; });
+  EXPECT_GT(early_step.raised, 1900);
+  EXPECT_EQ(early_step.type_when_raised, FaultType::offset);
+  EXPECT_EQ(early_step.type_before_landing, FaultType::offset);
+  EXPECT_NEAR(early_step.estimate_before_landing_N, 12.0, 0.5);
 }
 
 // l_foot/p1's drift of fault_in_a_short_swing (40 N/s from tick 150, typed drift on tick 321),

@@ -351,11 +351,12 @@
 // channel's healthy swings since it was last flagged (the last 8) and this swing's are tested
 // for a ramp against a step (generic/onset_shape.hpp, at z). Each window is two levels, its
 // least-squares line read at mean t -+ D (D^2 = sum (t - mean t)^2 / n), uncorrelated, of
-// variance 2 sigma_x^2 / n each, plus b_q^2, b_q = (q / 2) exp(-2 pi^2 sigma^2 / q^2) the
-// quantiser's bias that averaging does not remove (q / 2 without noise): so a step under
-// jump_threshold_N inside a window (a mean between two levels, which a ramp would fit) shows as
-// the steep slope it is, and fits no ramp. A ramp makes the fault a drift at once, its line
-// fitted from the ramp's levels on (each weighted as the readings its variance is worth);
+// variance 2 (sigma_x^2 / n + b_q^2), b_q = (q / 2) exp(-2 pi^2 sigma^2 / q^2) the quantiser's
+// bias that averaging does not remove (q / 2 without noise): so a step under jump_threshold_N
+// inside an earlier window (a mean between two levels, which a ramp would fit) shows as the
+// steep slope it is, and fits no ramp. A ramp makes the fault a drift at once, its line fitted
+// from the ramp's levels on (each weighted as the readings its variance is worth), when it began
+// before this swing (a ramp within this swing's two levels alone is a step inside it as much);
 // a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
 // a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).

@@ -2,9 +2,10 @@
 // A fault's onset shape from its level measured now and then: a ramp (drift) or a step (offset).
 //
 // Some channels show their fault only at times: a foot's force sensor in the air reads its fault
-// and nothing else, but a foot is in the air a third of a stride or less. Each such window gives a
-// level y_i [the channel's unit] at the mean time t_i [s] of its samples, with a variance v_i: the
-// readings' noise over its n_i samples, sigma^2 / n_i, plus what averaging does not remove (a
+// and nothing else, but a foot is in the air a third of a stride or less. Each such window gives
+// levels y_i [the channel's unit] at times t_i [s] with variances v_i (its mean at the samples'
+// mean time, sigma^2 / n_i; or, as contact_force_fdi keeps them, the two uncorrelated levels of
+// its least-squares line, which carry its slope too), plus what averaging does not remove (a
 // quantiser's bias where the noise is too small to dither it). The caller keeps the healthy
 // windows (LevelHistory) and adds the one that shows the fault. Two shapes explain the m points,
 // each with three parameters (c the healthy level):
