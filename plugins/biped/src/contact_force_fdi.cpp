@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include "ftsense/biped/frames.hpp"
@@ -295,7 +296,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
       std::sqrt(params.noise_std_N * params.noise_std_N + params.resolution_N * params.resolution_N / 12.0);
   reading_sigma_N_ = sigma;
   if (const double q = params.resolution_N; q > 0.0) {
-    const double pi = 3.141592653589793;
+    const double pi = std::numbers::pi;
     quantiser_bias_N_ = 0.5 * q * std::exp(-2.0 * pi * pi * params.noise_std_N * params.noise_std_N / (q * q));
   }
   const auto derive = [](double& value, double derived) {

@@ -56,7 +56,7 @@ struct LevelSums {
 double level_weight(const LevelPoint& p) noexcept { return 1.0 / std::max(p.variance, kMinLevelVariance); }
 
 // Points [from, to) with u = their time from `origin`, or with u = max(0, t - hinge) when hinged,
-// and their levels less `shift` (the known healthy level, or the last point's: no cancellation).
+// and their levels less `shift` (the last point's: no cancellation).
 LevelSums level_sums(std::span<const LevelPoint> p, std::size_t from, std::size_t to, double origin, double shift,
                      bool hinged, double hinge) noexcept {
   LevelSums s;

@@ -816,7 +816,7 @@ class ContactForceFdi {
   // What a stuck reading's smoothed value spans: its noise, +-4 sigma after the low-pass, and a
   // quantisation level [N].
   double still_band_N_ = 0.0;
-  double quantiser_bias_N_ = 0.0;  // the most a mean of readings stays off by quantisation (air_level)
+  double quantiser_bias_N_ = 0.0;  // the most a mean of readings stays off by quantisation (air_levels_of_window)
   double residual_near_N_ = 0.0;  // follow_ratio x sum_threshold_N: a residual move smaller is no move
   double still_window_settle_until_s_ = -1e300;
   // Per foot, for the substituted loads' split: its readable pads on the ground all read their

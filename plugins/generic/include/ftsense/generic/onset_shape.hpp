@@ -40,9 +40,9 @@
 namespace ftsense::generic {
 
 struct LevelPoint {
-  double t_s = 0.0;       // the mean time of the window's samples [s]
-  double level = 0.0;     // their mean [channel unit]
-  double variance = 0.0;  // of that mean [unit^2], > 0
+  double t_s = 0.0;       // when the level holds [s] (a window's mean time, or a time on its line)
+  double level = 0.0;     // the level there [channel unit]
+  double variance = 0.0;  // of that level [unit^2], > 0
 };
 
 // The latest healthy windows of one channel, oldest first when read. Fixed capacity: the oldest
