@@ -168,6 +168,11 @@ void ContactForceFdi::Params::describe(ParamSchema<Params>& schema) {
              "an offset or drift whose reading spans less than this share of its leave-one-out force's span is "
              "a frozen output that keeps its noise")
       .greater_than(0.0).less_than(0.5);
+  schema.add("ramp_history_s", &Params::ramp_history_s,
+             "how far back the sum residual's history reaches (16 block means) when a fault the air finds is "
+             "typed: a ramp there that ends at the air's level makes it a drift")
+      .unit("s").greater_than(0.0).at_most(600.0)
+      .plausible(1.0, 120.0, "a few strides to two minutes");
   schema.add("points", &Params::points,
              "the contact points (x, y) of each foot's channels on a rigid sole, foot frame, every foot alike (as "
              "contact_point_height's points; a $ref to one definition keeps them one): a foot's loads in full "
@@ -356,6 +361,9 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                              "the sum residual is off with no channel to blame"}
                         .sized_by(per_point));
   gain_window_ticks_ = window_ticks(params.gain_window_s, context.sample_period_s(), 10, "gain_window_s");
+  sum_block_target_ticks_ =
+      window_ticks(params.ramp_history_s / static_cast<double>(generic::LevelHistory::kCapacity),
+                   context.sample_period_s(), 1, "ramp_history_s");
   gain_forgetting_ = std::exp(-1.0 / gain_window_ticks_);
   gain_xx_.assign(n, 0.0);
   gain_xr_.assign(n, 0.0);
@@ -464,6 +472,13 @@ void ContactForceFdi::reset() noexcept {
   restart_gain_window();
   gain_unisolated_ = false;
   unmeasured_.reset();
+  sum_levels_.clear();
+  sum_block_ticks_ = sum_block_count_ = 0;
+  sum_block_sum_ = sum_block_t_sum_ = 0.0;
+  sum_block_clean_ = true;
+  sum_block_d2_square_ = sum_block_d2_count_ = 0.0;
+  sum_block_full_run_ = 0;
+  sum_block_last_means_ = {0.0, 0.0};
   std::fill(full_contact_run_.begin(), full_contact_run_.end(), 0);
   relation_next_ = 0;
   std::fill(relation_group_.begin(), relation_group_.end(), 0);
@@ -1328,6 +1343,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         c.fit_has_air = false;
         c.air_block_reads_zero = false;  // a block read before the raise says nothing of the fault
         type_air_onset(c, x, t);
+        if (c.type == FaultType::offset) type_sum_onset(c, x, t);
       }
       if (c.type == FaultType::offset || c.type == FaultType::drift) {
         const bool reads_zero = std::abs(mean) < params_.airborne_clear_N;
@@ -1534,11 +1550,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   const double residual = fz_ok ? total - fz : 0.0;
   // The relations' fault-free statistics, for the substituted loads: the sum residual while no
   // channel is flagged, a foot's plane while its pads are all healthy, on the ground and loaded.
-  if (fz_ok && all_finite_readings) {
-    bool none_flagged = true;
-    for (const Channel& c : channels_) none_flagged = none_flagged && c.type == FaultType::none;
-    if (none_flagged) unmeasured_.observe_sum(residual);
-  }
+  // (and the residual's block means, for a fault the air finds: type_sum_onset).
+  bool none_flagged = true;
+  for (const Channel& c : channels_) none_flagged = none_flagged && c.type == FaultType::none;
+  if (fz_ok && all_finite_readings && none_flagged) unmeasured_.observe_sum(residual);
+  observe_sum_block(residual, fz_ok && all_finite_readings, none_flagged, t);
   if (unmeasured_.relations_per_foot() > 0) {
     for (std::size_t f = 0; f < feet_; ++f) {
       bool full_contact = true;
@@ -2066,6 +2082,77 @@ void ContactForceFdi::type_air_onset(Channel& c, double x, double t) noexcept {
   c.fit.clear(t);
   for (std::size_t i = shape.first_faulty; i < m; ++i) {
     c.fit.add(points[i].t_s, points[i].level, reading_variance / points[i].variance);
+  }
+  c.fit_has_air = true;
+  c.air_refit = false;
+}
+
+void ContactForceFdi::observe_sum_block(double residual, bool usable, bool clean, double t) noexcept {
+  if (usable) {
+    sum_block_sum_ += residual;
+    sum_block_t_sum_ += t;
+    ++sum_block_count_;
+  }
+  sum_block_clean_ = sum_block_clean_ && clean;
+  if (++sum_block_ticks_ < sum_block_target_ticks_) return;
+  // A block's mean scatters by the reference's error over the block (correlated over a stride, so
+  // not sigma^2 / n). It is measured on the blocks' second differences, d = m_k - 2 m_{k-1} +
+  // m_{k-2}, of three full blocks in a row in which no channel was flagged: E d^2 = 6 v for
+  // independent means of variance v, and the reference's bias, a constant or a ramp in it (an
+  // unflagged drift: what type_sum_onset looks for) adds nothing.
+  const bool full = sum_block_clean_ && sum_block_count_ == sum_block_target_ticks_;
+  const double mean = sum_block_count_ > 0 ? sum_block_sum_ / sum_block_count_ : 0.0;
+  if (full && sum_block_full_run_ >= 2) {
+    const double d = mean - 2.0 * sum_block_last_means_[1] + sum_block_last_means_[0];
+    sum_block_d2_square_ += d * d;
+    sum_block_d2_count_ += 1.0;
+  }
+  sum_block_full_run_ = full ? std::min(sum_block_full_run_ + 1, 2) : 0;
+  sum_block_last_means_[0] = sum_block_last_means_[1];
+  sum_block_last_means_[1] = mean;
+  // A block with under half its ticks usable is dropped (its mean is another, shorter average).
+  // Its variance is kept relative to a full block's (type_sum_onset scales it by v).
+  if (2 * sum_block_count_ >= sum_block_target_ticks_) {
+    sum_levels_.push({sum_block_t_sum_ / sum_block_count_, mean,
+                      static_cast<double>(sum_block_target_ticks_) / sum_block_count_});
+  }
+  sum_block_ticks_ = sum_block_count_ = 0;
+  sum_block_sum_ = sum_block_t_sum_ = 0.0;
+  sum_block_clean_ = true;
+}
+
+void ContactForceFdi::type_sum_onset(Channel& c, double x, double t) noexcept {
+  // v from fewer second differences is not known well enough to weigh a shape by.
+  constexpr double kMinSecondDifferences = 8.0;
+  if (sum_block_d2_count_ < kMinSecondDifferences || !(c.airborne_count >= 1.0)) return;
+  const double block_variance = sum_block_d2_square_ / (6.0 * sum_block_d2_count_);
+  std::array<generic::LevelPoint, generic::LevelHistory::kCapacity> points{};
+  const std::size_t blocks = sum_levels_.ordered(points);
+  if (blocks < 3) return;
+  for (std::size_t i = 0; i < blocks; ++i) points[i].variance *= block_variance;
+  const generic::OnsetShape shape = generic::onset_shape(std::span(points.data(), blocks), relation_z_);
+  // The ramp must have begun before this swing (the swing's own readings are the air's) and be the
+  // channel's fault: of the air's sign, and by this swing's mean time at the level the air reads
+  // above 0 (the air test's premise: a healthy pad reads 0 in the air), within z of the two's noise
+  // (a block's and the air mean's).
+  if (!shape.ramp || !(shape.onset_s < c.air_origin_s) || shape.first_faulty == 0) return;
+  const double n = c.airborne_count;
+  const double air_mean = c.airborne_sum / n;
+  const double air_time = c.air_origin_s + c.airborne_u_sum / n;
+  const double ramp_level = shape.slope * (air_time - shape.onset_s);
+  const double reading_variance = reading_sigma_N_ * reading_sigma_N_;
+  const double bound = relation_z_ * std::sqrt(block_variance + reading_variance / n +
+                                               quantiser_bias_N_ * quantiser_bias_N_);
+  if (!(ramp_level * air_mean > 0.0) || !(std::abs(ramp_level - air_mean) <= bound)) return;
+  c.type = FaultType::drift;
+  c.fit.clear(t);
+  for (std::size_t i = shape.first_faulty; i < blocks && points[i].t_s < c.air_origin_s; ++i) {
+    c.fit.add(points[i].t_s, points[i].level - shape.healthy_level, reading_variance / points[i].variance);
+  }
+  std::array<generic::LevelPoint, 2> levels{};
+  const std::size_t count = air_levels_of_window(c, x, t, levels);
+  for (std::size_t i = 0; i < count; ++i) {
+    c.fit.add(levels[i].t_s, levels[i].level, reading_variance / levels[i].variance);
   }
   c.fit_has_air = true;
   c.air_refit = false;

@@ -1123,6 +1123,76 @@ TEST(ContactForceFdi, ADriftFoundInTheAirAfterSwingsItGrewThroughIsADriftWhenRai
   EXPECT_NEAR(early_step.estimate_before_landing_N, 12.0, 0.5);
 }
 
+// The left foot stands for 2.5 s, swings over ticks [2500, 2750) and lands; its pads' loads
+// sway between the feet by +-40 N over 0.7 s (a constant load would make any fault's reading
+// line up with the residual, a gain to the regression). l_foot/p1 reads fault(k) on top of its
+// load; the total force is the pads' true sum plus N(0, 2 N), std::mt19937(seed), plus
+// total_error(k). ramp_history_s 1.6: the sum residual's history is 16 blocks of 0.1 s.
+template <class Fault, class TotalError>
+SwingsFault fault_through_a_long_stance(const Fault& fault, const TotalError& total_error, unsigned seed) {
+  ContactForceFdi::Params p = suralp();
+  p.ramp_history_s = 1.6;
+  Feet feet(p, 1e-3);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  SwingsFault seen;
+  for (int k = 0; k < 2800; ++k) {
+    const bool swinging = k >= 2500 && k < 2750;
+    left_swing_loads(feet, k, swinging);
+    const double sway = 40.0 * std::sin(2.0 * std::numbers::pi * k / 700.0);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (!(swinging && j < 4)) feet.measured[j] += j < 4 ? sway : -sway;
+    }
+    feet.measured[0] += fault(k);
+    double sum = 0.0;
+    for (double x : feet.measured) sum += x;
+    feet.step(sum - fault(k) + noise(rng) + total_error(k));
+    if (seen.raised < 0 && feet.type(0) != FaultType::none) {
+      seen.raised = k;
+      seen.type_when_raised = feet.type(0);
+    }
+    if (k == 2740) {
+      seen.type_before_landing = feet.type(0);
+      seen.estimate_before_landing_N = feet.outs[ContactForceFdi::kFaultEstimate][0];
+    }
+  }
+  return seen;
+}
+
+TEST(ContactForceFdi, ADriftThatGrewWhileItsPadWasLoadedIsADriftWhenTheAirFindsIt) {
+  // A pad that swings once in seconds (a quadruped's foot) shows a slow drift in one swing only:
+  // no swing before it tells a ramp from a step. But while the pad was loaded the sum residual
+  // carried the drift: its 0.1 s block means (0.2 N of noise each, measured on their second
+  // differences) rose along a ramp from tick 1500 that reaches, at the swing, the level the air
+  // reads (10 N), so the fault is a drift when raised (before: an offset until the next swing).
+  const unsigned seed = 11;
+  std::printf("total force error N(0, 2 N), std::mt19937(%u)\n", seed);
+  const auto none = [](int) { return 0.0; };
+  const SwingsFault drift =
+      fault_through_a_long_stance([](int k) { return k >= 1500 ? 10e-3 * (k - 1500) : 0.0; }, none, seed);
+  std::printf("10 N/s drift from tick 1500: raised on tick %d as %s\n", drift.raised,
+              std::string(to_string(drift.type_when_raised)).c_str());
+  EXPECT_GT(drift.raised, 2500);
+  EXPECT_EQ(drift.type_when_raised, FaultType::drift);
+  EXPECT_EQ(drift.type_before_landing, FaultType::drift);
+  EXPECT_NEAR(drift.estimate_before_landing_N, 10e-3 * (2740 - 1500), 0.5);
+  // 10 N from tick 2000, a step under jump_threshold_N in the stance: the blocks step, an offset.
+  const SwingsFault offset = fault_through_a_long_stance([](int k) { return k >= 2000 ? 10.0 : 0.0; }, none, seed);
+  EXPECT_GT(offset.raised, 2500);
+  EXPECT_EQ(offset.type_when_raised, FaultType::offset);
+  EXPECT_EQ(offset.type_before_landing, FaultType::offset);
+  EXPECT_NEAR(offset.estimate_before_landing_N, 10.0, 0.5);
+  // The total force drifting down by 10 N/s from tick 1500 makes the same ramp in the sum
+  // residual; the pad reads 25 N too from the swing on: the ramp (10 N there) is not the level
+  // the air reads, so it is not the pad's fault. An offset.
+  const SwingsFault reference_drift = fault_through_a_long_stance(
+      [](int k) { return k >= 2500 ? 25.0 : 0.0; }, [](int k) { return k >= 1500 ? -10e-3 * (k - 1500) : 0.0; },
+      seed);
+  EXPECT_GT(reference_drift.raised, 2500);
+  EXPECT_EQ(reference_drift.type_when_raised, FaultType::offset);
+  EXPECT_EQ(reference_drift.type_before_landing, FaultType::offset);
+}
+
 // l_foot/p1's drift of fault_in_a_short_swing (40 N/s from tick 150, typed drift on tick 321),
 // on a foot that lands on tick 350 and then stays down to tick 4000 (a robot that stops and
 // stands). From tick 1000 the fault follows `after` (its size [N] at tick k >= 1000; 44 N, the

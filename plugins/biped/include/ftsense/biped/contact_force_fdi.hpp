@@ -356,8 +356,19 @@
 // inside an earlier window (a mean between two levels, which a ramp would fit) shows as the
 // steep slope it is, and fits no ramp. A ramp makes the fault a drift at once, its line fitted
 // from the ramp's levels on (each weighted as the readings its variance is worth), when it began
-// before this swing (a ramp within this swing's two levels alone is a step inside it as much);
-// a jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
+// before this swing (a ramp within this swing's two levels alone is a step inside it as much).
+// A pad that swings once in seconds (a quadruped's foot) shows a slow drift in one swing only,
+// but the sum residual carried it while the pad was loaded: the corrected residual r is kept as
+// block means of ramp_history_s / 16 (16 blocks), each of variance v (the reference's error over
+// a block, correlated over a stride: measured as E d^2 / 6 on the second differences d of full
+// blocks with no channel flagged, which a constant or a ramp in r leaves untouched; at least 8
+// of them, else no test). A fault the air raises is then a drift at once when those blocks rise
+// along a ramp (onset_shape at z) that began before this swing and that reaches, at the swing's
+// mean time, the level the air reads, of its sign and within z sqrt(v + sigma_x^2 / n + b_q^2):
+// one channel's fault grew there, not the reference (a reference that drifts while a pad steps
+// ramps r to another level); its line is fitted from the ramp's blocks less r's healthy level,
+// and this swing's levels.
+// A jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
 // a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
 // Re-admission: when the test that raised the flag has been clear for clear_s (an airborne zero,
@@ -475,6 +486,7 @@ class ContactForceFdi {
     double gain_isolation_margin = 0.08;
     double gain_min_load_N = 0.0;
     double follow_ratio = 0.25;
+    double ramp_history_s = 8.0;
     std::vector<std::array<double, 2>> points;
     static void describe(ParamSchema<Params>& schema);
   };
@@ -728,6 +740,15 @@ class ContactForceFdi {
   // swings before, with this one, rise along a ramp the step does not explain (onset_shape.hpp);
   // the air's fit then starts from the ramp's swings, x the tick's reading (added after).
   void type_air_onset(Channel& c, double x, double t) noexcept;
+  // Raised by the air test and still an offset: a drift instead when the corrected sum residual's
+  // block means (sum_levels_) rose along a ramp that began before this swing and reaches, by this
+  // swing, the level the air reads (each within z of their noise): one channel's fault grew there
+  // while its pad was loaded. The air's fit then starts from the ramp's blocks before this swing
+  // (less the residual's healthy level) and this swing's levels, x the tick's reading.
+  void type_sum_onset(Channel& c, double x, double t) noexcept;
+  // Closes or extends the sum residual's block with this tick's residual (usable: F_z and every
+  // reading finite; clean: no channel flagged).
+  void observe_sum_block(double residual, bool usable, bool clean, double t) noexcept;
   // The bar a landing's residual step must clear: z_g times the RMS of the healthy landings' steps,
   // at least floor_N.
   [[nodiscard]] double landing_step_bar(double floor_N) const noexcept;
@@ -817,6 +838,19 @@ class ContactForceFdi {
   // quantisation level [N].
   double still_band_N_ = 0.0;
   double quantiser_bias_N_ = 0.0;  // the most a mean of readings stays off by quantisation (air_levels_of_window)
+  // The corrected sum residual's recent history (type_sum_onset): block means of
+  // ramp_history_s / LevelHistory::kCapacity each (their variance kept relative to a full
+  // block's), and the mean square of the second differences of full blocks in which no channel
+  // was flagged (6 times a block mean's variance).
+  generic::LevelHistory sum_levels_;
+  int sum_block_target_ticks_ = 500;
+  int sum_block_ticks_ = 0;   // ticks into the open block
+  int sum_block_count_ = 0;   // its usable ticks
+  double sum_block_sum_ = 0.0, sum_block_t_sum_ = 0.0;
+  bool sum_block_clean_ = true;
+  int sum_block_full_run_ = 0;  // full clean blocks in a row, at most 2
+  std::array<double, 2> sum_block_last_means_{};  // the two blocks before, oldest first
+  double sum_block_d2_square_ = 0.0, sum_block_d2_count_ = 0.0;
   double residual_near_N_ = 0.0;  // follow_ratio x sum_threshold_N: a residual move smaller is no move
   double still_window_settle_until_s_ = -1e300;
   // Per foot, for the substituted loads' split: its readable pads on the ground all read their
