@@ -23,6 +23,19 @@ std::array<LevelPoint, N> unit_points(const std::array<double, N>& levels) {
   return p;
 }
 
+TEST(OnsetShape, AStepWithinAPointFitsAStepThatFellInsideABlock) {
+  // 0, 0, 5, 10, 10: a step inside the third block (its mean half of it), exactly (k = 2).
+  EXPECT_NEAR(step_within_a_point_chi2(unit_points<5>({0.0, 0.0, 5.0, 10.0, 10.0})), 0.0, 1e-12);
+  // 0, 0, 3, 6, 9, a ramp: k = 1 leaves (3, 6, 9) about 6, 18; k = 2 leaves (6, 9) about 7.5, 4.5;
+  // k = 3 leaves (0, 0, 3) about 1, 6. The least: 4.5.
+  EXPECT_NEAR(step_within_a_point_chi2(unit_points<5>({0.0, 0.0, 3.0, 6.0, 9.0})), 4.5, 1e-12);
+  // Too few points, or a level of no stated variance: no fit.
+  EXPECT_TRUE(std::isinf(step_within_a_point_chi2(unit_points<2>({0.0, 1.0}))));
+  auto p = unit_points<4>({0.0, 0.0, 1.0, 2.0});
+  p[1].variance = 0.0;
+  EXPECT_TRUE(std::isinf(step_within_a_point_chi2(p)));
+}
+
 TEST(OnsetShape, ALevelThatRisesAlongALineAfterHealthyOnesIsARampFromItsOnset) {
   // 5 per second from t0 = 2.4: levels 3 and 8 at t = 3 and 4. The best step (0, 0, 0, 3 | 8)
   // leaves 3 x 0.75^2 + 2.25^2 = 6.75; the ramp fits exactly.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -361,9 +362,9 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                              "the sum residual is off with no channel to blame"}
                         .sized_by(per_point));
   gain_window_ticks_ = window_ticks(params.gain_window_s, context.sample_period_s(), 10, "gain_window_s");
-  sum_block_target_ticks_ =
-      window_ticks(params.ramp_history_s / static_cast<double>(generic::LevelHistory::kCapacity),
-                   context.sample_period_s(), 1, "ramp_history_s");
+  sum_block_target_ticks_ = std::max(
+      1, static_cast<int>(std::lround(window_ticks(params.ramp_history_s, context.sample_period_s(), 1, "ramp_history_s") /
+                                      static_cast<double>(generic::LevelHistory::kCapacity))));
   gain_forgetting_ = std::exp(-1.0 / gain_window_ticks_);
   gain_xx_.assign(n, 0.0);
   gain_xr_.assign(n, 0.0);
@@ -476,7 +477,8 @@ void ContactForceFdi::reset() noexcept {
   sum_block_ticks_ = sum_block_count_ = 0;
   sum_block_sum_ = sum_block_t_sum_ = 0.0;
   sum_block_clean_ = true;
-  sum_block_d2_square_ = sum_block_d2_count_ = 0.0;
+  sum_block_d2_.fill(0.0);
+  sum_block_d2_next_ = sum_block_d2_count_ = 0;
   sum_block_full_run_ = 0;
   sum_block_last_means_ = {0.0, 0.0};
   std::fill(full_contact_run_.begin(), full_contact_run_.end(), 0);
@@ -1554,7 +1556,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   bool none_flagged = true;
   for (const Channel& c : channels_) none_flagged = none_flagged && c.type == FaultType::none;
   if (fz_ok && all_finite_readings && none_flagged) unmeasured_.observe_sum(residual);
-  observe_sum_block(residual, fz_ok && all_finite_readings, none_flagged, t);
+  // A substituted channel on the ground takes what the total force leaves: the residual is then 0
+  // by construction, no reading of the reference's level or of an unflagged fault.
+  observe_sum_block(residual, fz_ok && all_finite_readings && unknown_loaded == 0, none_flagged, t);
   if (unmeasured_.relations_per_foot() > 0) {
     for (std::size_t f = 0; f < feet_; ++f) {
       bool full_contact = true;
@@ -2097,15 +2101,18 @@ void ContactForceFdi::observe_sum_block(double residual, bool usable, bool clean
   if (++sum_block_ticks_ < sum_block_target_ticks_) return;
   // A block's mean scatters by the reference's error over the block (correlated over a stride, so
   // not sigma^2 / n). It is measured on the blocks' second differences, d = m_k - 2 m_{k-1} +
-  // m_{k-2}, of three full blocks in a row in which no channel was flagged: E d^2 = 6 v for
+  // m_{k-2}, of three full blocks in a row in which no channel was flagged: d ~ N(0, 6 v) for
   // independent means of variance v, and the reference's bias, a constant or a ramp in it (an
-  // unflagged drift: what type_sum_onset looks for) adds nothing.
+  // unflagged drift: what type_sum_onset looks for) adds nothing. A step (an unflagged offset)
+  // adds to two of them: so v is read from the median of the latest kCapacity d^2, which one step
+  // does not move and which forgets (standing and walking scatter differently).
   const bool full = sum_block_clean_ && sum_block_count_ == sum_block_target_ticks_;
   const double mean = sum_block_count_ > 0 ? sum_block_sum_ / sum_block_count_ : 0.0;
   if (full && sum_block_full_run_ >= 2) {
     const double d = mean - 2.0 * sum_block_last_means_[1] + sum_block_last_means_[0];
-    sum_block_d2_square_ += d * d;
-    sum_block_d2_count_ += 1.0;
+    sum_block_d2_[sum_block_d2_next_] = d * d;
+    sum_block_d2_next_ = (sum_block_d2_next_ + 1) % sum_block_d2_.size();
+    sum_block_d2_count_ = std::min(sum_block_d2_count_ + 1, sum_block_d2_.size());
   }
   sum_block_full_run_ = full ? std::min(sum_block_full_run_ + 1, 2) : 0;
   sum_block_last_means_[0] = sum_block_last_means_[1];
@@ -2123,26 +2130,47 @@ void ContactForceFdi::observe_sum_block(double residual, bool usable, bool clean
 
 void ContactForceFdi::type_sum_onset(Channel& c, double x, double t) noexcept {
   // v from fewer second differences is not known well enough to weigh a shape by.
-  constexpr double kMinSecondDifferences = 8.0;
+  constexpr std::size_t kMinSecondDifferences = 8;
+  // The median of chi-square with 1 degree of freedom: d^2 / (6 v)'s, for d ~ N(0, 6 v).
+  constexpr double kChiSquare1Median = 0.45493642311957283;
   if (sum_block_d2_count_ < kMinSecondDifferences || !(c.airborne_count >= 1.0)) return;
-  const double block_variance = sum_block_d2_square_ / (6.0 * sum_block_d2_count_);
-  std::array<generic::LevelPoint, generic::LevelHistory::kCapacity> points{};
+  std::array<double, generic::LevelHistory::kCapacity> d2 = sum_block_d2_;
+  const auto middle = d2.begin() + static_cast<std::ptrdiff_t>(sum_block_d2_count_ / 2);
+  std::nth_element(d2.begin(), middle, d2.begin() + static_cast<std::ptrdiff_t>(sum_block_d2_count_));
+  const double block_variance = *middle / (6.0 * kChiSquare1Median);
+  std::array<generic::LevelPoint, generic::LevelHistory::kCapacity + 1> points{};
   const std::size_t blocks = sum_levels_.ordered(points);
   if (blocks < 3) return;
   for (std::size_t i = 0; i < blocks; ++i) points[i].variance *= block_variance;
-  const generic::OnsetShape shape = generic::onset_shape(std::span(points.data(), blocks), relation_z_);
-  // The ramp must have begun before this swing (the swing's own readings are the air's) and be the
-  // channel's fault: of the air's sign, and by this swing's mean time at the level the air reads
-  // above 0 (the air test's premise: a healthy pad reads 0 in the air), within z of the two's noise
-  // (a block's and the air mean's).
-  if (!shape.ramp || !(shape.onset_s < c.air_origin_s) || shape.first_faulty == 0) return;
+  // The blocks alone must rise along a ramp; then the ramp must go on to the level the air reads:
+  // the air's mean, at its mean time, joins them as one more level (on the residual's healthy
+  // level c, as the blocks' fit gives it: the air test's premise is that a healthy pad reads 0 in
+  // the air), and the ramp must still win. A step inside a block leaves c, c + f b, c + b, which a
+  // ramp fits exactly (a block is a mean, not its line), but the air then reads c + b, not the
+  // ramp's level further on (a review's finding); and the ramp must beat a step inside one block
+  // (step_within_a_point_chi2) by z^2 as it beats the plain step: with the step's block partway
+  // and one or two full ones after it, the ramp still fits better than the plain step.
+  const generic::OnsetShape blocks_shape = generic::onset_shape(std::span(points.data(), blocks), relation_z_);
+  if (!blocks_shape.ramp) return;
   const double n = c.airborne_count;
   const double air_mean = c.airborne_sum / n;
   const double air_time = c.air_origin_s + c.airborne_u_sum / n;
-  const double ramp_level = shape.slope * (air_time - shape.onset_s);
   const double reading_variance = reading_sigma_N_ * reading_sigma_N_;
-  const double bound = relation_z_ * std::sqrt(block_variance + reading_variance / n +
-                                               quantiser_bias_N_ * quantiser_bias_N_);
+  const double air_variance = reading_variance / n + quantiser_bias_N_ * quantiser_bias_N_;
+  if (!(air_time > points[blocks - 1].t_s)) return;
+  points[blocks] = {air_time, blocks_shape.healthy_level + air_mean, air_variance};
+  const generic::OnsetShape shape = generic::onset_shape(std::span(points.data(), blocks + 1), relation_z_);
+  // The ramp must have begun before this swing (the swing's own readings are the air's) and be the
+  // channel's fault: of the air's sign, and by this swing's mean time at the level the air reads
+  // above 0, within z of the two's noise (a block's and the air mean's).
+  if (!shape.ramp || !(shape.onset_s < c.air_origin_s) || shape.first_faulty == 0) return;
+  // A block is a mean: a step may fall inside one, and the ramp must beat that shape too.
+  if (!(generic::step_within_a_point_chi2(std::span(points.data(), blocks + 1)) - shape.ramp_chi2 >
+        relation_z_ * relation_z_)) {
+    return;
+  }
+  const double ramp_level = shape.slope * (air_time - shape.onset_s);
+  const double bound = relation_z_ * std::sqrt(block_variance + air_variance);
   if (!(ramp_level * air_mean > 0.0) || !(std::abs(ramp_level - air_mean) <= bound)) return;
   c.type = FaultType::drift;
   c.fit.clear(t);

@@ -147,4 +147,22 @@ OnsetShape onset_shape(std::span<const LevelPoint> points, double z) noexcept {
   return best;
 }
 
+double step_within_a_point_chi2(std::span<const LevelPoint> points) noexcept {
+  const std::size_t m = points.size();
+  double best = std::numeric_limits<double>::infinity();
+  if (m < 3) return best;
+  for (const LevelPoint& p : points) {
+    if (!(p.variance > 0.0) || !std::isfinite(p.variance)) return best;
+  }
+  const double origin = points.back().t_s;
+  const double shift = points.back().level;
+  for (std::size_t k = 1; k + 1 < m; ++k) {
+    double c = 0.0, f = 0.0;
+    const double chi2 = level_sums(points, 0, k, origin, shift, false, 0.0).constant_chi2(c) +
+                        level_sums(points, k + 1, m, origin, shift, false, 0.0).constant_chi2(f);
+    best = std::min(best, chi2);
+  }
+  return best;
+}
+
 }  // namespace ftsense::generic

@@ -359,15 +359,22 @@
 // before this swing (a ramp within this swing's two levels alone is a step inside it as much).
 // A pad that swings once in seconds (a quadruped's foot) shows a slow drift in one swing only,
 // but the sum residual carried it while the pad was loaded: the corrected residual r is kept as
-// block means of ramp_history_s / 16 (16 blocks), each of variance v (the reference's error over
-// a block, correlated over a stride: measured as E d^2 / 6 on the second differences d of full
-// blocks with no channel flagged, which a constant or a ramp in r leaves untouched; at least 8
-// of them, else no test). A fault the air raises is then a drift at once when those blocks rise
-// along a ramp (onset_shape at z) that began before this swing and that reaches, at the swing's
-// mean time, the level the air reads, of its sign and within z sqrt(v + sigma_x^2 / n + b_q^2):
-// one channel's fault grew there, not the reference (a reference that drifts while a pad steps
-// ramps r to another level); its line is fitted from the ramp's blocks less r's healthy level,
-// and this swing's levels.
+// block means of ramp_history_s / 16 (16 blocks; not while a substituted pad on the ground takes
+// what the total force leaves, which zeroes r), each of variance v (the reference's error over
+// a block, correlated over a stride: measured on the second differences d of full blocks with no
+// channel flagged, which a constant or a ramp in r leaves untouched, as median(d^2) / (6 x 0.455)
+// over the latest 16, which one step does not move; at least 8 of them, else no test). A fault
+// the air raises is then a drift at once when those blocks rise along a ramp (onset_shape at z),
+// and still do with the air's mean joined to them as one more level (at its mean time, on the
+// blocks' healthy level c, variance sigma_x^2 / n + b_q^2: a step inside a block leaves c,
+// c + f b, c + b, which a ramp fits exactly, but the air then reads c + b, not the ramp's level
+// further on) and beating a step inside one block by z^2 as well (onset_shape.hpp's
+// step_within_a_point_chi2: a block partway and one or two full ones after it fit a ramp better
+// than a plain step), that ramp having begun before this swing and reaching, at the swing's mean time,
+// the level the air reads, of its sign and within z sqrt(v + sigma_x^2 / n + b_q^2): one
+// channel's fault grew there, not the reference (a reference that drifts while a pad steps ramps
+// r to another level); its line is fitted from the ramp's blocks less c, and this swing's
+// levels.
 // A jump fault whose pad later reads zero in the air is a gain fault (k = 1 + jump / load; k < 0:
 // a sign flip; |k| under 0.1: a dead output, frozen and substituted until its reading follows the
 // load again); every gain estimate keeps |k| >= 0.1. Tick counters saturate (no overflow).
@@ -741,9 +748,9 @@ class ContactForceFdi {
   // the air's fit then starts from the ramp's swings, x the tick's reading (added after).
   void type_air_onset(Channel& c, double x, double t) noexcept;
   // Raised by the air test and still an offset: a drift instead when the corrected sum residual's
-  // block means (sum_levels_) rose along a ramp that began before this swing and reaches, by this
-  // swing, the level the air reads (each within z of their noise): one channel's fault grew there
-  // while its pad was loaded. The air's fit then starts from the ramp's blocks before this swing
+  // block means (sum_levels_), and the air's mean after them, rose along a ramp that began before
+  // this swing and reaches, by this swing, the level the air reads (each within z of their noise):
+  // one channel's fault grew there while its pad was loaded. The air's fit then starts from the ramp's blocks before this swing
   // (less the residual's healthy level) and this swing's levels, x the tick's reading.
   void type_sum_onset(Channel& c, double x, double t) noexcept;
   // Closes or extends the sum residual's block with this tick's residual (usable: F_z and every
@@ -840,8 +847,8 @@ class ContactForceFdi {
   double quantiser_bias_N_ = 0.0;  // the most a mean of readings stays off by quantisation (air_levels_of_window)
   // The corrected sum residual's recent history (type_sum_onset): block means of
   // ramp_history_s / LevelHistory::kCapacity each (their variance kept relative to a full
-  // block's), and the mean square of the second differences of full blocks in which no channel
-  // was flagged (6 times a block mean's variance).
+  // block's), and the latest squared second differences of full blocks in which no channel was
+  // flagged (their median: 6 x 0.455 times a block mean's variance).
   generic::LevelHistory sum_levels_;
   int sum_block_target_ticks_ = 500;
   int sum_block_ticks_ = 0;   // ticks into the open block
@@ -850,7 +857,8 @@ class ContactForceFdi {
   bool sum_block_clean_ = true;
   int sum_block_full_run_ = 0;  // full clean blocks in a row, at most 2
   std::array<double, 2> sum_block_last_means_{};  // the two blocks before, oldest first
-  double sum_block_d2_square_ = 0.0, sum_block_d2_count_ = 0.0;
+  std::array<double, generic::LevelHistory::kCapacity> sum_block_d2_{};
+  std::size_t sum_block_d2_next_ = 0, sum_block_d2_count_ = 0;
   double residual_near_N_ = 0.0;  // follow_ratio x sum_threshold_N: a residual move smaller is no move
   double still_window_settle_until_s_ = -1e300;
   // Per foot, for the substituted loads' split: its readable pads on the ground all read their

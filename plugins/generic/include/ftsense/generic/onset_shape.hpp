@@ -75,4 +75,15 @@ struct OnsetShape {
 // points: time order, at least 3 for a ramp (fewer: a step); z > 0: the decision's normal quantile.
 [[nodiscard]] OnsetShape onset_shape(std::span<const LevelPoint> points, double z) noexcept;
 
+// Where a level is a mean over a stretch of time (a block of samples) rather than a line's, a step
+// can fall inside one: that point lies anywhere between the two levels, and with one or two
+// points after it a ramp fits better than the plain step. The third shape, a step within point k:
+//
+//   y_i = c for i < k,  anything at i = k,  c + b for i > k          (k = 1..m-2)
+//
+// returns its least chi-square over k (4 parameters: c, b, k and the free point); +infinity with
+// fewer than 3 points or a variance that is not a positive finite number. A caller with such
+// levels takes a ramp only when it beats this by z^2 too.
+[[nodiscard]] double step_within_a_point_chi2(std::span<const LevelPoint> points) noexcept;
+
 }  // namespace ftsense::generic
