@@ -2146,7 +2146,7 @@ void ContactForceFdi::type_sum_onset(Channel& c, double x, double t) noexcept {
   // the air's mean, at its mean time, joins them as one more level (on the residual's healthy
   // level c, as the blocks' fit gives it: the air test's premise is that a healthy pad reads 0 in
   // the air), and the ramp must still win. A step inside a block leaves c, c + f b, c + b, which a
-  // ramp fits exactly (a block is a mean, not its line), but the air then reads c + b, not the
+  // ramp fits exactly for f <= 1/2 (a block is a mean, not its line), but the air then reads c + b, not the
   // ramp's level further on (a review's finding); and the ramp must beat a step inside one block
   // (step_within_a_point_chi2) by z^2 as it beats the plain step: with the step's block partway
   // and one or two full ones after it, the ramp still fits better than the plain step.

@@ -367,7 +367,7 @@
 // the air raises is then a drift at once when those blocks rise along a ramp (onset_shape at z),
 // and still do with the air's mean joined to them as one more level (at its mean time, on the
 // blocks' healthy level c, variance sigma_x^2 / n + b_q^2: a step inside a block leaves c,
-// c + f b, c + b, which a ramp fits exactly, but the air then reads c + b, not the ramp's level
+// c + f b, c + b, which a ramp fits exactly for f <= 1/2, but the air then reads c + b, not the ramp's level
 // further on) and beating a step inside one block by z^2 as well (onset_shape.hpp's
 // step_within_a_point_chi2: a block partway and one or two full ones after it fit a ramp better
 // than a plain step), that ramp having begun before this swing and reaching, at the swing's mean time,

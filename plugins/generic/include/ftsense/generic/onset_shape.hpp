@@ -82,7 +82,8 @@ struct OnsetShape {
 //   y_i = c for i < k,  anything at i = k,  c + b for i > k          (k = 1..m-2)
 //
 // returns its least chi-square over k (4 parameters: c, b, k and the free point); +infinity with
-// fewer than 3 points or a variance that is not a positive finite number. A caller with such
+// fewer than 3 points or a variance that is not a positive finite number. With 3 points it is 0
+// (k = 1 leaves one point each side), so no ramp beats it: such a caller needs 4 at least. A caller with such
 // levels takes a ramp only when it beats this by z^2 too.
 [[nodiscard]] double step_within_a_point_chi2(std::span<const LevelPoint> points) noexcept;
 
