@@ -2080,13 +2080,18 @@ void ContactForceFdi::type_air_onset(Channel& c, double x, double t) noexcept {
   // jump_threshold_N (one level between, one full) fits that ramp exactly. The swings before
   // must show the fault growing.
   if (!shape.ramp || shape.first_faulty >= healthy) return;
+  start_drift_from_levels(c, t, std::span(points.data() + shape.first_faulty, m - shape.first_faulty), 0.0, {});
+}
+
+void ContactForceFdi::start_drift_from_levels(Channel& c, double t, std::span<const generic::LevelPoint> history,
+                                              double healthy_level,
+                                              std::span<const generic::LevelPoint> swing) noexcept {
   // The fit weighs a reading 1: a level counts as the readings its variance is worth.
   const double reading_variance = reading_sigma_N_ * reading_sigma_N_;
   c.type = FaultType::drift;
   c.fit.clear(t);
-  for (std::size_t i = shape.first_faulty; i < m; ++i) {
-    c.fit.add(points[i].t_s, points[i].level, reading_variance / points[i].variance);
-  }
+  for (const generic::LevelPoint& p : history) c.fit.add(p.t_s, p.level - healthy_level, reading_variance / p.variance);
+  for (const generic::LevelPoint& p : swing) c.fit.add(p.t_s, p.level, reading_variance / p.variance);
   c.fit_has_air = true;
   c.air_refit = false;
 }
@@ -2172,18 +2177,12 @@ void ContactForceFdi::type_sum_onset(Channel& c, double x, double t) noexcept {
   const double ramp_level = shape.slope * (air_time - shape.onset_s);
   const double bound = relation_z_ * std::sqrt(block_variance + air_variance);
   if (!(ramp_level * air_mean > 0.0) || !(std::abs(ramp_level - air_mean) <= bound)) return;
-  c.type = FaultType::drift;
-  c.fit.clear(t);
-  for (std::size_t i = shape.first_faulty; i < blocks && points[i].t_s < c.air_origin_s; ++i) {
-    c.fit.add(points[i].t_s, points[i].level - shape.healthy_level, reading_variance / points[i].variance);
-  }
+  std::size_t ramp_end = shape.first_faulty;  // the ramp's blocks before this swing
+  while (ramp_end < blocks && points[ramp_end].t_s < c.air_origin_s) ++ramp_end;
   std::array<generic::LevelPoint, 2> levels{};
   const std::size_t count = air_levels_of_window(c, x, t, levels);
-  for (std::size_t i = 0; i < count; ++i) {
-    c.fit.add(levels[i].t_s, levels[i].level, reading_variance / levels[i].variance);
-  }
-  c.fit_has_air = true;
-  c.air_refit = false;
+  start_drift_from_levels(c, t, std::span(points.data() + shape.first_faulty, ramp_end - shape.first_faulty),
+                          shape.healthy_level, std::span(levels.data(), count));
 }
 
 void ContactForceFdi::raise_jump_onset(Channel& c, double jump, double load_before, double t) noexcept {

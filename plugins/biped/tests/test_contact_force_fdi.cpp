@@ -1058,6 +1058,17 @@ struct SwingsFault {
   FaultType type_when_raised = FaultType::none;
   FaultType type_before_landing = FaultType::none;
   double estimate_before_landing_N = 0.0;
+  // After tick k: l_foot/p1's first flag, and its type and estimate on the tick before the landing.
+  void observe(const Feet& feet, int k, int before_landing) {
+    if (raised < 0 && feet.type(0) != FaultType::none) {
+      raised = k;
+      type_when_raised = feet.type(0);
+    }
+    if (k == before_landing) {
+      type_before_landing = feet.type(0);
+      estimate_before_landing_N = feet.outs[ContactForceFdi::kFaultEstimate][0];
+    }
+  }
 };
 template <class Fault>
 SwingsFault fault_over_swings(const Fault& fault) {
@@ -1067,14 +1078,7 @@ SwingsFault fault_over_swings(const Fault& fault) {
     left_swing_loads(feet, k, k >= 100 && (k - 100) % 600 < 250);
     feet.measured[0] += fault(k);
     feet.step(800.0);
-    if (seen.raised < 0 && feet.type(0) != FaultType::none) {
-      seen.raised = k;
-      seen.type_when_raised = feet.type(0);
-    }
-    if (k == 2149) {
-      seen.type_before_landing = feet.type(0);
-      seen.estimate_before_landing_N = feet.outs[ContactForceFdi::kFaultEstimate][0];
-    }
+    seen.observe(feet, k, 2149);
   }
   return seen;
 }
@@ -1149,14 +1153,7 @@ SwingsFault fault_through_a_long_stance(const Fault& fault, const TotalError& to
     double sum = 0.0;
     for (double x : feet.measured) sum += x;
     feet.step(sum - fault(k) + noise(rng) + total_error(k));
-    if (seen.raised < 0 && feet.type(0) != FaultType::none) {
-      seen.raised = k;
-      seen.type_when_raised = feet.type(0);
-    }
-    if (k == 2740) {
-      seen.type_before_landing = feet.type(0);
-      seen.estimate_before_landing_N = feet.outs[ContactForceFdi::kFaultEstimate][0];
-    }
+    seen.observe(feet, k, 2740);
   }
   return seen;
 }

@@ -753,6 +753,10 @@ class ContactForceFdi {
   // one channel's fault grew there while its pad was loaded. The air's fit then starts from the ramp's blocks before this swing
   // (less the residual's healthy level) and this swing's levels, x the tick's reading.
   void type_sum_onset(Channel& c, double x, double t) noexcept;
+  // Types the channel a drift from t and starts its air fit from levels of its fault: `history`
+  // less healthy_level, then this swing's own (each weighted as the readings its variance is worth).
+  void start_drift_from_levels(Channel& c, double t, std::span<const generic::LevelPoint> history,
+                               double healthy_level, std::span<const generic::LevelPoint> swing) noexcept;
   // Closes or extends the sum residual's block with this tick's residual (usable: F_z and every
   // reading finite; clean: no channel flagged).
   void observe_sum_block(double residual, bool usable, bool clean, double t) noexcept;
