@@ -390,6 +390,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_.assign(feet_, {0.0, 0.0});
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
+  foot_rise_.assign(feet_, 0.0);
+  foot_dip_.assign(feet_, 0.0);
   foot_unread_.assign(feet_, 0);
   foot_landing_pads_.assign(feet_, 0);
   landing_state_.assign(n, kNoLandingStep);
@@ -611,6 +613,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
                                                    : std::numeric_limits<double>::infinity();
     foot_sum_[f][1] = foot_sum_[f][0];
     foot_sum_[f][0] = sum;
+    // Its pads' largest one-tick excursions, up and down, N_{k-1} - (N_k + N_{k-2}) / 2 (the spike
+    // test's measure): load that rocks between pads for a tick moves two of them opposite ways.
+    // Only of pads whose readings follow their loads (healthy, or corrected): a noise burst's or a
+    // spiking pad's excursions are its own.
+    foot_rise_[f] = foot_dip_[f] = 0.0;
+    for (std::size_t l = 0; l < feet_points_ && ticks_since_start > 0; ++l) {
+      const std::size_t j = f * feet_points_ + l;
+      if (channels_[j].type != FaultType::none && !corrects(channels_[j].type)) continue;
+      const double excursion = channels_[j].previous - 0.5 * (measured[j] + channels_[j].previous2);
+      if (!std::isfinite(excursion)) continue;
+      foot_rise_[f] = std::max(foot_rise_[f], excursion);
+      foot_dip_[f] = std::min(foot_dip_[f], excursion);
+    }
     foot_sum_ticks_[f] = known ? std::min(foot_sum_ticks_[f] + 1, 2) : 0;
     // Its pads whose readings are not their loads (as flagged until this tick): substituted
     // from the total force under load, or reading a noise burst. The summed reading then does not
@@ -721,10 +736,18 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // A sensor's spike is in its foot's summed reading too (the sum's own spike, -d2 / 2, at
       // least half the pad's, same sign); load that rocks between the pads of a foot for a tick
       // (a pad chattering on and off the ground) is not. Unknown (a pad without a value): counted.
-      const double foot_spike = -0.5 * foot_d2_[channel_foot_[j]];
+      const std::size_t foot = channel_foot_[j];
+      const double foot_spike = -0.5 * foot_d2_[foot];
       const bool in_foot_sum = !std::isfinite(foot_spike) || foot_spike * spike >= 0.5 * spike * spike;
+      // Nor is a tick on which another pad of the foot made the opposite excursion, beyond what
+      // its noise makes in a tick (jump_threshold_N): load went from one to the other and came
+      // back (a heavy biped's heel chatters off the ground for a tick every 7 ms, its neighbour
+      // taking 40 N of it, for longer than a landing's guard), though an impact may shed some of
+      // it from the sum. Sensors' spikes are independent: two opposite on one tick are not.
+      const bool rocked = spike > 0.0 ? foot_dip_[foot] < -params_.jump_threshold_N
+                                      : foot_rise_[foot] > params_.jump_threshold_N;
       if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
-          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum &&
+          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum && !rocked &&
           (!neighbour_unread || c.type == FaultType::spikes)) {
         c.spikes.spike(spike_rule_);
       }
@@ -772,7 +795,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         --late_size_;
       }
       // Likewise a member of its foot's plane group (inside a touchdown guard).
-      const std::size_t foot = channel_foot_[j];
       if (c.relation_member && relation_group_[foot] == 1 && relation_group_age_[foot] == 1 &&
           back(c.relation_jump_size)) {
         c.relation_member = false;

@@ -57,7 +57,11 @@
 //             its foot's summed reading spikes the same way by at least half as much (load that
 //             rocks between two pads of a sole for a tick, a heel pad chattering on and off the
 //             ground, leaves the sum smooth; a sensor's spike is in it), and no other pad of its
-//             foot reads other than its load (substituted under load, or a noise burst: its
+//             foot that reads its load (healthy or corrected) made the opposite excursion beyond
+//             jump_threshold_N on that tick (load went from one pad to the other and back, though
+//             an impact may shed part of it from the sum: a heavy biped's heel chatters so for
+//             longer than a landing's guard; sensors' spikes are independent), and no other pad of
+//             its foot reads other than its load (substituted under load, or a noise burst: its
 //             reading misses or swamps the load it trades with this pad, so neither the sum nor
 //             this pad tells a spike then; the noise test alike, so a second noise burst on that
 //             foot waits for the first to clear; a channel already flagged is judged on, so that
@@ -911,6 +915,7 @@ class ContactForceFdi {
   std::vector<std::array<double, 2>> foot_sum_;  // summed reading one and two ticks ago
   std::vector<int> foot_sum_ticks_;              // consecutive ticks with every pad's value, up to 2
   std::vector<double> foot_d2_;                  // second difference of the summed reading, this tick
+  std::vector<double> foot_rise_, foot_dip_;     // its pads' largest one-tick excursions up, down, this tick [N]
   std::vector<int> foot_unread_;                 // its pads whose reading is not their load (unread())
   std::vector<int> foot_landing_pads_;           // its pads that land or ring-step on this tick
   // Per channel, this tick: its own landing's step (before the jump test's state moves on).
