@@ -427,6 +427,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   relation_step_square_.assign(feet_ * relations, 0.0);
   relation_step_count_.assign(feet_, 0.0);
   relation_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s));
+  // A pad's one-tick excursion N_{k-1} - (N_k + N_{k-2}) / 2 carries sqrt(3/2) sigma_x of noise.
+  rocking_bar_N_ = relation_z_ * std::sqrt(1.5) * reading_sigma_N_;
   // One decision per landing, and landings are at least a guard apart.
   guard_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, params.touchdown_guard_s / params.false_alarm_interval_s));
 }
@@ -740,12 +742,11 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const double foot_spike = -0.5 * foot_d2_[foot];
       const bool in_foot_sum = !std::isfinite(foot_spike) || foot_spike * spike >= 0.5 * spike * spike;
       // Nor is a tick on which another pad of the foot made the opposite excursion, beyond what
-      // its noise makes in a tick (jump_threshold_N): load went from one to the other and came
+      // its noise makes on a tick (z sqrt(3/2) sigma_x): load went from one to the other and came
       // back (a heavy biped's heel chatters off the ground for a tick every 7 ms, its neighbour
-      // taking 40 N of it, for longer than a landing's guard), though an impact may shed some of
-      // it from the sum. Sensors' spikes are independent: two opposite on one tick are not.
-      const bool rocked = spike > 0.0 ? foot_dip_[foot] < -params_.jump_threshold_N
-                                      : foot_rise_[foot] > params_.jump_threshold_N;
+      // taking 30-40 N of it, for longer than a landing's guard), though an impact may shed some
+      // of it from the sum. Sensors' spikes are independent: two opposite on one tick are not.
+      const bool rocked = spike > 0.0 ? foot_dip_[foot] < -rocking_bar_N_ : foot_rise_[foot] > rocking_bar_N_;
       if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
           std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum && !rocked &&
           (!neighbour_unread || c.type == FaultType::spikes)) {

@@ -3505,13 +3505,16 @@ TEST(ContactForceFdi, AHeelThatLetsGoForATickWhileItsToeTakesSomeOfItsLoadIsNoSp
   // 40 N of the heel's 150 N on that tick (a 180 kg biped's heel chatters so, a tick every 7 ms,
   // for 0.15 s after its landing: tools/unseen_walks.py --robot heavy_biped --faults, walk 9). The
   // foot's sum still drops by 110 N (as an impact sheds it), but two pads made opposite one-tick
-  // excursions beyond jump_threshold_N (20 N): load rocked between them, no sensor's spike.
-  // (Before: a spike on tick 501, as without the toe.) The toe taking 15 N, within what the
-  // sensors' noise makes in a tick, says nothing: a spike.
+  // excursions beyond what noise makes on a tick, z sqrt(3/2) sigma_x = 5.71 x 1.22 x 2 N =
+  // 14.0 N: load rocked between them, no sensor's spike. (Before: a spike on tick 501, as
+  // without the toe.) The toe taking 16 N (an excursion of 15 N: the readings alternate by 1 N)
+  // is enough; 14 N (13 N) says nothing: a spike.
   const auto bounce = [](int k) { return k == 500; };
-  const auto rocked = heel_landing(0.0, bounce, -1, nullptr, 40.0);
-  EXPECT_EQ(rocked, std::make_pair(-1, -1)) << "tick " << rocked.first << ", channel " << rocked.second;
-  EXPECT_EQ(heel_landing(0.0, bounce, -1, nullptr, 15.0), std::make_pair(501, 2));
+  for (const double taken : {40.0, 16.0}) {
+    const auto rocked = heel_landing(0.0, bounce, -1, nullptr, taken);
+    EXPECT_EQ(rocked, std::make_pair(-1, -1)) << "toe takes " << taken << " N: tick " << rocked.first << ", channel " << rocked.second;
+  }
+  EXPECT_EQ(heel_landing(0.0, bounce, -1, nullptr, 14.0), std::make_pair(501, 2));
 }
 
 TEST(ContactForceFdi, AHeelWhoseContactChattersAsItsFootRollsIsNoNoiseBurst) {

@@ -58,7 +58,7 @@
 //             rocks between two pads of a sole for a tick, a heel pad chattering on and off the
 //             ground, leaves the sum smooth; a sensor's spike is in it), and no other pad of its
 //             foot that reads its load (healthy or corrected) made the opposite excursion beyond
-//             jump_threshold_N on that tick (load went from one pad to the other and back, though
+//             its noise, z sqrt(3/2) sigma_x, on that tick (load went from one pad to the other and back, though
 //             an impact may shed part of it from the sum: a heavy biped's heel chatters so for
 //             longer than a landing's guard; sensors' spikes are independent), and no other pad of
 //             its foot reads other than its load (substituted under load, or a noise burst: its
@@ -1082,6 +1082,7 @@ class ContactForceFdi {
   std::vector<double> relation_step_square_;  // feet x relations
   std::vector<double> relation_step_count_;   // per foot
   double relation_z_ = 6.0;  // the two-sided normal quantile of alpha = T / false_alarm_interval_s
+  double rocking_bar_N_ = std::numeric_limits<double>::infinity();  // z sqrt(3/2) sigma_x [N]: a pad's one-tick excursion beyond its noise
   double reading_sigma_N_ = 2.0;  // sigma_x = sqrt(noise_std_N^2 + resolution_N^2 / 12)
 };
 
