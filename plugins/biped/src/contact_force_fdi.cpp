@@ -390,8 +390,6 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   foot_sum_.assign(feet_, {0.0, 0.0});
   foot_sum_ticks_.assign(feet_, 0);
   foot_d2_.assign(feet_, 0.0);
-  foot_rise_.assign(feet_, 0.0);
-  foot_dip_.assign(feet_, 0.0);
   foot_unread_.assign(feet_, 0);
   foot_landing_pads_.assign(feet_, 0);
   landing_state_.assign(n, kNoLandingStep);
@@ -519,6 +517,25 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.air_levels.clear();  // the fault's swings are no healthy level
 }
 
+bool ContactForceFdi::load_rocked(std::size_t j, double spike, std::span<const double> measured) const noexcept {
+  // Another pad of the foot that reads its load (healthy, or corrected: a noise burst's or a
+  // spiking pad's excursions are its own) made the opposite one-tick excursion on this tick,
+  // beyond what its noise makes on a tick (z sqrt(3/2) sigma_x): load went from one to the other
+  // and came back (a heavy biped's heel chatters off the ground for a tick every 7 ms, its
+  // neighbour taking 30-40 N of it, for longer than a landing's guard), though an impact may shed
+  // some of it from the foot's sum. Sensors' spikes are independent: two opposite on one tick are
+  // not. The pads before j have been stepped this tick (their excursion is kept); those after it
+  // not yet (their last two readings are still the ones before this tick's).
+  const std::size_t first = channel_foot_[j] * feet_points_;
+  for (std::size_t i = first; i < first + feet_points_; ++i) {
+    const Channel& n = channels_[i];
+    if (i == j || (n.type != FaultType::none && !corrects(n.type))) continue;
+    const double excursion = i < j ? n.excursion : n.previous - 0.5 * (measured[i] + n.previous2);
+    if (excursion * spike < 0.0 && std::abs(excursion) > rocking_bar_N_) return true;
+  }
+  return false;
+}
+
 bool ContactForceFdi::unread(std::size_t j, std::span<const double> height) const noexcept {
   const FaultType type = channels_[j].type;
   if (type == FaultType::noise) return true;
@@ -615,19 +632,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
                                                    : std::numeric_limits<double>::infinity();
     foot_sum_[f][1] = foot_sum_[f][0];
     foot_sum_[f][0] = sum;
-    // Its pads' largest one-tick excursions, up and down, N_{k-1} - (N_k + N_{k-2}) / 2 (the spike
-    // test's measure): load that rocks between pads for a tick moves two of them opposite ways.
-    // Only of pads whose readings follow their loads (healthy, or corrected): a noise burst's or a
-    // spiking pad's excursions are its own.
-    foot_rise_[f] = foot_dip_[f] = 0.0;
-    for (std::size_t l = 0; l < feet_points_ && ticks_since_start > 0; ++l) {
-      const std::size_t j = f * feet_points_ + l;
-      if (channels_[j].type != FaultType::none && !corrects(channels_[j].type)) continue;
-      const double excursion = channels_[j].previous - 0.5 * (measured[j] + channels_[j].previous2);
-      if (!std::isfinite(excursion)) continue;
-      foot_rise_[f] = std::max(foot_rise_[f], excursion);
-      foot_dip_[f] = std::min(foot_dip_[f], excursion);
-    }
     foot_sum_ticks_[f] = known ? std::min(foot_sum_ticks_[f] + 1, 2) : 0;
     // Its pads whose readings are not their loads (as flagged until this tick): substituted
     // from the total force under load, or reading a noise burst. The summed reading then does not
@@ -666,6 +670,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.restart_air_readings();
       c.jump_pending = c.late_candidate = c.relation_pending = false;  // no candidate without a value
       c.median_gap = 0.0;
+      c.excursion = std::numeric_limits<double>::quiet_NaN();
       raw_sum += c.recovered;
       continue;
     }
@@ -733,6 +738,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // (A channel flagged already keeps being judged, so that it can be cleared.)
       const bool neighbour_unread = foot_unread_[channel_foot_[j]] > (unread(j, height) ? 1 : 0);
       const double spike = c.previous - 0.5 * (x + c.previous2);
+      c.excursion = spike;
       const bool spikes_seen = !touching_down && !pad_landing;
       if (spikes_seen) c.spikes.see(period_s_);
       // A sensor's spike is in its foot's summed reading too (the sum's own spike, -d2 / 2, at
@@ -741,15 +747,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       const std::size_t foot = channel_foot_[j];
       const double foot_spike = -0.5 * foot_d2_[foot];
       const bool in_foot_sum = !std::isfinite(foot_spike) || foot_spike * spike >= 0.5 * spike * spike;
-      // Nor is a tick on which another pad of the foot made the opposite excursion, beyond what
-      // its noise makes on a tick (z sqrt(3/2) sigma_x): load went from one to the other and came
-      // back (a heavy biped's heel chatters off the ground for a tick every 7 ms, its neighbour
-      // taking 30-40 N of it, for longer than a landing's guard), though an impact may shed some
-      // of it from the sum. Sensors' spikes are independent: two opposite on one tick are not.
-      const bool rocked = spike > 0.0 ? foot_dip_[foot] < -rocking_bar_N_ : foot_rise_[foot] > rocking_bar_N_;
+      // Nor is load that rocked (load_rocked: asked last, as it scans the foot).
       if (spikes_seen && std::abs(spike) > params_.spike_threshold_N &&
-          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum && !rocked &&
-          (!neighbour_unread || c.type == FaultType::spikes)) {
+          std::abs(x - c.previous2) < 0.5 * params_.spike_threshold_N && in_foot_sum &&
+          (!neighbour_unread || c.type == FaultType::spikes) && !load_rocked(j, spike, measured)) {
         c.spikes.spike(spike_rule_);
       }
       const double innovation = x - 2.0 * c.previous + c.previous2;

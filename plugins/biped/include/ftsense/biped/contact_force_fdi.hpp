@@ -541,6 +541,7 @@ class ContactForceFdi {
   struct Channel {
     // evidence
     double previous = 0.0, previous2 = 0.0;
+    double excursion = 0.0;  // N_{k-1} - (N_k + N_{k-2}) / 2 once stepped this tick (NaN: no value) [N]
     int stale_count = 0;
     double last_stale_value = -1e300;  // the value of the last stuck episode
     int stale_episodes = 0;            // consecutive stuck episodes at that same value
@@ -788,6 +789,8 @@ class ContactForceFdi {
   // Channel j's reading is not its load, as flagged until this tick: substituted from the total
   // force on the ground, or a noise burst (anywhere: its noise is in its foot's summed reading).
   [[nodiscard]] bool unread(std::size_t j, std::span<const double> height) const noexcept;
+  // Load rocked between pad j (a one-tick excursion `spike` [N]) and another pad of its foot.
+  [[nodiscard]] bool load_rocked(std::size_t j, double spike, std::span<const double> measured) const noexcept;
   // Foot f touched down within touchdown_guard_s of t (its landing's transient; its pads taking
   // their loads one by one).
   [[nodiscard]] bool foot_landing(std::size_t f, double t) const noexcept {
@@ -915,7 +918,6 @@ class ContactForceFdi {
   std::vector<std::array<double, 2>> foot_sum_;  // summed reading one and two ticks ago
   std::vector<int> foot_sum_ticks_;              // consecutive ticks with every pad's value, up to 2
   std::vector<double> foot_d2_;                  // second difference of the summed reading, this tick
-  std::vector<double> foot_rise_, foot_dip_;     // its pads' largest one-tick excursions up, down, this tick [N]
   std::vector<int> foot_unread_;                 // its pads whose reading is not their load (unread())
   std::vector<int> foot_landing_pads_;           // its pads that land or ring-step on this tick
   // Per channel, this tick: its own landing's step (before the jump test's state moves on).
