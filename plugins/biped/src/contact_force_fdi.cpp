@@ -519,19 +519,25 @@ void ContactForceFdi::clear(Channel& c) noexcept {
 
 bool ContactForceFdi::load_rocked(std::size_t j, double spike, std::span<const double> measured) const noexcept {
   // Another pad of the foot that reads its load (healthy, or corrected: a noise burst's or a
-  // spiking pad's excursions are its own) made the opposite one-tick excursion on this tick,
-  // beyond what its noise makes on a tick (z sqrt(3/2) sigma_x): load went from one to the other
-  // and came back (a heavy biped's heel chatters off the ground for a tick every 7 ms, its
-  // neighbour taking 30-40 N of it, for longer than a landing's guard), though an impact may shed
-  // some of it from the foot's sum. Sensors' spikes are independent: two opposite on one tick are
-  // not. The pads before j have been stepped this tick (their excursion is kept); those after it
-  // not yet (their last two readings are still the ones before this tick's).
+  // spiking pad's excursions are its own; a gain's taken as its load, N / k) made the opposite
+  // one-tick excursion on this tick, beyond what its noise makes on a tick (z sqrt(3/2) sigma_x),
+  // and came back: its reading moved over the two ticks by less than that excursion (a step of s
+  // moves it by s, twice its excursion s / 2; a heel's neighbour on a rising load, by 2 ticks of
+  // its rise). Load went from one to the other and back (a heavy biped's heel chatters off the
+  // ground for a tick every 7 ms, its neighbour taking 30-40 N of it, for longer than a landing's
+  // guard), though an impact may shed some of it from the foot's sum. Sensors' spikes are
+  // independent: two opposite on one tick are not. (Every pad's previous readings are still
+  // those before this tick: they move on after the channels' pass.)
   const std::size_t first = channel_foot_[j] * feet_points_;
   for (std::size_t i = first; i < first + feet_points_; ++i) {
     const Channel& n = channels_[i];
     if (i == j || (n.type != FaultType::none && !corrects(n.type))) continue;
-    const double excursion = i < j ? n.excursion : n.previous - 0.5 * (measured[i] + n.previous2);
-    if (excursion * spike < 0.0 && std::abs(excursion) > rocking_bar_N_) return true;
+    const double scale = n.type == FaultType::gain ? 1.0 / n.gain : 1.0;
+    const double excursion = scale * (n.previous - 0.5 * (measured[i] + n.previous2));
+    const double moved = scale * (measured[i] - n.previous2);
+    if (excursion * spike < 0.0 && std::abs(excursion) > rocking_bar_N_ && std::abs(moved) < std::abs(excursion)) {
+      return true;
+    }
   }
   return false;
 }
@@ -670,7 +676,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       c.restart_air_readings();
       c.jump_pending = c.late_candidate = c.relation_pending = false;  // no candidate without a value
       c.median_gap = 0.0;
-      c.excursion = std::numeric_limits<double>::quiet_NaN();
       raw_sum += c.recovered;
       continue;
     }
@@ -738,7 +743,6 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       // (A channel flagged already keeps being judged, so that it can be cleared.)
       const bool neighbour_unread = foot_unread_[channel_foot_[j]] > (unread(j, height) ? 1 : 0);
       const double spike = c.previous - 0.5 * (x + c.previous2);
-      c.excursion = spike;
       const bool spikes_seen = !touching_down && !pad_landing;
       if (spikes_seen) c.spikes.see(period_s_);
       // A sensor's spike is in its foot's summed reading too (the sum's own spike, -d2 / 2, at

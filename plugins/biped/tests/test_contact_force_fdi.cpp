@@ -3453,15 +3453,19 @@ namespace {
 // to the foot's sum (F_z, from the trunk, does not see that either). Returns the first tick and
 // channel any test flags, (-1, -1) if none does in 600 ticks; `jitter_from` (if >= 0) adds a
 // noise burst of +-20 N to the heel's reading from that tick on, and the heel's flag is then
-// returned in `heel`. On a bounce, the toe takes `toe_takes_N` of the heel's load for that tick.
+// returned in `heel`. On a bounce, the toe takes `toe_takes_N` of the heel's load for that tick
+// (`toe_keeps`: and keeps it from then on).
 template <class Bounce>
 std::pair<int, int> heel_landing(double fz_error, Bounce bounce, int jitter_from = -1,
-                                 std::vector<FaultType>* heel = nullptr, double toe_takes_N = 0.0) {
+                                 std::vector<FaultType>* heel = nullptr, double toe_takes_N = 0.0,
+                                 bool toe_keeps = false) {
+  bool toe_took = false;
   Feet feet(suralp(), 1e-3);
   for (int k = 0; k < 600; ++k) {
     const double alternation = k % 2 == 0 ? 0.0 : 1.0;
     const double heel_load = k < 300 ? 0.0 : std::min(150.0, 60.0 + 3.0 * (k - 300));
-    feet.measured[0] = 400.0 - heel_load + alternation + (bounce(k) ? toe_takes_N : 0.0);
+    toe_took = toe_took || bounce(k);
+    feet.measured[0] = 400.0 - heel_load + alternation + (bounce(k) || (toe_keeps && toe_took) ? toe_takes_N : 0.0);
     feet.measured[1] = 300.0 + alternation;
     feet.measured[2] = (bounce(k) ? 0.0 : heel_load) + alternation;
     if (jitter_from >= 0 && k >= jitter_from) feet.measured[2] += k % 2 == 0 ? 20.0 : -20.0;
@@ -3515,6 +3519,12 @@ TEST(ContactForceFdi, AHeelThatLetsGoForATickWhileItsToeTakesSomeOfItsLoadIsNoSp
     EXPECT_EQ(rocked, std::make_pair(-1, -1)) << "toe takes " << taken << " N: tick " << rocked.first << ", channel " << rocked.second;
   }
   EXPECT_EQ(heel_landing(0.0, bounce, -1, nullptr, 14.0), std::make_pair(501, 2));
+  // The toe stepping up by 40 N on that tick and staying there (an excursion of 19-20 N, beyond
+  // the bar, but a step: it moved by 40 N over the two ticks, twice its excursion) is no load
+  // that came back: the heel's excursion is a spike. (A review's finding: the first version took
+  // any opposite excursion.) The toe's own step is no jump confirmed (F_z does not see it), so
+  // the heel is the first channel flagged.
+  EXPECT_EQ(heel_landing(0.0, bounce, -1, nullptr, 40.0, true), std::make_pair(501, 2));
 }
 
 TEST(ContactForceFdi, AHeelWhoseContactChattersAsItsFootRollsIsNoNoiseBurst) {

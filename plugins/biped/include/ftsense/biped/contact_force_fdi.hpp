@@ -57,11 +57,13 @@
 //             its foot's summed reading spikes the same way by at least half as much (load that
 //             rocks between two pads of a sole for a tick, a heel pad chattering on and off the
 //             ground, leaves the sum smooth; a sensor's spike is in it), and no other pad of its
-//             foot that reads its load (healthy or corrected) made the opposite excursion beyond
-//             its noise, z sqrt(3/2) sigma_x, on that tick (load went from one pad to the other and back, though
-//             an impact may shed part of it from the sum: a heavy biped's heel chatters so for
-//             longer than a landing's guard; sensors' spikes are independent), and no other pad of
-//             its foot reads other than its load (substituted under load, or a noise burst: its
+//             foot that reads its load (healthy or corrected; a gain's as N / k) made the opposite
+//             excursion beyond its noise, z sqrt(3/2) sigma_x, on that tick and came back (moved
+//             over the two ticks by less than that excursion; a step moves by twice it): load went
+//             from one pad to the other and back, though an impact may shed part of it from the
+//             sum (a heavy biped's heel chatters so for longer than a landing's guard; sensors'
+//             spikes are independent), and no other pad of its foot reads other than its load
+//             (substituted under load, or a noise burst: its
 //             reading misses or swamps the load it trades with this pad, so neither the sum nor
 //             this pad tells a spike then; the noise test alike, so a second noise burst on that
 //             foot waits for the first to clear; a channel already flagged is judged on, so that
@@ -541,7 +543,6 @@ class ContactForceFdi {
   struct Channel {
     // evidence
     double previous = 0.0, previous2 = 0.0;
-    double excursion = 0.0;  // N_{k-1} - (N_k + N_{k-2}) / 2 once stepped this tick (NaN: no value) [N]
     int stale_count = 0;
     double last_stale_value = -1e300;  // the value of the last stuck episode
     int stale_episodes = 0;            // consecutive stuck episodes at that same value
