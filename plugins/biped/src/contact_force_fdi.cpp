@@ -524,7 +524,7 @@ bool ContactForceFdi::load_rocked(std::size_t j, double spike, std::span<const d
   // and came back: its reading moved over the two ticks by less than that excursion (a step of s
   // moves it by s, twice its excursion s / 2; a heel's neighbour on a rising load, by 2 ticks of
   // its rise). Load went from one to the other and back (a heavy biped's heel chatters off the
-  // ground for a tick every 7 ms, its neighbour taking 30-40 N of it, for longer than a landing's
+  // ground for a tick every 7 ms, its neighbour's excursion 30-35 N, for longer than a landing's
   // guard), though an impact may shed some of it from the foot's sum. Sensors' spikes are
   // independent: two opposite on one tick are not. (Every pad's previous readings are still
   // those before this tick: they move on after the channels' pass.)
