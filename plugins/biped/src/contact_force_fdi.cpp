@@ -447,6 +447,8 @@ void ContactForceFdi::reset() noexcept {
   std::fill(residual_ring_.begin(), residual_ring_.end(), 0.0);
   residual_next_ = 0;
   residual_count_ = 0;
+  usable_ticks_in_a_row_ = 0;
+  residual_level_ = 0.0;
   residual_before_touchdown_ = 0.0;
   residual_before_known_ = was_touching_down_ = false;
   guard_onsets_clear_ticks_ = 0;
@@ -705,6 +707,10 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (c.type == FaultType::invalid) clear(c);  // a finite value re-admits at once
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
+      if (c.type == FaultType::drift) {
+        const double size = fault_at(c, t);
+        if (std::abs(change + size) < 0.5 * std::abs(size)) c.stepped_back_s = t;
+      }
       // A pad on its zero level that may carry no more than a driver's zero clamp (in the air, or
       // on the ground with a load within the clamp and the total force's error) may repeat
       // itself: no evidence either way, so the run neither grows nor restarts. Any other value
@@ -2336,7 +2342,20 @@ void ContactForceFdi::take_gain(Channel& c, double k) noexcept {
 void ContactForceFdi::gain_regression(std::span<const double> measured, std::span<const double> recovered,
                                       std::span<const double> height, double residual, bool usable,
                                       double t) noexcept {
-  if (!usable) return;  // the window keeps what it has; impacts and substitutions add nothing
+  if (!usable) {  // the window keeps what it has; impacts and substitutions add nothing
+    usable_ticks_in_a_row_ = 0;
+    return;
+  }
+  // The sum residual as the jump test takes it (this tick's, the ring's newest), and its level
+  // before this tick once settled over 2 clear_s of usable ticks (for a drift's end at once).
+  const double ring_now = residual_ring_[ring_back(residual_next_, residual_ring_.size(), 0)];
+  const double level_before = usable_ticks_in_a_row_ >= 2 * stance_min_ticks_
+                                  ? residual_level_
+                                  : std::numeric_limits<double>::quiet_NaN();
+  residual_level_ = usable_ticks_in_a_row_ == 0
+                        ? ring_now
+                        : residual_level_ + (ring_now - residual_level_) / static_cast<double>(stance_min_ticks_);
+  usable_ticks_in_a_row_ = std::min(usable_ticks_in_a_row_ + 1, kCountCap);
   const double f = gain_forgetting_;
   for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
     const double x = recovered[j];
@@ -2446,6 +2465,16 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       }
     }
     if (!run.reading_leads()) run = StancePowers{.type = c.type};
+    // A drift that ended at once (its cause gone, its sensor re-zeroed) steps its reading back by
+    // its size, on a tick within a jump window before it began to lead (its load's own moves seldom
+    // do: evidence the fault, not the load, moved), and the sum residual by as much: its level
+    // before, and its mean since (StancePowers::stepped_back).
+    if (run.ticks == 1) {
+      const bool reading_stepped = t - c.stepped_back_s < (jump_window_ticks_ + 0.5) * period_s_;
+      run.level_before = reading_stepped ? level_before : std::numeric_limits<double>::quiet_NaN();
+      run.correction_before = correction;
+    }
+    run.level_sum += ring_now;
     // A drift, only since the reading last led and only where the reading stayed flat: its slope
     // extrapolated through a stance may grow wrong while the drift goes on. A window that shows a
     // slope is closed and the next one judged afresh (the load's own moves in a walking stance
@@ -2454,7 +2483,10 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     if (c.type == FaultType::drift) {
       const StancePowers::Trend trend = run.trend(c.slope * period_s_, relation_z_);
       flat = trend == StancePowers::Trend::flat;
-      if (trend == StancePowers::Trend::sloped) run.restart_trend();
+      if (trend == StancePowers::Trend::sloped) {
+        run.restart_trend();
+        run.level_before = std::numeric_limits<double>::quiet_NaN();  // the reading has moved since
+      }
       // The reading as it is, flat over the stance where the drift would have shown, after a window
       // of the same stance in which it rose with the drift (its slope the fitted drift's sign),
       // and off the load by more than the residual's own error can mimic (gain_min_load_N): the
@@ -2478,8 +2510,14 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
         continue;
       }
     }
+    // A drift whose reading stepped back to the load: that step, with the reading on the load since
+    // (its mean lead within gain_min_load_N, what the residual's own error can mimic) is enough,
+    // with the comparison. A drift regrowing after a fade never stepped.
+    const auto ended_by_step = [&] {
+      return std::abs(run.trend_mean()) <= params_.gain_min_load_N && run.stepped_back(relation_z_, stance_min_ticks_);
+    };
     const bool wins = c.type == FaultType::drift
-                          ? flat && run.reading_wins(stance_min_ticks_, stance_bound)
+                          ? run.reading_wins(stance_min_ticks_, stance_bound) && (flat || ended_by_step())
                           : stance.reading_wins(stance_min_ticks_, stance_bound) ||
                                 (c.type == FaultType::offset && run.reading_wins(stance_min_ticks_, stance_bound));
     if (wins && corrections == 1) {

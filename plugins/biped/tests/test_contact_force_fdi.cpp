@@ -1217,8 +1217,9 @@ TEST(ContactForceFdi, ADriftThatGrewWhileItsPadWasLoadedIsADriftWhenTheAirFindsI
 // l_foot/p1's drift of fault_in_a_short_swing (40 N/s from tick 150, typed drift on tick 321),
 // on a foot that lands on tick 350 and then stays down to tick 4000 (a robot that stops and
 // stands). From tick 1000 the fault follows `after` (its size [N] at tick k >= 1000; 44 N, the
-// drift's level, at tick 1000). The total force carries an error of N(0, 2 N),
-// std::mt19937(seed), and a bias of total_bias_N; no other channel may be flagged.
+// drift's level, at tick 1000). The total force carries an error of N(0, total_noise_N),
+// std::mt19937(seed), a bias of total_bias_N, and from tick 1000 total_step_N more; no other
+// channel may be flagged. (jump_threshold_N and clear_s: the detector's, 0 for its default.)
 struct LongStance {
   int cleared = -1;  // the first tick the channel shows no fault after it showed drift (-1: none)
   FaultType type_at_end = FaultType::none;
@@ -1226,10 +1227,15 @@ struct LongStance {
   double recovered_rms_N = 0.0;    // its recovered load's error over the last 1000 ticks
 };
 template <class After>
-LongStance drift_in_a_long_stance(const After& after, unsigned seed, double total_bias_N = 0.0) {
-  Feet feet(suralp(), 1e-3);
+LongStance drift_in_a_long_stance(const After& after, unsigned seed, double total_bias_N = 0.0,
+                                  double jump_threshold_N = 0.0, double total_noise_N = 2.0,
+                                  double clear_s = 0.0, double total_step_N = 0.0) {
+  ContactForceFdi::Params params = suralp();
+  params.jump_threshold_N = jump_threshold_N;
+  if (clear_s > 0.0) params.clear_s = clear_s;
+  Feet feet(params, 1e-3);
   std::mt19937 rng(seed);
-  std::normal_distribution<double> total_error(0.0, 2.0);
+  std::normal_distribution<double> total_error(0.0, total_noise_N);
   LongStance out;
   bool drift = false;
   double squared_error = 0.0;
@@ -1238,7 +1244,7 @@ LongStance drift_in_a_long_stance(const After& after, unsigned seed, double tota
     left_swing_loads(feet, k, swinging);
     const double load = feet.measured[0];
     feet.measured[0] += k < 150 ? 0.0 : k < 1000 ? 10.0 + 40.0 * (k - 150) * 1e-3 : after(k);
-    feet.step(800.0 + total_bias_N + total_error(rng));
+    feet.step(800.0 + total_bias_N + (k >= 1000 ? total_step_N : 0.0) + total_error(rng));
     drift = drift || feet.type(0) == FaultType::drift;
     if (drift && out.cleared < 0 && feet.type(0) == FaultType::none) out.cleared = k;
     for (std::size_t j = 1; j < kChannels; ++j) EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
@@ -1292,6 +1298,46 @@ TEST(ContactForceFdi, ADriftThatEndsWhileItsPadStaysLoadedIsReadmittedOnceTheRea
   std::printf("faded, then growing again at 15 N/s: re-admitted at tick %d\n", regrown.cleared);
   EXPECT_EQ(regrown.cleared, -1);
   EXPECT_EQ(regrown.type_at_end, FaultType::drift);
+}
+
+TEST(ContactForceFdi, ADriftThatEndsByAStepUnderTheJumpThresholdIsReadmittedOnceItsReadingSitsOnTheLoad) {
+  // The drift's reading steps back by its 44 N at tick 1000, while its foot stays down. With the
+  // jump test's threshold set to 50 N, no jump test sees that step. The reading stepped back by
+  // about its correction on a tick, and the sum residual (the reading as it is) by as much from
+  // its level before the reading began to lead (a low-pass over clear_s, 50 ticks, of the usable
+  // ticks before), nearer that than no step; half that step is beyond z = 5.71 of its standard
+  // error (2 N of scatter: 0.35 N); the
+  // reading sits on the load since (mean lead within gain_min_load_N, 30 N here) with no slope or
+  // bend, and wins the stance comparison over clear_s (ticks 1000-1049): the channel shows no
+  // fault from tick 1050, the comparison's first chance. Without the step's cue (run once), only
+  // once a window could show the drift going on at a quarter of its fitted rate: tick 1427.
+  const unsigned seed = 5;
+  std::printf("total force error N(0, 2 N), std::mt19937(%u)\n", seed);
+  const LongStance stepped = drift_in_a_long_stance([](int) { return 0.0; }, seed, 0.0, 50.0);
+  std::printf("a drift that steps back to 0 at tick 1000: re-admitted at tick %d\n", stepped.cleared);
+  EXPECT_EQ(stepped.cleared, 1050);
+  EXPECT_EQ(stepped.type_at_end, FaultType::none);
+  // With clear_s 10 ms (the level before is a low-pass over 10 ticks) and the total force's
+  // error 15 N RMS, the step's standard error is s sqrt(1 / 19 + 1 / n), s the scatter the window
+  // measures (about 15 N): half the step, 22 N, is beyond z of it only once the mean since has
+  // some 60 ticks: tick 1060 with std::mt19937(5). Without that bar (run once): tick 1010, the
+  // comparison's first chance.
+  const LongStance noisy = drift_in_a_long_stance([](int) { return 0.0; }, seed, 0.0, 50.0, 15.0, 0.01);
+  std::printf("the same with clear_s 10 ms and the total force's error N(0, 15 N): re-admitted at tick %d\n",
+              noisy.cleared);
+  EXPECT_GE(noisy.cleared, 1040);
+  EXPECT_LE(noisy.cleared, 1200);
+  // The drift goes on at 40 N/s while the total force steps up by its 44 N at tick 1000: the sum
+  // residual steps as an end would, and the reading as it is sits on the load for a while, but
+  // the reading itself did not step. Not re-admitted (without the reading's own step, run once:
+  // tick 1050).
+  const auto goes_on = [](int k) { return kDriftLevelAt1000 + 40.0 * (k - 1000) * 1e-3; };
+  const LongStance total_stepped = drift_in_a_long_stance(goes_on, seed, 0.0, 50.0, 2.0, 0.0, kDriftLevelAt1000);
+  std::printf("a drift going on while the total force steps by its size: re-admitted at tick %d\n",
+              total_stepped.cleared);
+  EXPECT_EQ(total_stepped.cleared, -1);
+  EXPECT_EQ(total_stepped.type_at_end, FaultType::drift);
+  EXPECT_EQ(noisy.type_at_end, FaultType::none);
 }
 
 TEST(ContactForceFdi, ADriftThatStopsAtItsLevelWhileItsPadStaysLoadedIsHeldAsAnOffsetThere) {

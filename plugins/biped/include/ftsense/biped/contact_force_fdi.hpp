@@ -241,8 +241,19 @@
 //             the reading as it is stayed flat over a window that could have shown the drift
 //             going on at a quarter of its fitted rate (StancePowers::trend: neither the
 //             window's slope nor its bend beyond relation_z_ of its standard error; a window that
-//             shows either is closed and the next judged afresh): a pad that stays loaded to the
-//             end of a log has no next swing to judge it; only while it is the one correction
+//             shows either is closed and the next judged afresh), or, for a drift that ended
+//             at once, once its reading sits on the load: the reading stepped back by about its
+//             correction c (|dx + c| < |c| / 2, under any threshold) within a jump window before
+//             the ticks since that CUSUM was last at 0 began, and over those ticks the sum
+//             residual r_raw (as the jump test takes it) stepped by as much from its level before
+//             (a first-order low-pass of time constant clear_s over at least 2 clear_s of usable
+//             ticks in a row), half that step beyond relation_z_ of its standard error
+//             s sqrt(1 / (2 n_c - 1) + 1 / n) (s the window's scatter about its line and bend,
+//             n_c = clear_s / T, n its ticks), its mean lead within gain_min_load_N, no slope or
+//             bend beyond relation_z_ at whatever precision the window has, never found sloped
+//             (a drift regrowing after a fade never stepped; a load that moves the reading by c
+//             in a tick leaves the residual alone): a pad that stays
+//             loaded to the end of a log has no next swing to judge it; only while it is the one correction
 //             the residual carries (with two, the one still faulty can win first). A drift whose
 //             reading stays flat over such a window of its stance (the same test, clear_s at
 //             least), after a window of that stance in which it rose the drift's way, but off its
@@ -592,6 +603,9 @@ class ContactForceFdi {
     // residual's mean over the jump window before the guard). Likewise a step back while
     // another group is pending, judged a jump window after it by its own step.
     bool end_pending = false;
+    // The last tick a drift's reading stepped back by about its size (nearer that than no step),
+    // under any threshold: a cue for the stance comparison, not a decision [s].
+    double stepped_back_s = -std::numeric_limits<double>::infinity();
     bool end_after_guard = false;  // judged after the guard (else: a jump window after the step)
     double end_jump = 0.0, end_before = 0.0, end_since_s = 0.0;
     int end_clear_ticks = 0;  // ticks judged since the guard ended (or since the step)
@@ -1007,6 +1021,15 @@ class ContactForceFdi {
     // The last window closed as sloped rose the way the drift does (a plateau's flat window
     // follows the drift going on; a fade's follows its fall).
     bool rose_with_drift = false;
+    // For a drift that ended at once: the sum residual's level (the readings as the jump test
+    // takes them, this one as it is) over the usable ticks before the sums' first, the
+    // correction on that first tick, and the residual's sum since. NaN unless the reading itself
+    // stepped back by about the correction within a jump window before that first tick, while
+    // that level had not settled (fewer than 2 clear_s of usable ticks in a row), and once a
+    // window of these sums was found sloped (whatever stepped, the reading has moved since).
+    double level_before = std::numeric_limits<double>::quiet_NaN();
+    double correction_before = 0.0;
+    double level_sum = 0.0;
     // The gain explanation's residual and its own correction N_j - N_j / k.
     void add_gain_model(double as_gain, double correction) noexcept {
       gain_rr += as_gain * as_gain;
@@ -1035,8 +1058,13 @@ class ContactForceFdi {
     // standard error, else sloped (a bend: the reading fell and rose again within the window,
     // which a line through it would call flat).
     enum class Trend { undecided, flat, sloped };
-    [[nodiscard]] Trend trend(double drift_per_tick, double z) const noexcept {
-      if (trend_ticks < 4) return Trend::undecided;
+    struct TrendFit {
+      double c1, se1, c2, se2;
+      double s;  // r_raw's standard deviation about the line and the bend [N]
+      [[nodiscard]] bool flat(double z) const noexcept { return std::abs(c1) <= z * se1 && std::abs(c2) <= z * se2; }
+    };
+    // Over the trend window; needs 4 ticks or more (its residual variance has n - 3 degrees of freedom).
+    [[nodiscard]] TrendFit trend_fit() const noexcept {
       const double n = static_cast<double>(trend_ticks);
       const double m = 0.5 * (n - 1.0);
       const double p1p1 = n * (n * n - 1.0) / 12.0;
@@ -1046,9 +1074,28 @@ class ContactForceFdi {
       const double c1 = trend_slope(), c2 = rp2 / p2p2;  // c1 = rp1 / p1p1
       const double ssr = trend_rr - raw_sum * raw_sum / n - c1 * rp1 - c2 * rp2;
       const double s = std::sqrt(std::max(ssr, 0.0) / (n - 3.0));
-      const double se1 = s / std::sqrt(p1p1), se2 = s / std::sqrt(p2p2);
-      if (!(z * se1 <= 0.25 * std::abs(drift_per_tick))) return Trend::undecided;
-      return std::abs(c1) <= z * se1 && std::abs(c2) <= z * se2 ? Trend::flat : Trend::sloped;
+      return {c1, s / std::sqrt(p1p1), c2, s / std::sqrt(p2p2), s};
+    }
+    [[nodiscard]] Trend trend(double drift_per_tick, double z) const noexcept {
+      if (trend_ticks < 4) return Trend::undecided;
+      const TrendFit fit = trend_fit();
+      if (!(z * fit.se1 <= 0.25 * std::abs(drift_per_tick))) return Trend::undecided;
+      return fit.flat(z) ? Trend::flat : Trend::sloped;
+    }
+    // A drift that ended at once: the residual stepped from its level before these sums by minus
+    // the correction then (nearer that than no step: a fade moves it by its rate), that step's
+    // half beyond z of its standard error (r_raw's scatter s, through the level's low-pass of
+    // settle_ticks and the mean over these ticks), and the window is flat at whatever precision it
+    // has (no slope, no bend beyond z of their standard errors): it need not be long enough to
+    // show the drift going on, since a step, not a fade, brought the reading to the load.
+    [[nodiscard]] bool stepped_back(double z, int settle_ticks) const noexcept {
+      if (!std::isfinite(level_before) || trend_ticks != ticks || trend_ticks < 4) return false;
+      const double n = static_cast<double>(ticks);
+      const double step = level_sum / n - level_before;
+      if (!(std::abs(step + correction_before) < 0.5 * std::abs(correction_before))) return false;
+      const TrendFit fit = trend_fit();
+      const double se = fit.s * std::sqrt(1.0 / (2.0 * settle_ticks - 1.0) + 1.0 / n);
+      return 0.5 * std::abs(correction_before) >= z * se && fit.flat(z);
     }
   };
   // Over the present stance of the channel's point, and (an offset) since the CUSUM of the
@@ -1056,6 +1103,10 @@ class ContactForceFdi {
   // since its end).
   std::vector<StancePowers> stance_powers_, stance_cusum_;
   int stance_min_ticks_ = 50;  // round(clear_s / T), at least 2
+  int usable_ticks_in_a_row_ = 0;  // ticks the stance comparison took in a row (capped)
+  // The sum residual's level over those ticks: a first-order low-pass of time constant
+  // stance_min_ticks_ (variance s^2 / (2 stance_min_ticks_ - 1) for a white residual of s).
+  double residual_level_ = 0.0;
   double gain_weight_ = 0.0;
   double gain_forgetting_ = 1.0;
   int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
