@@ -427,6 +427,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   relation_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s));
   // A pad's one-tick excursion N_{k-1} - (N_k + N_{k-2}) / 2 carries sqrt(3/2) sigma_x of noise.
   rocking_bar_N_ = relation_z_ * std::sqrt(1.5) * reading_sigma_N_;
+  step_back_bar_N_ = relation_z_ * std::sqrt(2.0) * reading_sigma_N_;
   // One decision per landing, and landings are at least a guard apart.
   guard_z_ = generic::normal_quantile(1.0 - 0.5 * std::min(0.5, params.touchdown_guard_s / params.false_alarm_interval_s));
 }
@@ -449,6 +450,7 @@ void ContactForceFdi::reset() noexcept {
   residual_count_ = 0;
   usable_ticks_in_a_row_ = 0;
   residual_level_ = 0.0;
+  residual_level_seed_weight_ = 1.0;
   residual_before_touchdown_ = 0.0;
   residual_before_known_ = was_touching_down_ = false;
   guard_onsets_clear_ticks_ = 0;
@@ -707,9 +709,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (c.type == FaultType::invalid) clear(c);  // a finite value re-admits at once
     if (ticks_since_start > 0) {
       const double change = x - c.previous;
+      // A drift's reading stepping back by about its size s on this tick (nearer -s than no
+      // step), s beyond the noise of a tick's change, and its foot's summed reading stepping
+      // alike (load moving between the foot's pads leaves that sum alone): a cue for the
+      // stance comparison (gain_regression), not a decision.
       if (c.type == FaultType::drift) {
         const double size = fault_at(c, t);
-        if (std::abs(change + size) < 0.5 * std::abs(size)) c.stepped_back_s = t;
+        const std::size_t f = channel_foot_[j];
+        const double foot_change = foot_sum_ticks_[f] >= 2 ? foot_sum_[f][0] - foot_sum_[f][1]
+                                                           : std::numeric_limits<double>::quiet_NaN();
+        if (std::abs(size) > step_back_bar_N_ && std::abs(change + size) < 0.5 * std::abs(size) &&
+            std::abs(foot_change + size) < 0.5 * std::abs(size)) {
+          c.stepped_back_s = t;
+        }
       }
       // A pad on its zero level that may carry no more than a driver's zero clamp (in the air, or
       // on the ground with a load within the clamp and the total force's error) may repeat
@@ -2347,15 +2359,29 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     return;
   }
   // The sum residual as the jump test takes it (this tick's, the ring's newest), and its level
-  // before this tick once settled over 2 clear_s of usable ticks (for a drift's end at once).
+  // before this tick once settled over 2 clear_s of usable ticks (for a drift's end at once),
+  // with that level's variance in units of the residual's (a low-pass y += a (r - y) seeded with
+  // its first value, of weight w = (1 - a)^k after k ticks: w^2 + a (1 - w^2) / (2 - a)).
   const double ring_now = residual_ring_[ring_back(residual_next_, residual_ring_.size(), 0)];
-  const double level_before = usable_ticks_in_a_row_ >= 2 * stance_min_ticks_
-                                  ? residual_level_
-                                  : std::numeric_limits<double>::quiet_NaN();
-  residual_level_ = usable_ticks_in_a_row_ == 0
-                        ? ring_now
-                        : residual_level_ + (ring_now - residual_level_) / static_cast<double>(stance_min_ticks_);
-  usable_ticks_in_a_row_ = std::min(usable_ticks_in_a_row_ + 1, kCountCap);
+  const double a = 1.0 / static_cast<double>(stance_min_ticks_);
+  const bool settled = usable_ticks_in_a_row_ >= 2 * stance_min_ticks_;
+  const double level_before = settled ? residual_level_ : std::numeric_limits<double>::quiet_NaN();
+  const double seed_weight = residual_level_seed_weight_;
+  const auto level_variance = [&] {  // asked only where a drift's run begins
+    const double w2 = seed_weight * seed_weight;
+    return w2 + a * (1.0 - w2) / (2.0 - a);
+  };
+  if (!std::isfinite(ring_now)) {
+    usable_ticks_in_a_row_ = 0;  // a residual too large to hold: the level starts again
+  } else if (usable_ticks_in_a_row_ == 0) {
+    residual_level_ = ring_now;
+    residual_level_seed_weight_ = 1.0;
+    usable_ticks_in_a_row_ = 1;
+  } else {
+    residual_level_ += a * (ring_now - residual_level_);
+    residual_level_seed_weight_ *= 1.0 - a;
+    usable_ticks_in_a_row_ = std::min(usable_ticks_in_a_row_ + 1, kCountCap);
+  }
   const double f = gain_forgetting_;
   for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
     const double x = recovered[j];
@@ -2469,12 +2495,13 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     // its size, on a tick within a jump window before it began to lead (its load's own moves seldom
     // do: evidence the fault, not the load, moved), and the sum residual by as much: its level
     // before, and its mean since (StancePowers::stepped_back).
-    if (run.ticks == 1) {
+    if (c.type == FaultType::drift && run.ticks == 1) {
       const bool reading_stepped = t - c.stepped_back_s < (jump_window_ticks_ + 0.5) * period_s_;
       run.level_before = reading_stepped ? level_before : std::numeric_limits<double>::quiet_NaN();
+      run.level_variance = level_variance();
       run.correction_before = correction;
     }
-    run.level_sum += ring_now;
+    if (c.type == FaultType::drift && run.ticks > 0) run.level_sum += ring_now;
     // A drift, only since the reading last led and only where the reading stayed flat: its slope
     // extrapolated through a stance may grow wrong while the drift goes on. A window that shows a
     // slope is closed and the next one judged afresh (the load's own moves in a walking stance
@@ -2514,7 +2541,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     // (its mean lead within gain_min_load_N, what the residual's own error can mimic) is enough,
     // with the comparison. A drift regrowing after a fade never stepped.
     const auto ended_by_step = [&] {
-      return std::abs(run.trend_mean()) <= params_.gain_min_load_N && run.stepped_back(relation_z_, stance_min_ticks_);
+      return std::abs(run.trend_mean()) <= params_.gain_min_load_N && run.stepped_back(relation_z_);
     };
     const bool wins = c.type == FaultType::drift
                           ? run.reading_wins(stance_min_ticks_, stance_bound) && (flat || ended_by_step())

@@ -1302,13 +1302,14 @@ TEST(ContactForceFdi, ADriftThatEndsWhileItsPadStaysLoadedIsReadmittedOnceTheRea
 
 TEST(ContactForceFdi, ADriftThatEndsByAStepUnderTheJumpThresholdIsReadmittedOnceItsReadingSitsOnTheLoad) {
   // The drift's reading steps back by its 44 N at tick 1000, while its foot stays down. With the
-  // jump test's threshold set to 50 N, no jump test sees that step. The reading stepped back by
-  // about its correction on a tick, and the sum residual (the reading as it is) by as much from
-  // its level before the reading began to lead (a low-pass over clear_s, 50 ticks, of the usable
-  // ticks before), nearer that than no step; half that step is beyond z = 5.71 of its standard
-  // error (2 N of scatter: 0.35 N); the
-  // reading sits on the load since (mean lead within gain_min_load_N, 30 N here) with no slope or
-  // bend, and wins the stance comparison over clear_s (ticks 1000-1049): the channel shows no
+  // jump test's threshold set to 50 N, no jump test sees that step. The reading (and its foot's
+  // summed reading) stepped back by about its correction on a tick, beyond z sqrt(2) sigma_x
+  // (16 N), and the sum residual (the reading as it is) by as much from its level before the
+  // reading began to lead (a low-pass over clear_s, 50 ticks, of the usable ticks before),
+  // nearer that than no step; half the correction is beyond z = 5.71 of the step's standard
+  // error (2 N of scatter: 0.35 N); the reading sits on the load since (mean lead within
+  // gain_min_load_N, 30 N here) with no slope or bend, and wins the stance comparison over
+  // clear_s (ticks 1000-1049): the channel shows no
   // fault from tick 1050, the comparison's first chance. Without the step's cue (run once), only
   // once a window could show the drift going on at a quarter of its fitted rate: tick 1427.
   const unsigned seed = 5;
@@ -1319,9 +1320,9 @@ TEST(ContactForceFdi, ADriftThatEndsByAStepUnderTheJumpThresholdIsReadmittedOnce
   EXPECT_EQ(stepped.type_at_end, FaultType::none);
   // With clear_s 10 ms (the level before is a low-pass over 10 ticks) and the total force's
   // error 15 N RMS, the step's standard error is s sqrt(1 / 19 + 1 / n), s the scatter the window
-  // measures (about 15 N): half the step, 22 N, is beyond z of it only once the mean since has
-  // some 60 ticks: tick 1060 with std::mt19937(5). Without that bar (run once): tick 1010, the
-  // comparison's first chance.
+  // measures: half the correction, 22 N, is beyond z of it only once the mean since has enough
+  // ticks (some 75 at s = 15 N; tick 1060 with std::mt19937(5), where the window's s came out
+  // smaller). Without that bar (run once): tick 1010, the comparison's first chance.
   const LongStance noisy = drift_in_a_long_stance([](int) { return 0.0; }, seed, 0.0, 50.0, 15.0, 0.01);
   std::printf("the same with clear_s 10 ms and the total force's error N(0, 15 N): re-admitted at tick %d\n",
               noisy.cleared);

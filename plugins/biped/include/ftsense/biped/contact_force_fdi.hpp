@@ -242,17 +242,19 @@
 //             going on at a quarter of its fitted rate (StancePowers::trend: neither the
 //             window's slope nor its bend beyond relation_z_ of its standard error; a window that
 //             shows either is closed and the next judged afresh), or, for a drift that ended
-//             at once, once its reading sits on the load: the reading stepped back by about its
-//             correction c (|dx + c| < |c| / 2, under any threshold) within a jump window before
-//             the ticks since that CUSUM was last at 0 began, and over those ticks the sum
-//             residual r_raw (as the jump test takes it) stepped by as much from its level before
-//             (a first-order low-pass of time constant clear_s over at least 2 clear_s of usable
-//             ticks in a row), half that step beyond relation_z_ of its standard error
-//             s sqrt(1 / (2 n_c - 1) + 1 / n) (s the window's scatter about its line and bend,
+//             at once, once its reading sits on the load: the reading and its foot's summed
+//             reading stepped back by about its correction c on one tick (|dx + c| < |c| / 2,
+//             |c| beyond relation_z_ sqrt(2) sigma_x, under any jump threshold) within a jump
+//             window before the ticks since that CUSUM was last at 0 began, and over those ticks
+//             the sum residual r_raw (as the jump test takes it) stepped by as much from its
+//             level before (a first-order low-pass of time constant clear_s over at least
+//             2 clear_s of usable ticks in a row), |c| / 2 beyond relation_z_ of that step's
+//             standard error s sqrt(v + 1 / n) (s the window's scatter about its line and bend,
+//             v the level's variance in units of s^2, about 1 / (2 n_c - 1) with
 //             n_c = clear_s / T, n its ticks), its mean lead within gain_min_load_N, no slope or
 //             bend beyond relation_z_ at whatever precision the window has, never found sloped
-//             (a drift regrowing after a fade never stepped; a load that moves the reading by c
-//             in a tick leaves the residual alone): a pad that stays
+//             (a drift regrowing after a fade never stepped; load moving between a foot's pads
+//             leaves its summed reading alone, load moving between feet the residual): a pad that stays
 //             loaded to the end of a log has no next swing to judge it; only while it is the one correction
 //             the residual carries (with two, the one still faulty can win first). A drift whose
 //             reading stays flat over such a window of its stance (the same test, clear_s at
@@ -1022,12 +1024,14 @@ class ContactForceFdi {
     // follows the drift going on; a fade's follows its fall).
     bool rose_with_drift = false;
     // For a drift that ended at once: the sum residual's level (the readings as the jump test
-    // takes them, this one as it is) over the usable ticks before the sums' first, the
-    // correction on that first tick, and the residual's sum since. NaN unless the reading itself
-    // stepped back by about the correction within a jump window before that first tick, while
-    // that level had not settled (fewer than 2 clear_s of usable ticks in a row), and once a
-    // window of these sums was found sloped (whatever stepped, the reading has moved since).
+    // takes them, this one as it is) over the usable ticks before the sums' first, that level's
+    // variance in units of the residual's, the correction on that first tick, and the residual's
+    // sum over these ticks. The level is NaN if any of these holds: the reading itself did not
+    // step back by about the correction within a jump window before that first tick; the level
+    // had not settled (fewer than 2 clear_s of usable ticks in a row); a window of these sums
+    // was found sloped (whatever stepped, the reading has moved since).
     double level_before = std::numeric_limits<double>::quiet_NaN();
+    double level_variance = 1.0;
     double correction_before = 0.0;
     double level_sum = 0.0;
     // The gain explanation's residual and its own correction N_j - N_j / k.
@@ -1083,18 +1087,19 @@ class ContactForceFdi {
       return fit.flat(z) ? Trend::flat : Trend::sloped;
     }
     // A drift that ended at once: the residual stepped from its level before these sums by minus
-    // the correction then (nearer that than no step: a fade moves it by its rate), that step's
-    // half beyond z of its standard error (r_raw's scatter s, through the level's low-pass of
-    // settle_ticks and the mean over these ticks), and the window is flat at whatever precision it
-    // has (no slope, no bend beyond z of their standard errors): it need not be long enough to
-    // show the drift going on, since a step, not a fade, brought the reading to the load.
-    [[nodiscard]] bool stepped_back(double z, int settle_ticks) const noexcept {
+    // the correction c then, nearer that than no step (a fade moves it by its rate), with c / 2,
+    // that midpoint's distance from each, beyond z of the step's standard error (r_raw's scatter
+    // s about its line and bend, through the level's variance and the mean over these n ticks:
+    // s sqrt(level_variance + 1 / n)); and the window is flat at whatever precision it has (no
+    // slope, no bend beyond z of their standard errors): it need not be long enough to show the
+    // drift going on, since a step, not a fade, brought the reading to the load.
+    [[nodiscard]] bool stepped_back(double z) const noexcept {
       if (!std::isfinite(level_before) || trend_ticks != ticks || trend_ticks < 4) return false;
       const double n = static_cast<double>(ticks);
       const double step = level_sum / n - level_before;
       if (!(std::abs(step + correction_before) < 0.5 * std::abs(correction_before))) return false;
       const TrendFit fit = trend_fit();
-      const double se = fit.s * std::sqrt(1.0 / (2.0 * settle_ticks - 1.0) + 1.0 / n);
+      const double se = fit.s * std::sqrt(level_variance + 1.0 / n);
       return 0.5 * std::abs(correction_before) >= z * se && fit.flat(z);
     }
   };
@@ -1105,8 +1110,9 @@ class ContactForceFdi {
   int stance_min_ticks_ = 50;  // round(clear_s / T), at least 2
   int usable_ticks_in_a_row_ = 0;  // ticks the stance comparison took in a row (capped)
   // The sum residual's level over those ticks: a first-order low-pass of time constant
-  // stance_min_ticks_ (variance s^2 / (2 stance_min_ticks_ - 1) for a white residual of s).
+  // stance_min_ticks_, seeded with the first tick's value, and the weight that seed still has.
   double residual_level_ = 0.0;
+  double residual_level_seed_weight_ = 1.0;
   double gain_weight_ = 0.0;
   double gain_forgetting_ = 1.0;
   int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
@@ -1137,6 +1143,7 @@ class ContactForceFdi {
   std::vector<double> relation_step_count_;   // per foot
   double relation_z_ = 6.0;  // the two-sided normal quantile of alpha = T / false_alarm_interval_s
   double rocking_bar_N_ = std::numeric_limits<double>::infinity();  // z sqrt(3/2) sigma_x [N]: a pad's one-tick excursion beyond its noise
+  double step_back_bar_N_ = std::numeric_limits<double>::infinity();  // z sqrt(2) sigma_x [N]: a one-tick change beyond its noise
   double reading_sigma_N_ = 2.0;  // sigma_x = sqrt(noise_std_N^2 + resolution_N^2 / 12)
 };
 
