@@ -605,8 +605,9 @@ class ContactForceFdi {
     // residual's mean over the jump window before the guard). Likewise a step back while
     // another group is pending, judged a jump window after it by its own step.
     bool end_pending = false;
-    // The last tick a drift's reading stepped back by about its size (nearer that than no step),
-    // under any threshold: a cue for the stance comparison, not a decision [s].
+    // The last tick a drift's reading and its foot's summed reading stepped back by about its
+    // size (nearer that than no step; the size beyond the noise of a tick's change, under any
+    // jump threshold): a cue for the stance comparison, not a decision [s].
     double stepped_back_s = -std::numeric_limits<double>::infinity();
     bool end_after_guard = false;  // judged after the guard (else: a jump window after the step)
     double end_jump = 0.0, end_before = 0.0, end_since_s = 0.0;
