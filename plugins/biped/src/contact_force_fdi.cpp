@@ -377,6 +377,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   stance_powers_.assign(n, StancePowers{});
   stance_cusum_.assign(n, StancePowers{});
   stance_min_ticks_ = std::max(2, static_cast<int>(std::min(std::round(params.clear_s / period_s_), 1e9)));
+  residual_level_gain_ = 1.0 / static_cast<double>(stance_min_ticks_);
   channels_.resize(n);
   for (auto& c : channels_) {
     c.second_diff.assign(static_cast<std::size_t>(noise_window_ticks_), 0.0);
@@ -2363,7 +2364,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // with that level's variance in units of the residual's (a low-pass y += a (r - y) seeded with
   // its first value, of weight w = (1 - a)^k after k ticks: w^2 + a (1 - w^2) / (2 - a)).
   const double ring_now = residual_ring_[ring_back(residual_next_, residual_ring_.size(), 0)];
-  const double a = 1.0 / static_cast<double>(stance_min_ticks_);
+  const double a = residual_level_gain_;
   const bool settled = usable_ticks_in_a_row_ >= 2 * stance_min_ticks_;
   const double level_before = settled ? residual_level_ : std::numeric_limits<double>::quiet_NaN();
   const double seed_weight = residual_level_seed_weight_;
@@ -2491,10 +2492,11 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       }
     }
     if (!run.reading_leads()) run = StancePowers{.type = c.type};
-    // A drift that ended at once (its cause gone, its sensor re-zeroed) steps its reading back by
-    // its size, on a tick within a jump window before it began to lead (its load's own moves seldom
-    // do: evidence the fault, not the load, moved), and the sum residual by as much: its level
-    // before, and its mean since (StancePowers::stepped_back).
+    // A drift that ended at once (its cause gone, its sensor re-zeroed) steps its reading and its
+    // foot's summed reading back by its size, on a tick within a jump window before it began to
+    // lead (c.stepped_back_s: load moving between the foot's pads leaves that sum alone), and the
+    // sum residual by as much: its level before, and its mean since (StancePowers::stepped_back;
+    // load moving between feet leaves the residual alone).
     if (c.type == FaultType::drift && run.ticks == 1) {
       const bool reading_stepped = t - c.stepped_back_s < (jump_window_ticks_ + 0.5) * period_s_;
       run.level_before = reading_stepped ? level_before : std::numeric_limits<double>::quiet_NaN();

@@ -1114,6 +1114,7 @@ class ContactForceFdi {
   // stance_min_ticks_, seeded with the first tick's value, and the weight that seed still has.
   double residual_level_ = 0.0;
   double residual_level_seed_weight_ = 1.0;
+  double residual_level_gain_ = 0.02;  // 1 / stance_min_ticks_
   double gain_weight_ = 0.0;
   double gain_forgetting_ = 1.0;
   int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
