@@ -9,6 +9,22 @@
 
 namespace ftsense {
 
+namespace {
+// A gather copies a few values (a foot's three coordinates, its pads' readings) between blocks
+// of the buffer that never overlap: in place for up to four, where a library call (memmove) would
+// cost more than the copy; longer ones in a loop the compiler may turn into that call.
+void gather(const double* from, std::size_t count, double* to) noexcept {
+  switch (count) {
+    case 4: to[3] = from[3]; [[fallthrough]];
+    case 3: to[2] = from[2]; [[fallthrough]];
+    case 2: to[1] = from[1]; [[fallthrough]];
+    case 1: to[0] = from[0]; [[fallthrough]];
+    case 0: return;
+    default: std::copy_n(from, count, to);
+  }
+}
+}  // namespace
+
 Pipeline::Pipeline() = default;
 Pipeline::Pipeline(Pipeline&&) noexcept = default;
 Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
@@ -75,7 +91,7 @@ void Pipeline::reset() noexcept {
 void Pipeline::step_stage(std::size_t run_index, double time_s) noexcept {
   double* const v = values_.data();
   StageRun& s = stages_[run_index];
-  for (const Copy& c : s.gathers) std::copy_n(v + c.from, c.count, v + c.to);
+  for (const Copy& c : s.gathers) gather(v + c.from, c.count, v + c.to);
   s.io.time_s = time_s;
   s.stage->step(s.io);
 }
@@ -94,11 +110,11 @@ void Pipeline::step(double time_s) noexcept {
     }
   }
   for (auto& s : stages_) {
-    for (const Copy& c : s.gathers) std::copy_n(v + c.from, c.count, v + c.to);
+    for (const Copy& c : s.gathers) gather(v + c.from, c.count, v + c.to);
     s.io.time_s = time_s;
     s.stage->step(s.io);
   }
-  for (const Copy& c : monitor_gathers_) std::copy_n(v + c.from, c.count, v + c.to);
+  for (const Copy& c : monitor_gathers_) gather(v + c.from, c.count, v + c.to);
   if (derived_cannot_judge_.active) {
     const double* from = v + derived_cannot_judge_.virtual_value.offset;
     double* to = v + derived_cannot_judge_.cannot_judge.offset;

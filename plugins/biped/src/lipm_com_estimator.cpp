@@ -180,7 +180,7 @@ void LipmComEstimator::step(const StepIO& io) noexcept {
   const auto zmp = io.in(kZmp);
   Eigen::Vector2d acc(std::nan(""), std::nan(""));
   if (all_finite(imu) && all_finite(rpy)) {
-    const Eigen::Vector3d f = rotation_from_rpy(rpy) * vector3(imu);
+    const Eigen::Vector3d f = rotation_from_rpy_remembered(rpy) * vector3(imu);
     acc = f.head<2>();
   }
   if (!initialised_ && all_finite(zmp)) {

@@ -2,7 +2,9 @@
 // CoP = moment formula, KKT of the distribution).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -571,6 +573,31 @@ TEST(LegForceSplit, RecordsTheLateralReachAtSingleSupportOnset) {
   in[2] = {0.0, 0.02, 0.8};
   h.step(0.001);
   EXPECT_NEAR(h.outputs()[3][0], 0.5, 1e-12);
+}
+
+// The remembered rotation is rotation_from_rpy's, bit for bit, whatever was asked before: angles
+// that differ only in the sign of a zero (sin(-0) = -0) or in their last bit are other angles.
+TEST(Frames, TheRememberedRotationIsTheRotationBitForBit) {
+  const double tiny = std::nextafter(0.3, 1.0);
+  const std::array<std::array<double, 3>, 7> angles{{{0.1, -0.2, 2.5},
+                                                     {0.1, -0.2, 2.5},
+                                                     {0.0, 0.0, 0.0},
+                                                     {-0.0, 0.0, -0.0},
+                                                     {0.3, 0.0, 0.0},
+                                                     {tiny, 0.0, 0.0},
+                                                     {0.1, -0.2, 2.5}}};
+  for (const auto& rpy : angles) {
+    const Eigen::Matrix3d built = rotation_from_rpy(rpy);
+    const Eigen::Matrix3d remembered = rotation_from_rpy_remembered(rpy);
+    for (int i = 0; i < 9; ++i) {
+      EXPECT_EQ(std::memcmp(&built(i), &remembered(i), sizeof(double)), 0)
+          << "entry " << i << " at roll " << rpy[0] << ", pitch " << rpy[1] << ", yaw " << rpy[2];
+    }
+  }
+  // -0 and +0 give rotations that differ in a sign bit: the memo must not hand one for the other.
+  const std::array<double, 3> plus{0.0, 0.0, 0.0}, minus{-0.0, 0.0, 0.0};
+  (void)rotation_from_rpy_remembered(plus);
+  EXPECT_TRUE(std::signbit(rotation_from_rpy_remembered(minus)(2, 1)));
 }
 
 TEST(FootCop, EqualsTheMomentFormulaInsideThePolygon) {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -28,6 +29,26 @@ namespace ftsense::biped {
   return rotation_from_rpy(rpy[0], rpy[1], rpy[2]);
 }
 
+// The same rotation, remembered per thread for the angles it was last asked for, compared bit for
+// bit (so the result is rotation_from_rpy's, bit for bit): stages that read one orientation on one
+// tick (the trunk's, in the CoM filter and in the leg split) build it once. Three sincos are about
+// 30 ns of a 1 us tick (docs/performance.md, "Rotations"). Callers pass finite angles; any others
+// only miss the memo.
+[[nodiscard]] inline Eigen::Matrix3d rotation_from_rpy_remembered(std::span<const double> rpy) noexcept {
+  struct Last {
+    double rpy[3] = {0.0, 0.0, 0.0};
+    double rotation[9] = {};  // column-major, as Eigen::Matrix3d
+    bool known = false;
+  };
+  thread_local Last last;  // constant-initialised: no guard on the per-tick path
+  if (!last.known || std::memcmp(last.rpy, rpy.data(), sizeof last.rpy) != 0) {
+    std::memcpy(last.rpy, rpy.data(), sizeof last.rpy);
+    Eigen::Map<Eigen::Matrix3d>(last.rotation) = rotation_from_rpy(rpy);
+    last.known = true;
+  }
+  return Eigen::Map<const Eigen::Matrix3d>(last.rotation);
+}
+
 // The inverse of rotation_from_rpy: roll, pitch, yaw with pitch in [-pi/2, pi/2]. At pitch = +-pi/2
 // (where only roll - yaw or roll + yaw is defined) yaw is set to 0; the rotation still round-trips.
 [[nodiscard]] inline Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& r) noexcept {
@@ -45,7 +66,7 @@ namespace ftsense::biped {
 // IMU's specific force f_imu [m/s^2] includes gravity, limb inertia is neglected.
 [[nodiscard]] inline Eigen::Vector3d ground_reaction_force(double mass_kg, std::span<const double> base_rpy,
                                                            std::span<const double> imu_acc) noexcept {
-  return mass_kg * (rotation_from_rpy(base_rpy) * vector3(imu_acc));
+  return mass_kg * (rotation_from_rpy_remembered(base_rpy) * vector3(imu_acc));
 }
 
 [[nodiscard]] inline bool all_finite(std::span<const double> v) noexcept {
