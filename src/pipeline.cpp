@@ -10,9 +10,10 @@
 namespace ftsense {
 
 namespace {
-// A gather copies a few values (a foot's three coordinates, its pads' readings) between blocks
-// of the buffer that never overlap: in place for up to four, where a library call (memmove) would
-// cost more than the copy; longer ones in a loop the compiler may turn into that call.
+// A gather copies a few values (a foot's three coordinates, its pads' readings) into the block a
+// consumer reads, which never overlaps its source (PipelineBuilder::place allocates the block
+// after every signal it gathers): up to four inline, where a library call (memmove, which
+// std::copy_n becomes) costs more than the copy; longer ones through std::copy_n.
 void gather(const double* from, std::size_t count, double* to) noexcept {
   switch (count) {
     case 4: to[3] = from[3]; [[fallthrough]];

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <thread>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
@@ -576,28 +577,47 @@ TEST(LegForceSplit, RecordsTheLateralReachAtSingleSupportOnset) {
 }
 
 // The remembered rotation is rotation_from_rpy's, bit for bit, whatever was asked before: angles
-// that differ only in the sign of a zero (sin(-0) = -0) or in their last bit are other angles.
-TEST(Frames, TheRememberedRotationIsTheRotationBitForBit) {
-  const double tiny = std::nextafter(0.3, 1.0);
-  const std::array<std::array<double, 3>, 7> angles{{{0.1, -0.2, 2.5},
-                                                     {0.1, -0.2, 2.5},
-                                                     {0.0, 0.0, 0.0},
-                                                     {-0.0, 0.0, -0.0},
-                                                     {0.3, 0.0, 0.0},
-                                                     {tiny, 0.0, 0.0},
-                                                     {0.1, -0.2, 2.5}}};
-  for (const auto& rpy : angles) {
-    const Eigen::Matrix3d built = rotation_from_rpy(rpy);
-    const Eigen::Matrix3d remembered = rotation_from_rpy_remembered(rpy);
-    for (int i = 0; i < 9; ++i) {
-      EXPECT_EQ(std::memcmp(&built(i), &remembered(i), sizeof(double)), 0)
-          << "entry " << i << " at roll " << rpy[0] << ", pitch " << rpy[1] << ", yaw " << rpy[2];
-    }
+// that differ in one angle only (roll, pitch or yaw), in the sign of a zero (sin(-0) = -0) or in
+// their last bit are other angles, and a thread of its own starts with a memo of its own.
+namespace {
+void expect_remembered_rotation_is_the_rotation(const std::array<double, 3>& rpy) {
+  const Eigen::Matrix3d built = rotation_from_rpy(rpy);
+  const Eigen::Matrix3d remembered = rotation_from_rpy_remembered(rpy);
+  for (int i = 0; i < 9; ++i) {
+    EXPECT_EQ(std::memcmp(&built(i), &remembered(i), sizeof(double)), 0)
+        << "entry " << i << " at roll " << rpy[0] << ", pitch " << rpy[1] << ", yaw " << rpy[2];
   }
+}
+}  // namespace
+
+TEST(Frames, TheRememberedRotationIsTheRotationBitForBit) {
+  const double after_03 = std::nextafter(0.3, 1.0), after_02 = std::nextafter(0.2, 1.0);
+  const std::array<std::array<double, 3>, 12> angles{{{0.1, -0.2, 2.5},
+                                                      {0.1, -0.2, 2.5},    // the same: remembered
+                                                      {0.1, 0.3, 2.5},     // pitch alone differs
+                                                      {0.1, 0.3, -1.0},    // yaw alone differs
+                                                      {0.0, 0.0, 0.0},
+                                                      {-0.0, 0.0, -0.0},   // signs of zeros
+                                                      {0.3, 0.0, 0.0},
+                                                      {after_03, 0.0, 0.0},  // roll's last bit
+                                                      {0.3, 0.2, 0.0},
+                                                      {0.3, after_02, 0.0},  // pitch's last bit
+                                                      {0.3, 0.0, 0.0},
+                                                      {0.3, 0.0, -0.0}}};  // yaw's zero's sign
+  for (const auto& rpy : angles) expect_remembered_rotation_is_the_rotation(rpy);
   // -0 and +0 give rotations that differ in a sign bit: the memo must not hand one for the other.
-  const std::array<double, 3> plus{0.0, 0.0, 0.0}, minus{-0.0, 0.0, 0.0};
-  (void)rotation_from_rpy_remembered(plus);
-  EXPECT_TRUE(std::signbit(rotation_from_rpy_remembered(minus)(2, 1)));
+  (void)rotation_from_rpy_remembered(std::array<double, 3>{0.3, 0.0, 0.0});
+  EXPECT_TRUE(std::signbit(rotation_from_rpy_remembered(std::array<double, 3>{0.3, 0.0, -0.0})(1, 0)));
+  (void)rotation_from_rpy_remembered(std::array<double, 3>{0.0, 0.0, 0.0});
+  EXPECT_TRUE(std::signbit(rotation_from_rpy_remembered(std::array<double, 3>{-0.0, 0.0, 0.0})(2, 1)));
+  // A new thread's memo starts empty, not at some rotation of zeros; the last angles asked on this
+  // thread ({-0, 0, 0}) are no use to it.
+  std::thread other([] {
+    expect_remembered_rotation_is_the_rotation({0.0, 0.0, 0.0});
+    expect_remembered_rotation_is_the_rotation({0.2, -0.1, 1.0});
+  });
+  other.join();
+  expect_remembered_rotation_is_the_rotation({-0.0, 0.0, 0.0});
 }
 
 TEST(FootCop, EqualsTheMomentFormulaInsideThePolygon) {

@@ -30,20 +30,23 @@ namespace ftsense::biped {
 }
 
 // The same rotation, remembered per thread for the angles it was last asked for, compared bit for
-// bit (so the result is rotation_from_rpy's, bit for bit): stages that read one orientation on one
-// tick (the trunk's, in the CoM filter and in the leg split) build it once. Three sincos are about
-// 30 ns of a 1 us tick (docs/performance.md, "Rotations"). Callers pass finite angles; any others
-// only miss the memo.
+// bit (so the result is rotation_from_rpy's, bit for bit, in a build that compiles both alike):
+// stages that read one orientation on one tick (the trunk's, in the CoM filter and in the leg
+// split) build it once. Three sincos are about 30 ns of a 1 us tick (docs/performance.md, "The
+// robust tick against the 1 us goal"). Any three angles are remembered alike, non-finite ones
+// included. Not async-signal-safe (a handler calling it mid-update would see a torn memo).
 [[nodiscard]] inline Eigen::Matrix3d rotation_from_rpy_remembered(std::span<const double> rpy) noexcept {
   struct Last {
     double rpy[3] = {0.0, 0.0, 0.0};
     double rotation[9] = {};  // column-major, as Eigen::Matrix3d
     bool known = false;
   };
-  thread_local Last last;  // constant-initialised: no guard on the per-tick path
-  if (!last.known || std::memcmp(last.rpy, rpy.data(), sizeof last.rpy) != 0) {
-    std::memcpy(last.rpy, rpy.data(), sizeof last.rpy);
-    Eigen::Map<Eigen::Matrix3d>(last.rotation) = rotation_from_rpy(rpy);
+  // Constant-initialised: no initialisation guard on the per-tick path.
+  constinit thread_local Last last;
+  const std::span<const double, 3> angles = rpy.first<3>();
+  if (!last.known || std::memcmp(last.rpy, angles.data(), sizeof last.rpy) != 0) {
+    Eigen::Map<Eigen::Matrix3d>(last.rotation) = rotation_from_rpy(angles);
+    std::memcpy(last.rpy, angles.data(), sizeof last.rpy);
     last.known = true;
   }
   return Eigen::Map<const Eigen::Matrix3d>(last.rotation);
