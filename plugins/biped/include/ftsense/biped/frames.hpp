@@ -32,9 +32,8 @@ namespace ftsense::biped {
 // The same rotation, remembered per thread for the angles it was last asked for, compared bit for
 // bit (so the result is rotation_from_rpy's, bit for bit, in a build that compiles both alike):
 // stages that read one orientation on one tick (the trunk's, in the CoM filter and in the leg
-// split) build it once. Three sincos are about 30 ns of a 1 us tick (docs/performance.md, "The
-// robust tick against the 1 us goal"). Any three angles are remembered alike, non-finite ones
-// included. Not async-signal-safe (a handler calling it mid-update would see a torn memo).
+// split) build it once: three sincos fewer per tick (docs/performance.md, "Rotations"). Any three
+// angles are remembered alike, non-finite ones included. Not async-signal-safe (a handler calling it mid-update would see a torn memo).
 [[nodiscard]] inline Eigen::Matrix3d rotation_from_rpy_remembered(std::span<const double> rpy) noexcept {
   struct Last {
     double rpy[3] = {0.0, 0.0, 0.0};
