@@ -2181,15 +2181,9 @@ void ContactForceFdi::observe_sum_block(double residual, bool usable, bool clean
 }
 
 void ContactForceFdi::type_sum_onset(Channel& c, double x, double t) noexcept {
-  // v from fewer second differences is not known well enough to weigh a shape by.
-  constexpr std::size_t kMinSecondDifferences = 8;
-  // The median of chi-square with 1 degree of freedom: d^2 / (6 v)'s, for d ~ N(0, 6 v).
-  constexpr double kChiSquare1Median = 0.45493642311957283;
-  if (sum_block_d2_count_ < kMinSecondDifferences || !(c.airborne_count >= 1.0)) return;
-  std::array<double, generic::LevelHistory::kCapacity> d2 = sum_block_d2_;
-  const auto middle = d2.begin() + static_cast<std::ptrdiff_t>(sum_block_d2_count_ / 2);
-  std::nth_element(d2.begin(), middle, d2.begin() + static_cast<std::ptrdiff_t>(sum_block_d2_count_));
-  const double block_variance = *middle / (6.0 * kChiSquare1Median);
+  const auto variance = sum_block_variance();
+  if (!variance || !(c.airborne_count >= 1.0)) return;
+  const double block_variance = *variance;
   std::array<generic::LevelPoint, generic::LevelHistory::kCapacity + 1> points{};
   const std::size_t blocks = sum_levels_.ordered(points);
   if (blocks < 3) return;
@@ -2608,6 +2602,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   double best_explained = 0.0;
   double second_explained = 0.0;  // of any other channel, flagged or not: isolation needs a clear winner
   double beta = 0.0;  // the best channel's slope
+  double best_x_variation = 0.0, best_covariation = 0.0;
   for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
     const Channel& c = channels_[j];
     if (!(gain_xx_[j] >= min_power)) continue;  // hardly loaded: nothing to see
@@ -2621,6 +2616,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       best = j;
       best_explained = explained;
       beta = covariation / x_variation;
+      best_x_variation = x_variation;
+      best_covariation = covariation;
     } else {
       second_explained = std::max(second_explained, explained);
     }
@@ -2652,6 +2649,18 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     const double stance_beta = x_variation > 0.0 ? covariation / x_variation : 0.0;
     if (!(stance_beta * beta > 0.0) || std::abs(stance_beta) <= threshold) return;
   }
+  // A gain reads its load N k times, so k is told from an additive error only where the load
+  // moved. A new flag whose implied load N^ = x - r stayed within gain_min_load_N RMS over the
+  // window (a robot standing while a pad drifts: r and x rise together, beta near 1, k without
+  // bound) is an additive fault, typed and sized from the sum residual's history.
+  if (c.type == FaultType::none) {
+    const double load_variation = best_x_variation - 2.0 * best_covariation + r_variation;
+    if (load_variation < min_power) {
+      raise_still_load_fault(c, (gain_x_[best] - gain_r_) / gain_weight_, t);
+      restart_gain_window();
+      return;
+    }
+  }
   // recovered_new = recovered (1 - beta): k_new = k / (1 - beta).
   double gain = (c.type == FaultType::gain ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
   if (std::abs(gain) < kMinGain) gain = std::copysign(kMinGain, gain);  // the recovery divides by it
@@ -2663,6 +2672,69 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   // The window's residuals were computed with the old correction: start a new one.
   restart_gain_window();
+}
+
+std::optional<double> ContactForceFdi::sum_block_variance() const noexcept {
+  // v from fewer second differences is not known well enough to weigh a shape by.
+  constexpr std::size_t kMinSecondDifferences = 8;
+  // The median of chi-square with 1 degree of freedom: d^2 / (6 v)'s, for d ~ N(0, 6 v).
+  constexpr double kChiSquare1Median = 0.45493642311957283;
+  if (sum_block_d2_count_ < kMinSecondDifferences) return std::nullopt;
+  std::array<double, generic::LevelHistory::kCapacity> d2 = sum_block_d2_;
+  const auto middle = d2.begin() + static_cast<std::ptrdiff_t>(sum_block_d2_count_ / 2);
+  std::nth_element(d2.begin(), middle, d2.begin() + static_cast<std::ptrdiff_t>(sum_block_d2_count_));
+  return *middle / (6.0 * kChiSquare1Median);
+}
+
+void ContactForceFdi::raise_still_load_fault(Channel& c, double implied_load, double t) noexcept {
+  // The sum residual's blocks since the last flag change (a change moves the residual partway
+  // through), and the open block: a step a few tenths of a second old has no closed block yet.
+  std::array<generic::LevelPoint, generic::LevelHistory::kCapacity + 1> all{};
+  std::size_t count = sum_levels_.ordered(all);
+  if (sum_block_count_ > 0) {  // its variance as a short block's
+    all[count++] = {sum_block_t_sum_ / sum_block_count_, sum_block_sum_ / sum_block_count_,
+                    static_cast<double>(sum_block_target_ticks_) / sum_block_count_};
+  }
+  const double half_block = 0.5 * sum_block_target_ticks_ * period_s_;
+  std::size_t first = 0;
+  while (first < count && all[first].t_s - half_block < last_flag_change_s_) ++first;
+  const std::span<generic::LevelPoint> points(all.data() + first, count - first);
+  const auto v = sum_block_variance();
+  if (v && points.size() >= 3) {
+    for (auto& p : points) p.variance *= *v;
+    const generic::OnsetShape shape = generic::onset_shape(points, relation_z_);
+    if (shape.first_faulty > 0) {
+      // The fault's size now: the residual's level over the last 2 clear_s from its healthy level.
+      // Its noise, taking the residual as white of the variance that gives a block's mean v (a
+      // block's ticks times v per tick; correlated error makes that an upper bound for a short
+      // mean), times the low-pass's factor (gain_regression's level_variance), plus the healthy
+      // level's, v at most. A fault the gain test saw in its window but that has ended within its
+      // noise is none now: nothing is raised (a drift that came and went while the robot stood).
+      const double a = residual_level_gain_;
+      const double w2 = residual_level_seed_weight_ * residual_level_seed_weight_;
+      const double present_variance = *v * (sum_block_target_ticks_ * (w2 + a * (1.0 - w2) / (2.0 - a)) + 1.0);
+      const double present = residual_level_ - shape.healthy_level;
+      const double bound = relation_z_ * std::sqrt(present_variance);
+      if (!(std::abs(present) > bound)) return;
+      if (shape.ramp) {
+        // A drift from where the ramp left the healthy level, sized by its fitted line.
+        raise(c, FaultType::drift, t);
+        c.onset_load = 0.0;
+        c.reads_as_gain = false;
+        start_drift_from_levels(c, t, points.subspan(shape.first_faulty), shape.healthy_level, {});
+        double level = 0.0, slope = 0.0;
+        c.fit.solve(level, slope);
+        c.offset = level;
+        c.slope = slope;
+        return;
+      }
+      // A step: an offset of its size now, from the load it had, told from a gain as any jump's.
+      raise_jump_onset(c, present, implied_load + shape.healthy_level, t);
+      return;
+    }
+  }
+  // No history to type it by: an offset of the residual's level, its healthy level taken as 0.
+  raise_jump_onset(c, residual_level_, implied_load, t);
 }
 
 void ContactForceFdi::hold_as_offset(Channel& c, double level) noexcept {

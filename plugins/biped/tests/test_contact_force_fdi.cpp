@@ -229,6 +229,110 @@ TEST(ContactForceFdi, AConstantResidualIsNoGainOfASteadilyLoadedPad) {
   EXPECT_EQ(feet.outs[ContactForceFdi::kUnisolated][0], 1.0);  // off by 100 N with no one to blame
 }
 
+// A robot standing still: every pad carries a steady load (reading noise N(0, 2 N), the total
+// force the true sum + N(0, 2 N), std::mt19937(seed)); from tick 8000 pad 2 reads fault(k) on top.
+struct StillStand {
+  FaultType first_type = FaultType::none;
+  int raised_at = -1;
+  double first_error_N = 0.0;  // recovered - true load on the tick it was raised
+  double end_error_N = 0.0;    // ... its mean over the last 1000 ticks (the readings' noise averages out)
+  double end_estimate_N = 0.0;
+  FaultType end_type = FaultType::none;
+  int others_flagged = 0;
+};
+template <class Fault, class TotalError = double (*)(int)>
+StillStand standing_with(const Fault& fault, unsigned seed, int ticks = 16000,
+                         const TotalError& total_error = [](int) { return 0.0; }) {
+  Feet feet(suralp(), 1e-3);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  StillStand out;
+  for (int k = 0; k < ticks; ++k) {
+    double sum = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double load = 100.0 + 5.0 * static_cast<double>(j);
+      feet.measured[j] = load + noise(rng) + (j == 2 ? fault(k) : 0.0);
+      sum += load;
+    }
+    feet.step(sum + noise(rng) + total_error(k));
+    for (std::size_t j = 0; j < kChannels; ++j) out.others_flagged += j != 2 && feet.type(j) != FaultType::none;
+    if (out.raised_at < 0 && feet.type(2) != FaultType::none) {
+      out.raised_at = k;
+      out.first_type = feet.type(2);
+      out.first_error_N = feet.outs[ContactForceFdi::kRecovered][2] - 110.0;
+    }
+    if (k >= ticks - 1000) out.end_error_N += (feet.outs[ContactForceFdi::kRecovered][2] - 110.0) / 1000.0;
+  }
+  out.end_estimate_N = feet.outs[ContactForceFdi::kFaultEstimate][2];
+  out.end_type = feet.type(2);
+  return out;
+}
+
+TEST(ContactForceFdi, ASlowDriftOfAStillPadIsADriftSizedByTheResidualsHistoryNotAGain) {
+  for (const double rate : {3.0, 10.0}) {
+    const auto drifts = [rate](int k) { return k < 8000 ? 0.0 : rate * (k - 8000) * 1e-3; };
+    const StillStand s = standing_with(drifts, 5);
+    std::printf("seed 5, %.0f N/s: raised at tick %d as %s, first error %.2f N, end error %.2f N (estimate %.2f N)\n", rate,
+                s.raised_at, std::string(to_string(s.first_type)).c_str(), s.first_error_N, s.end_error_N, s.end_estimate_N);
+    EXPECT_GT(s.raised_at, 8000);
+    EXPECT_EQ(s.first_type, FaultType::drift);
+    EXPECT_LT(std::abs(s.first_error_N), 5.0);   // before: a gain k = 10, recovered 12 N of 110 N
+    EXPECT_LT(std::abs(s.end_error_N), 5.0);
+    EXPECT_EQ(s.others_flagged, 0);
+  }
+}
+
+TEST(ContactForceFdi, AStepUnderTheJumpThresholdOnAStillPadIsAnOffsetOfItsSize) {
+  for (const double b : {15.0, -15.0}) {  // under jump_threshold_N (10 sigma: 20 N)
+    const StillStand s = standing_with([b](int k) { return k < 8000 ? 0.0 : b; }, 5);
+    std::printf("seed 5, %+.0f N step: raised at tick %d as %s, first error %.2f N, estimate %.2f N\n", b, s.raised_at,
+                std::string(to_string(s.first_type)).c_str(), s.first_error_N, s.end_estimate_N);
+    EXPECT_EQ(s.first_type, FaultType::offset);
+    EXPECT_NEAR(s.end_estimate_N, b, 3.0);
+    EXPECT_LT(std::abs(s.end_error_N), 3.0);
+    EXPECT_EQ(s.others_flagged, 0);
+  }
+}
+
+// A drift that ended while the robot stood, seen by the gain test only after its end (the step
+// back moved r and the reading together: beta near 1): the sum residual's level is back at its
+// healthy level by then, and there is no fault left to raise. (Before: a gain, k = 10.)
+TEST(ContactForceFdi, ADriftThatEndedBeforeItsRaiseRaisesNothing) {
+  for (const auto& [rate, ticks] : {std::pair{5.0, 2800}, std::pair{3.0, 5000}}) {
+    const auto came_and_went = [=](int k) { return k < 8000 || k >= 8000 + ticks ? 0.0 : rate * (k - 8000) * 1e-3; };
+    const StillStand s = standing_with(came_and_went, 5, 20000);
+    std::printf("seed 5, %.0f N/s for %d ticks from tick 8000: raised at tick %d as %s\n", rate, ticks, s.raised_at,
+                std::string(to_string(s.first_type)).c_str());
+    EXPECT_EQ(s.raised_at, -1);
+    EXPECT_EQ(s.others_flagged, 0);
+  }
+}
+
+// A drift that stops on a still pad, its reading held where it got to (40 N, beyond
+// gain_min_load_N): a drift first, then an offset of that plateau. (Before: a gain, k = 10,
+// dropped again, the fault missed.)
+TEST(ContactForceFdi, ADriftThatStopsOnAStillPadIsHeldAtItsPlateau) {
+  const auto stopped = [](int k) { return k < 8000 ? 0.0 : 10.0 * std::min(k - 8000, 4000) * 1e-3; };
+  const StillStand s = standing_with(stopped, 5, 20000);
+  std::printf("seed 5, 10 N/s from tick 8000, held at 40 N from 12000: raised at tick %d as %s, end %s, estimate %.2f N, "
+              "end error %.2f N\n",
+              s.raised_at, std::string(to_string(s.first_type)).c_str(), std::string(to_string(s.end_type)).c_str(),
+              s.end_estimate_N, s.end_error_N);
+  EXPECT_EQ(s.first_type, FaultType::drift);
+  EXPECT_EQ(s.end_type, FaultType::offset);
+  EXPECT_NEAR(s.end_estimate_N, 40.0, 3.0);
+  EXPECT_LT(std::abs(s.end_error_N), 3.0);
+  EXPECT_EQ(s.others_flagged, 0);
+}
+
+TEST(ContactForceFdi, AHealthyStillStandIsNoFaultEvenWithTheTotalForceWandering) {
+  // The total force's error wanders by 60 N (within sum_threshold_N, 80 N) over 20 s.
+  const auto wanders = [](int k) { return 60.0 * std::sin(2.0 * std::numbers::pi * k * 1e-3 / 20.0); };
+  const StillStand s = standing_with([](int) { return 0.0; }, 5, 30000, wanders);
+  EXPECT_EQ(s.raised_at, -1);
+  EXPECT_EQ(s.others_flagged, 0);
+}
+
 // An offset that begins as its pad lands is no gain. The left foot swings (its pads read 0) and
 // lands at 1 s; from its landing pad 0 reads its load + 120 N, the total force exact. Across the
 // landing, r (0, then 120 N) and pad 0's reading (0, then load + 120 N) lie on one line, a gain of

@@ -220,7 +220,15 @@
 //             above gain_threshold too: an offset that begins as its pad lands (r = 0, N^ = 0 in
 //             the air; r = b, N^ = N + b after) lies on a line across the landing, but within a
 //             stance r stays b while N^ moves (a confirmation only: within a stance the limb
-//             dynamics follow the loads, too weak alone); the same test refines k on the corrected residual
+//             dynamics follow the loads, too weak alone). A new flag whose implied load
+//             N^_j - r stayed within gain_min_load_N RMS over the window (a robot standing while a
+//             pad drifts: r and N^_j rise together, beta near 1, k = 10 from the clamp) is no
+//             gain, which cannot be told from an additive error without load motion: it is an
+//             additive fault, typed from the sum residual's blocks since the last flag change
+//             (generic::onset_shape: a ramp raises a drift on the blocks' line, a step an offset
+//             of the residual's level now), and none at all when that level is back within z of
+//             its noise of the healthy level (the fault ended before the window judged it). The
+//             same test refines k on the corrected residual
 //             and re-admits the channel when k comes back within gain_threshold / 2 of 1, or, by
 //             model comparison (no isolation needed), when it carried load (RMS above
 //             gain_min_load_N) and its reading taken as it is leaves no more residual power than
@@ -688,6 +696,12 @@ class ContactForceFdi {
   void restart_gain_window() noexcept;
   // A drift that has stopped, its reading `level` [N] off its load: held as an offset there.
   void hold_as_offset(Channel& c, double level) noexcept;
+  // The variance v of a full block of the sum residual: the median of the latest second
+  // differences d^2 over 6 x 0.455 (d ~ N(0, 6 v)); unknown from fewer than 8.
+  [[nodiscard]] std::optional<double> sum_block_variance() const noexcept;
+  // A new flag of the gain test whose implied load did not move: held as a drift when the sum
+  // residual's blocks since the last flag change rose along a ramp, else as an offset of their step.
+  void raise_still_load_fault(Channel& c, double implied_load, double t) noexcept;
   void clear(Channel& c) noexcept;
   // The still-reading test (header comment), once the corrected sum residual of this tick is known.
   void still_reading_test(std::span<const double> measured, std::span<const double> height, double residual,
