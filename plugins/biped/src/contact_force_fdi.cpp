@@ -450,7 +450,7 @@ void ContactForceFdi::reset() noexcept {
   residual_next_ = 0;
   residual_count_ = 0;
   usable_ticks_in_a_row_ = 0;
-  residual_level_ = 0.0;
+  residual_level_ = corrected_level_ = 0.0;
   residual_level_seed_weight_ = 1.0;
   residual_before_touchdown_ = 0.0;
   residual_before_known_ = was_touching_down_ = false;
@@ -514,6 +514,7 @@ void ContactForceFdi::clear(Channel& c) noexcept {
   c.offset = c.slope = 0.0;
   c.gain = 1.0;
   c.fit_has_air = c.air_refit = c.air_block_reads_zero = false;
+  c.still_load_drift = false;
   c.clear_since = -1.0;
   c.following = c.frozen_by_follow = c.follows_load = false;
   c.sign_fault = false;
@@ -2144,6 +2145,7 @@ void ContactForceFdi::start_drift_from_levels(Channel& c, double t, std::span<co
 }
 
 void ContactForceFdi::observe_sum_block(double residual, bool usable, bool clean, double t) noexcept {
+  if (sum_block_ticks_ == 0) sum_block_began_s_ = t;
   if (usable) {
     sum_block_sum_ += residual;
     sum_block_t_sum_ += t;
@@ -2153,12 +2155,15 @@ void ContactForceFdi::observe_sum_block(double residual, bool usable, bool clean
   if (++sum_block_ticks_ < sum_block_target_ticks_) return;
   // A block's mean scatters by the reference's error over the block (correlated over a stride, so
   // not sigma^2 / n). It is measured on the blocks' second differences, d = m_k - 2 m_{k-1} +
-  // m_{k-2}, of three full blocks in a row in which no channel was flagged: d ~ N(0, 6 v) for
-  // independent means of variance v, and the reference's bias, a constant or a ramp in it (an
-  // unflagged drift: what type_sum_onset looks for) adds nothing. A step (an unflagged offset)
-  // adds to two of them: so v is read from the median of the latest kCapacity d^2, which one step
-  // does not move and which forgets (standing and walking scatter differently).
-  const bool full = sum_block_clean_ && sum_block_count_ == sum_block_target_ticks_;
+  // m_{k-2}, of three full blocks in a row in which no channel was flagged, or none raised or
+  // re-admitted (a held offset is corrected in the residual, a held drift's slope error is a
+  // ramp): d ~ N(0, 6 v) for independent means of variance v, and the reference's bias, a
+  // constant or a ramp in it (an unflagged drift: what type_sum_onset looks for) adds nothing. A
+  // step (an unflagged offset, or a held fault re-typed) adds to two of them: so v is read from
+  // the median of the latest kCapacity d^2, which one step does not move and which forgets
+  // (standing and walking scatter differently).
+  const bool unchanged = last_flag_change_s_ < sum_block_began_s_;
+  const bool full = (sum_block_clean_ || unchanged) && sum_block_count_ == sum_block_target_ticks_;
   const double mean = sum_block_count_ > 0 ? sum_block_sum_ / sum_block_count_ : 0.0;
   if (full && sum_block_full_run_ >= 2) {
     const double d = mean - 2.0 * sum_block_last_means_[1] + sum_block_last_means_[0];
@@ -2366,14 +2371,16 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     const double w2 = seed_weight * seed_weight;
     return w2 + a * (1.0 - w2) / (2.0 - a);
   };
-  if (!std::isfinite(ring_now)) {
+  if (!std::isfinite(ring_now) || !std::isfinite(residual)) {
     usable_ticks_in_a_row_ = 0;  // a residual too large to hold: the level starts again
   } else if (usable_ticks_in_a_row_ == 0) {
     residual_level_ = ring_now;
+    corrected_level_ = residual;
     residual_level_seed_weight_ = 1.0;
     usable_ticks_in_a_row_ = 1;
   } else {
     residual_level_ += a * (ring_now - residual_level_);
+    corrected_level_ += a * (residual - corrected_level_);
     residual_level_seed_weight_ *= 1.0 - a;
     usable_ticks_in_a_row_ = std::min(usable_ticks_in_a_row_ + 1, kCountCap);
   }
@@ -2451,8 +2458,11 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     StancePowers& run = stance_cusum_[j];
     // A new stance, or sums taken for another correction (not rewritten when already fresh: most
     // channels most ticks).
+    if (!judged) channels_[j].still_load_drift = false;  // its foot lifted: the stance it rose in is over
     if ((!judged || stance.type != c.type) && !(stance.fresh_for(c.type) && run.fresh_for(c.type))) {
       stance = run = StancePowers{.type = c.type};
+      // Raised from the residual's ramp on a still load: the drift rose in this stance already.
+      stance.rose_with_drift = c.type == FaultType::drift && c.still_load_drift;
     }
     const double raw = residual + measured[j] - recovered[j];
     if (c.type != FaultType::gain) {
@@ -2527,7 +2537,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
         stance.restart_trend();
       }
       if (stance_trend == StancePowers::Trend::flat && stance.rose_with_drift && corrections == 1 &&
-          stance.trend_ticks >= stance_min_ticks_ && std::abs(stance.trend_mean()) > params_.gain_min_load_N) {
+          stance.trend_ticks >= stance_min_ticks_ && std::abs(stance.trend_mean()) > plateau_bar(c, stance.trend_ticks)) {
         hold_as_offset(channels_[j], stance.trend_mean());
         restart_gain_window();  // its window holds residuals taken with the drift's correction
         continue;
@@ -2699,45 +2709,56 @@ void ContactForceFdi::raise_still_load_fault(Channel& c, double implied_load, do
   std::size_t first = 0;
   while (first < count && all[first].t_s - half_block < last_flag_change_s_) ++first;
   const std::span<generic::LevelPoint> points(all.data() + first, count - first);
+  // Without a measured noise or a healthy level before the fault, nothing is raised: the window
+  // restarts and the next one judges (a level taken as healthy at 0 would absorb the total
+  // force's bias into the offset).
   const auto v = sum_block_variance();
-  if (v && points.size() >= 3) {
-    for (auto& p : points) p.variance *= *v;
-    const generic::OnsetShape shape = generic::onset_shape(points, relation_z_);
-    if (shape.first_faulty > 0) {
-      // The fault's size now: the residual's level over the last 2 clear_s from its healthy level.
-      // Its noise, taking the residual as white of the variance that gives a block's mean v (a
-      // block's ticks times v per tick; correlated error makes that an upper bound for a short
-      // mean), times the low-pass's factor (gain_regression's level_variance), plus the healthy
-      // level's, v at most. A fault the gain test saw in its window but that has ended within its
-      // noise is none now: nothing is raised (a drift that came and went while the robot stood).
-      const double a = residual_level_gain_;
-      const double w2 = residual_level_seed_weight_ * residual_level_seed_weight_;
-      const double present_variance = *v * (sum_block_target_ticks_ * (w2 + a * (1.0 - w2) / (2.0 - a)) + 1.0);
-      const double present = residual_level_ - shape.healthy_level;
-      const double bound = relation_z_ * std::sqrt(present_variance);
-      if (!(std::abs(present) > bound)) return;
-      if (shape.ramp) {
-        // A drift from where the ramp left the healthy level, sized by its fitted line.
-        raise(c, FaultType::drift, t);
-        c.onset_load = 0.0;
-        c.reads_as_gain = false;
-        start_drift_from_levels(c, t, points.subspan(shape.first_faulty), shape.healthy_level, {});
-        double level = 0.0, slope = 0.0;
-        c.fit.solve(level, slope);
-        c.offset = level;
-        c.slope = slope;
-        return;
-      }
-      // A step: an offset of its size now, from the load it had, told from a gain as any jump's.
-      raise_jump_onset(c, present, implied_load + shape.healthy_level, t);
-      return;
-    }
+  if (!v || points.size() < 3) return;
+  for (auto& p : points) p.variance *= *v;
+  const generic::OnsetShape shape = generic::onset_shape(points, relation_z_);
+  if (shape.first_faulty == 0) return;  // no healthy block since the last flag change
+  // The fault's size now: the corrected residual's level (a low-pass of time constant clear_s,
+  // as the jump test's residual_level_ is, settled over 2 clear_s) from its healthy level. Its
+  // noise, taking the residual as white of the variance that gives a block's mean v (a block's
+  // ticks times v per tick; correlated error makes that an upper bound for a short mean), times
+  // the low-pass's factor (gain_regression's level_variance), plus the healthy level's, v at
+  // most. A fault the gain test saw in its window but that has ended within its noise is none
+  // now: nothing is raised (a drift that came and went while the robot stood).
+  const double a = residual_level_gain_;
+  const double w2 = residual_level_seed_weight_ * residual_level_seed_weight_;
+  const double present_variance = *v * (sum_block_target_ticks_ * (w2 + a * (1.0 - w2) / (2.0 - a)) + 1.0);
+  const double present = corrected_level_ - shape.healthy_level;
+  const double bound = relation_z_ * std::sqrt(present_variance);
+  if (!(std::abs(present) > bound)) return;
+  if (shape.ramp) {
+    // A drift from where the ramp left the healthy level, sized by its fitted line.
+    raise(c, FaultType::drift, t);
+    c.onset_load = 0.0;
+    c.reads_as_gain = false;
+    start_drift_from_levels(c, t, points.subspan(shape.first_faulty), shape.healthy_level, {});
+    double level = 0.0, slope = 0.0;
+    c.fit.solve(level, slope);
+    c.offset = level;
+    c.slope = slope;
+    c.still_load_drift = true;
+    return;
   }
-  // No history to type it by: an offset of the residual's level, its healthy level taken as 0.
-  raise_jump_onset(c, residual_level_, implied_load, t);
+  // A step: an offset of its size now, from the load it had, told from a gain as any jump's.
+  raise_jump_onset(c, present, implied_load + shape.healthy_level, t);
+}
+
+double ContactForceFdi::plateau_bar(const Channel& c, int ticks) const noexcept {
+  if (!c.still_load_drift) return params_.gain_min_load_N;
+  // The mean of `ticks` residuals, as a white residual's of the variance that gives a block's mean
+  // v, and the healthy level's, v: beyond z of that, within gain_min_load_N at most.
+  const auto v = sum_block_variance();
+  if (!v) return params_.gain_min_load_N;
+  const double variance = *v * (static_cast<double>(sum_block_target_ticks_) / std::max(ticks, 1) + 1.0);
+  return std::min(params_.gain_min_load_N, relation_z_ * std::sqrt(variance));
 }
 
 void ContactForceFdi::hold_as_offset(Channel& c, double level) noexcept {
+  c.still_load_drift = false;
   c.type = FaultType::offset;
   c.offset = level;
   c.slope = 0.0;

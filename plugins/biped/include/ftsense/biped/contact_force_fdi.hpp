@@ -226,8 +226,10 @@
 //             gain, which cannot be told from an additive error without load motion: it is an
 //             additive fault, typed from the sum residual's blocks since the last flag change
 //             (generic::onset_shape: a ramp raises a drift on the blocks' line, a step an offset
-//             of the residual's level now), and none at all when that level is back within z of
-//             its noise of the healthy level (the fault ended before the window judged it). The
+//             of the corrected residual's level now), and none at all when that level is back
+//             within z of its noise of the healthy level (the fault ended before the window judged
+//             it), or when no healthy block precedes it since the last flag change, or the blocks'
+//             noise is not measured yet (the next window judges again). The
 //             same test refines k on the corrected residual
 //             and re-admits the channel when k comes back within gain_threshold / 2 of 1, or, by
 //             model comparison (no isolation needed), when it carried load (RMS above
@@ -269,7 +271,11 @@
 //             least), after a window of that stance in which it rose the drift's way, but off its
 //             load by more than gain_min_load_N, the window's mean of r_raw, has stopped at that
 //             level (a plateau): held as an offset there (hold_as_offset), not re-admitted by
-//             the comparison once its extrapolated correction has overshot. A
+//             the comparison once its extrapolated correction has overshot. A drift raised from
+//             the residual's ramp on a still load (gain test, above) rose in its stance already,
+//             and its plateau needs only to be off by z of the residual's measured noise
+//             (plateau_bar), within gain_min_load_N at most: the robot stands, and the walking
+//             stance's margin is not the error of its standing residual. A
 //             gain that ended in the air, or a gain inferred in the air from an offset that ended
 //             there (both read 0 in the air), would otherwise scale a healthy reading by 1 / k
 //             through the next stances until the window decides. The window
@@ -641,6 +647,10 @@ class ContactForceFdi {
     double offset = 0.0, slope = 0.0, gain = 1.0;
     LineFit fit;
     bool fit_has_air = false;
+    // A drift raised on a still load from the sum residual's ramp (raise_still_load_fault), its
+    // foot not lifted since: its stance began with the reading rising the drift's way, and its
+    // plateau is judged against the residual's measured noise, not gain_min_load_N.
+    bool still_load_drift = false;
     double median_gap = 0.0;  // spiking: reading - median of three on the last tick (jump test's sum)
     // A step in flight while the air fits the fault: the fit starts again on the readings after
     // it (kept until the fit takes its next airborne reading). The air's readings in blocks of min_airborne_samples_: the open block's sum and count,
@@ -696,6 +706,9 @@ class ContactForceFdi {
   void restart_gain_window() noexcept;
   // A drift that has stopped, its reading `level` [N] off its load: held as an offset there.
   void hold_as_offset(Channel& c, double level) noexcept;
+  // How far off its load [N] a drift's flat reading over `ticks` must sit to be held as a plateau
+  // (gain_min_load_N; for a still-load drift, z of the residual's measured noise if that is less).
+  [[nodiscard]] double plateau_bar(const Channel& c, int ticks) const noexcept;
   // The variance v of a full block of the sum residual: the median of the latest second
   // differences d^2 over 6 x 0.455 (d ~ N(0, 6 v)); unknown from fewer than 8.
   [[nodiscard]] std::optional<double> sum_block_variance() const noexcept;
@@ -897,7 +910,8 @@ class ContactForceFdi {
   int sum_block_ticks_ = 0;   // ticks into the open block
   int sum_block_count_ = 0;   // its usable ticks
   double sum_block_sum_ = 0.0, sum_block_t_sum_ = 0.0;
-  bool sum_block_clean_ = true;
+  bool sum_block_clean_ = true;  // no channel flagged on any of its ticks
+  double sum_block_began_s_ = 0.0;
   int sum_block_full_run_ = 0;  // full clean blocks in a row, at most 2
   std::array<double, 2> sum_block_last_means_{};  // the two blocks before, oldest first
   std::array<double, generic::LevelHistory::kCapacity> sum_block_d2_{};
@@ -1127,6 +1141,7 @@ class ContactForceFdi {
   // The sum residual's level over those ticks: a first-order low-pass of time constant
   // stance_min_ticks_, seeded with the first tick's value, and the weight that seed still has.
   double residual_level_ = 0.0;
+  double corrected_level_ = 0.0;  // the same low-pass of the corrected sum residual (offsets and drifts in it corrected)
   double residual_level_seed_weight_ = 1.0;
   double residual_level_gain_ = 0.02;  // 1 / stance_min_ticks_
   double gain_weight_ = 0.0;
