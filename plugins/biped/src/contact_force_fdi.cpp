@@ -503,6 +503,7 @@ void ContactForceFdi::raise(Channel& c, FaultType type, double t) noexcept {
     c.type = type;
   } else if (priority(type) > priority(c.type)) {
     c.type = type;
+    c.still_load_drift = false;  // no longer the drift it was raised as
   }
   c.clear_since = -1.0;
 }
@@ -2145,7 +2146,6 @@ void ContactForceFdi::start_drift_from_levels(Channel& c, double t, std::span<co
 }
 
 void ContactForceFdi::observe_sum_block(double residual, bool usable, bool clean, double t) noexcept {
-  if (sum_block_ticks_ == 0) sum_block_began_s_ = t;
   if (usable) {
     sum_block_sum_ += residual;
     sum_block_t_sum_ += t;
@@ -2155,15 +2155,12 @@ void ContactForceFdi::observe_sum_block(double residual, bool usable, bool clean
   if (++sum_block_ticks_ < sum_block_target_ticks_) return;
   // A block's mean scatters by the reference's error over the block (correlated over a stride, so
   // not sigma^2 / n). It is measured on the blocks' second differences, d = m_k - 2 m_{k-1} +
-  // m_{k-2}, of three full blocks in a row in which no channel was flagged, or none raised or
-  // re-admitted (a held offset is corrected in the residual, a held drift's slope error is a
-  // ramp): d ~ N(0, 6 v) for independent means of variance v, and the reference's bias, a
-  // constant or a ramp in it (an unflagged drift: what type_sum_onset looks for) adds nothing. A
-  // step (an unflagged offset, or a held fault re-typed) adds to two of them: so v is read from
-  // the median of the latest kCapacity d^2, which one step does not move and which forgets
-  // (standing and walking scatter differently).
-  const bool unchanged = last_flag_change_s_ < sum_block_began_s_;
-  const bool full = (sum_block_clean_ || unchanged) && sum_block_count_ == sum_block_target_ticks_;
+  // m_{k-2}, of three full blocks in a row in which no channel was flagged: d ~ N(0, 6 v) for
+  // independent means of variance v, and the reference's bias, a constant or a ramp in it (an
+  // unflagged drift: what type_sum_onset looks for) adds nothing. A step (an unflagged offset)
+  // adds to two of them: so v is read from the median of the latest kCapacity d^2, which one step
+  // does not move and which forgets (standing and walking scatter differently).
+  const bool full = sum_block_clean_ && sum_block_count_ == sum_block_target_ticks_;
   const double mean = sum_block_count_ > 0 ? sum_block_sum_ / sum_block_count_ : 0.0;
   if (full && sum_block_full_run_ >= 2) {
     const double d = mean - 2.0 * sum_block_last_means_[1] + sum_block_last_means_[0];
@@ -2536,9 +2533,12 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
         stance.rose_with_drift = stance.trend_slope() * c.slope > 0.0;
         stance.restart_trend();
       }
+      // (A still-load drift's lead is taken from the residual's healthy level it was raised on:
+      // the total force's bias, which a walking stance averages out, stays in a standing one.)
+      const double lead = stance.trend_mean() - (c.still_load_drift ? c.still_load_healthy_level : 0.0);
       if (stance_trend == StancePowers::Trend::flat && stance.rose_with_drift && corrections == 1 &&
-          stance.trend_ticks >= stance_min_ticks_ && std::abs(stance.trend_mean()) > plateau_bar(c, stance.trend_ticks)) {
-        hold_as_offset(channels_[j], stance.trend_mean());
+          stance.trend_ticks >= stance_min_ticks_ && std::abs(lead) > plateau_bar(c, stance.trend_ticks)) {
+        hold_as_offset(channels_[j], lead);
         restart_gain_window();  // its window holds residuals taken with the drift's correction
         continue;
       }
@@ -2697,6 +2697,13 @@ std::optional<double> ContactForceFdi::sum_block_variance() const noexcept {
 }
 
 void ContactForceFdi::raise_still_load_fault(Channel& c, double implied_load, double t) noexcept {
+  // Beside another flagged channel nothing is raised: a drift raised there could not be judged
+  // at its plateau (the stance comparison holds a plateau only as the one correction), and its
+  // extrapolated slope would run away; and that channel's correction, right or not, is in the
+  // residual the blocks read.
+  for (const Channel& o : channels_) {
+    if (&o != &c && o.type != FaultType::none) return;
+  }
   // The sum residual's blocks since the last flag change (a change moves the residual partway
   // through), and the open block: a step a few tenths of a second old has no closed block yet.
   std::array<generic::LevelPoint, generic::LevelHistory::kCapacity + 1> all{};
@@ -2741,6 +2748,7 @@ void ContactForceFdi::raise_still_load_fault(Channel& c, double implied_load, do
     c.offset = level;
     c.slope = slope;
     c.still_load_drift = true;
+    c.still_load_healthy_level = shape.healthy_level;
     return;
   }
   // A step: an offset of its size now, from the load it had, told from a gain as any jump's.
@@ -2750,10 +2758,12 @@ void ContactForceFdi::raise_still_load_fault(Channel& c, double implied_load, do
 double ContactForceFdi::plateau_bar(const Channel& c, int ticks) const noexcept {
   if (!c.still_load_drift) return params_.gain_min_load_N;
   // The mean of `ticks` residuals, as a white residual's of the variance that gives a block's mean
-  // v, and the healthy level's, v: beyond z of that, within gain_min_load_N at most.
+  // v (v at least: a longer mean of a correlated error need not scatter less), and the healthy
+  // level's, v: beyond z of that, within gain_min_load_N at most.
   const auto v = sum_block_variance();
   if (!v) return params_.gain_min_load_N;
-  const double variance = *v * (static_cast<double>(sum_block_target_ticks_) / std::max(ticks, 1) + 1.0);
+  const double block_ratio = static_cast<double>(sum_block_target_ticks_) / std::max(ticks, 1);
+  const double variance = *v * (std::max(1.0, block_ratio) + 1.0);
   return std::min(params_.gain_min_load_N, relation_z_ * std::sqrt(variance));
 }
 

@@ -228,8 +228,10 @@
 //             (generic::onset_shape: a ramp raises a drift on the blocks' line, a step an offset
 //             of the corrected residual's level now), and none at all when that level is back
 //             within z of its noise of the healthy level (the fault ended before the window judged
-//             it), or when no healthy block precedes it since the last flag change, or the blocks'
-//             noise is not measured yet (the next window judges again). The
+//             it), or when no healthy block precedes it since the last flag change, the blocks'
+//             noise is not measured yet (the next window judges again), or another channel is
+//             flagged (its correction is in the residual, and a drift beside it could not be
+//             held at its plateau). The
 //             same test refines k on the corrected residual
 //             and re-admits the channel when k comes back within gain_threshold / 2 of 1, or, by
 //             model comparison (no isolation needed), when it carried load (RMS above
@@ -273,9 +275,10 @@
 //             level (a plateau): held as an offset there (hold_as_offset), not re-admitted by
 //             the comparison once its extrapolated correction has overshot. A drift raised from
 //             the residual's ramp on a still load (gain test, above) rose in its stance already,
-//             and its plateau needs only to be off by z of the residual's measured noise
-//             (plateau_bar), within gain_min_load_N at most: the robot stands, and the walking
-//             stance's margin is not the error of its standing residual. A
+//             and its plateau, taken from the residual's healthy level it was raised on (the
+//             total force's bias stays in a standing stance), needs only to be off by z of the
+//             residual's measured noise (plateau_bar), within gain_min_load_N at most: the robot
+//             stands, and the walking stance's margin is not the error of its standing residual. A
 //             gain that ended in the air, or a gain inferred in the air from an offset that ended
 //             there (both read 0 in the air), would otherwise scale a healthy reading by 1 / k
 //             through the next stances until the window decides. The window
@@ -649,8 +652,10 @@ class ContactForceFdi {
     bool fit_has_air = false;
     // A drift raised on a still load from the sum residual's ramp (raise_still_load_fault), its
     // foot not lifted since: its stance began with the reading rising the drift's way, and its
-    // plateau is judged against the residual's measured noise, not gain_min_load_N.
+    // plateau is judged from the residual's healthy level it was raised on, against the
+    // residual's measured noise, not gain_min_load_N.
     bool still_load_drift = false;
+    double still_load_healthy_level = 0.0;  // the sum residual's healthy level it was raised on [N]
     double median_gap = 0.0;  // spiking: reading - median of three on the last tick (jump test's sum)
     // A step in flight while the air fits the fault: the fit starts again on the readings after
     // it (kept until the fit takes its next airborne reading). The air's readings in blocks of min_airborne_samples_: the open block's sum and count,
@@ -911,7 +916,6 @@ class ContactForceFdi {
   int sum_block_count_ = 0;   // its usable ticks
   double sum_block_sum_ = 0.0, sum_block_t_sum_ = 0.0;
   bool sum_block_clean_ = true;  // no channel flagged on any of its ticks
-  double sum_block_began_s_ = 0.0;
   int sum_block_full_run_ = 0;  // full clean blocks in a row, at most 2
   std::array<double, 2> sum_block_last_means_{};  // the two blocks before, oldest first
   std::array<double, generic::LevelHistory::kCapacity> sum_block_d2_{};
