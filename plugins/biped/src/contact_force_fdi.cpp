@@ -2661,8 +2661,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   // A gain reads its load N k times, so k is told from an additive error only where the load
   // moved. A new flag whose implied load N^ = x - r stayed within gain_min_load_N RMS over the
-  // window (a robot standing while a pad drifts: r and x rise together, beta near 1, k without
-  // bound) is an additive fault, typed and sized from the sum residual's history.
+  // window (a robot standing while a pad drifts: r and x rise together, beta near 1, k = 10 from
+  // the clamp below) is an additive fault, typed and sized from the sum residual's history.
   if (c.type == FaultType::none) {
     const double load_variation = best_x_variation - 2.0 * best_covariation + r_variation;
     if (load_variation < min_power) {
@@ -2725,8 +2725,8 @@ void ContactForceFdi::raise_still_load_fault(Channel& c, double implied_load, do
   const generic::OnsetShape shape = generic::onset_shape(points, relation_z_);
   if (shape.first_faulty == 0) return;  // no healthy block since the last flag change
   // The fault's size now: the corrected residual's level (a low-pass of time constant clear_s,
-  // as the jump test's residual_level_ is, settled over 2 clear_s) from its healthy level. Its
-  // noise, taking the residual as white of the variance that gives a block's mean v (a block's
+  // as the jump test's residual_level_ is, its first value's remaining weight counted in its
+  // variance) from its healthy level. Its noise, taking the residual as white of the variance that gives a block's mean v (a block's
   // ticks times v per tick; correlated error makes that an upper bound for a short mean), times
   // the low-pass's factor (gain_regression's level_variance), plus the healthy level's, v at
   // most. A fault the gain test saw in its window but that has ended within its noise is none
