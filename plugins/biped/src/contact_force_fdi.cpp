@@ -216,6 +216,13 @@ void ContactForceFdi::LineFit::solve(double& a, double& s) const noexcept {
 }
 
 namespace {
+// The variance, in units of its input's (white), of a low-pass y += a (r - y) seeded with its first
+// value, which keeps the weight w = (1 - a)^k after k ticks: w^2 + a (1 - w^2) / (2 - a).
+double seeded_low_pass_variance(double a, double seed_weight) {
+  const double w2 = seed_weight * seed_weight;
+  return w2 + a * (1.0 - w2) / (2.0 - a);
+}
+
 // Window lengths in ticks, checked before anything is allocated: a window is at most 100,000
 // ticks (e.g. 1 s at 100 kHz), so a tiny tick period cannot ask for gigabytes.
 constexpr double kMaxWindowTicks = 100000.0;
@@ -2357,17 +2364,12 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   // The sum residual as the jump test takes it (this tick's, the ring's newest), and its level
   // before this tick once settled over 2 clear_s of usable ticks (for a drift's end at once),
-  // with that level's variance in units of the residual's (a low-pass y += a (r - y) seeded with
-  // its first value, of weight w = (1 - a)^k after k ticks: w^2 + a (1 - w^2) / (2 - a)).
+  // with that level's variance in units of the residual's (seeded_low_pass_variance).
   const double ring_now = residual_ring_[ring_back(residual_next_, residual_ring_.size(), 0)];
   const double a = residual_level_gain_;
   const bool settled = usable_ticks_in_a_row_ >= 2 * stance_min_ticks_;
   const double level_before = settled ? residual_level_ : std::numeric_limits<double>::quiet_NaN();
-  const double seed_weight = residual_level_seed_weight_;
-  const auto level_variance = [&] {  // asked only where a drift's run begins
-    const double w2 = seed_weight * seed_weight;
-    return w2 + a * (1.0 - w2) / (2.0 - a);
-  };
+  const double seed_weight = residual_level_seed_weight_;  // before this tick's update
   if (!std::isfinite(ring_now) || !std::isfinite(residual)) {
     usable_ticks_in_a_row_ = 0;  // a residual too large to hold: the level starts again
   } else if (usable_ticks_in_a_row_ == 0) {
@@ -2501,7 +2503,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     if (c.type == FaultType::drift && run.ticks == 1) {
       const bool reading_stepped = t - c.stepped_back_s < (jump_window_ticks_ + 0.5) * period_s_;
       run.level_before = reading_stepped ? level_before : std::numeric_limits<double>::quiet_NaN();
-      run.level_variance = level_variance();
+      run.level_variance = seeded_low_pass_variance(a, seed_weight);
       run.correction_before = correction;
     }
     if (c.type == FaultType::drift && run.ticks > 0) run.level_sum += ring_now;
@@ -2724,16 +2726,15 @@ void ContactForceFdi::raise_still_load_fault(Channel& c, double implied_load, do
   for (auto& p : points) p.variance *= *v;
   const generic::OnsetShape shape = generic::onset_shape(points, relation_z_);
   if (shape.first_faulty == 0) return;  // no healthy block since the last flag change
-  // The fault's size now: the corrected residual's level (a low-pass of time constant clear_s,
-  // as the jump test's residual_level_ is, its first value's remaining weight counted in its
-  // variance) from its healthy level. Its noise, taking the residual as white of the variance that gives a block's mean v (a block's
-  // ticks times v per tick; correlated error makes that an upper bound for a short mean), times
-  // the low-pass's factor (gain_regression's level_variance), plus the healthy level's, v at
-  // most. A fault the gain test saw in its window but that has ended within its noise is none
-  // now: nothing is raised (a drift that came and went while the robot stood).
-  const double a = residual_level_gain_;
-  const double w2 = residual_level_seed_weight_ * residual_level_seed_weight_;
-  const double present_variance = *v * (sum_block_target_ticks_ * (w2 + a * (1.0 - w2) / (2.0 - a)) + 1.0);
+  // The fault's size now: the corrected residual's level (a low-pass of time constant clear_s, as
+  // the jump test's residual_level_ is) from its healthy level. Its noise: the residual taken as
+  // white of the variance that gives a block's mean v (a block's ticks times v per tick;
+  // correlated error makes that an upper bound for a short mean), times the low-pass's factor
+  // (seeded_low_pass_variance: its first value's remaining weight counted), plus the healthy
+  // level's, v at most. A fault the gain test saw in its window but that has ended within its
+  // noise is none now: nothing is raised (a drift that came and went while the robot stood).
+  const double present_variance =
+      *v * (sum_block_target_ticks_ * seeded_low_pass_variance(residual_level_gain_, residual_level_seed_weight_) + 1.0);
   const double present = corrected_level_ - shape.healthy_level;
   const double bound = relation_z_ * std::sqrt(present_variance);
   if (!(std::abs(present) > bound)) return;
