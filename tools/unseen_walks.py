@@ -49,6 +49,10 @@ the heavy biped, which falls at 0.55 s; double support 0.1), each from its ordin
 0.2/0.8/0.2, the light biped 0.10/0.8/0.3, the heavy biped 0.25/1.0/0.3); the quadruped crawling
 in place (stride 0, 4 s a cycle), slowly (8 s), one cycle after 5 s of standing, and fast (2 s).
 
+With --fault-seed D and --seed-offset S, another draw: faults drawn by random.Random(D) (default
+7) on walks seeded S more than above (default 0), to look for what the fixed draw no longer shows
+(docs/results.md runs D 13, S 2000).
+
 With --calibrate, the config is not told the sensors' noise and resolution: as a user with a new
 sensor suite would, it is calibrated first (`ftsense calibrate`, which measures both on a
 fault-free log) on a fault-free walk of the same gait and sensors, seeded 1000 + the walk's seed,
@@ -174,10 +178,10 @@ def draw_fault(rng, robot, channel, start_s, noise_std_N):
     return fault
 
 
-def walks(robot_name, duration_s, with_faults, gaits="walks"):
+def walks(robot_name, duration_s, with_faults, gaits="walks", fault_seed=FAULT_SEED, seed_offset=0):
     robot = ROBOTS[robot_name]
     channels = robot["channels"]
-    rng = random.Random(FAULT_SEED)
+    rng = random.Random(fault_seed)
     number = 0
     for gait in robot["stress_gaits" if gaits == "stress" else "gaits"]:
         for period, noise, resolution in robot["sensors"]:
@@ -192,7 +196,7 @@ def walks(robot_name, duration_s, with_faults, gaits="walks"):
                 "name": f"unseen_{number}",
                 "description": "walk for tools/unseen_walks.py",
                 "duration_s": duration_s,
-                "seed": robot["seeds"][1 if with_faults else 0] + number,
+                "seed": seed_offset + robot["seeds"][1 if with_faults else 0] + number,
                 "gait": gait,
                 "sensors": {"force": {"noise_std_N": noise, "resolution_N": resolution}},
                 "faults": faults,
@@ -318,6 +322,9 @@ def main():
     parser.add_argument("--gaits", choices=["walks", "stress"], default="walks",
                         help="the robot's ordinary gaits, or gaits unlike them: in place, slow, a short walk "
                              "then standing, fast (default walks)")
+    parser.add_argument("--fault-seed", type=int, default=FAULT_SEED,
+                        help=f"seed of the faults' draw (default {FAULT_SEED}, the draw docs/results.md reports)")
+    parser.add_argument("--seed-offset", type=int, default=0, help="added to every walk's seed (default 0)")
     parser.add_argument("--calibrate", action="store_true",
                         help="measure the sensors' noise and resolution with ftsense calibrate, not told")
     args = parser.parse_args()
@@ -352,7 +359,7 @@ def fault_line(m):
 def run_all(args, config, work):
     print(f"work directory: {work}")
     if args.faults:
-        print(f"faults drawn by random.Random({FAULT_SEED})")
+        print(f"faults drawn by random.Random({args.fault_seed})")
     if args.calibrate:
         print(f"sensors not told: calibrated on a fault-free walk each, seeded {CALIBRATION_SEED_OFFSET} + its seed")
     failed = False
@@ -360,7 +367,7 @@ def run_all(args, config, work):
     faulty = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         jobs = [pool.submit(trial, args.bin, work, config, s, args.calibrate)
-                for s in walks(args.robot, args.duration, args.faults, args.gaits)]
+                for s in walks(args.robot, args.duration, args.faults, args.gaits, args.fault_seed, args.seed_offset)]
         for job in jobs:
             scenario, metrics, error = job.result()
             gait = scenario["gait"]

@@ -1587,6 +1587,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     const double x = measured[j];
     fault_estimate[j] = std::isfinite(x) ? x - recovered[j] : 0.0;
     c.recovered = recovered[j];
+    c.recovered_as = c.type;
     c.last_virtual = virtual_force[j];
     if (c.negative_ticks > 0 && std::isfinite(x) && virtual_force[j] > params_.gain_min_load_N) {
       c.negative_fit.add(virtual_force[j], x);
@@ -2462,6 +2463,16 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       stance = run = StancePowers{.type = c.type};
       // Raised from the residual's ramp on a still load: the drift rose in this stance already.
       stance.rose_with_drift = c.type == FaultType::drift && c.still_load_drift;
+    }
+    // Re-typed on this tick after its recovered value and the residual were computed with the
+    // correction before: the tick's powers belong to neither model (an offset's 384 N correction
+    // on the tick it was taken as a gain was the new gain's first tick, and its weight alone
+    // made the reading win for the 49 ticks after: a x2 gain dropped as its pad lifted). The
+    // new correction's sums start on the next tick.
+    if (c.type != c.recovered_as) {
+      gain_raw_rr_[j] = gain_held_rr_[j] = 0.0;
+      gain_held_ticks_[j] = 0;
+      continue;
     }
     const double raw = residual + measured[j] - recovered[j];
     if (c.type != FaultType::gain) {

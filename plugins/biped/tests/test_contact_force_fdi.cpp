@@ -1635,6 +1635,41 @@ TEST(ContactForceFdi, AnOffsetRaisedUnderLoadThatIsAGainIsNotDroppedAsItsPadUnlo
   }
 }
 
+TEST(ContactForceFdi, AnOffsetTakenAsAGainIsNotJudgedOnTheTickItWasRetyped) {
+  // A x2 gain on a pad carrying 400 N: its onset jumps +400 N, raised as an offset (b = 400 N,
+  // L0 = 400 N). From tick 300 the pad hands its load to its neighbour within 20 ticks, down to
+  // 10 N, its foot down throughout. The offset-or-gain test takes it as a gain (k = 2) once the
+  // 10 Hz low-pass of its leave-one-out force has moved 160 N from L0: on tick 320, the load's
+  // first at 10 N. On that tick the recovered value and the residual were computed as x - b: a
+  // correction of 400 N and a residual of L - L0 = -390 N, which the gain's stance comparison
+  // took as its first tick. That one tick outweighed the 49 after it (the gain's correction
+  // x - x / k = 10 N, the reading as it is 10 N off): the reading "won" and the gain, still
+  // there, was dropped on tick 369. The tick is no evidence for either model.
+  Feet feet(suralp(), 1e-3);
+  int typed_gain = -1;
+  for (int k = 0; k < 1000; ++k) {
+    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+    for (std::size_t j = 0; j < kChannels; ++j) feet.measured[j] = 100.0 + (j % 2 == 0 ? wiggle : -wiggle);
+    const double load2 = 10.0 + 390.0 * (1.0 - std::clamp((k - 300) / 20.0, 0.0, 1.0));
+    feet.measured[2] += load2 - 100.0;
+    feet.measured[3] += 400.0 - load2;  // pad 3 takes what pad 2 hands on
+    double fz = 0.0;
+    for (double x : feet.measured) fz += x;
+    if (k >= 100) feet.measured[2] += load2;  // reads twice its load
+    feet.step(fz);
+    if (typed_gain < 0 && feet.type(2) == FaultType::gain) typed_gain = k;
+    if (k >= 110) {
+      ASSERT_NE(feet.type(2), FaultType::none) << "tick " << k << " (typed gain on " << typed_gain << ")";
+    }
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (j != 2) ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+    }
+  }
+  EXPECT_EQ(typed_gain, 320) << "typed once the load had moved, not at its onset";
+  EXPECT_EQ(feet.type(2), FaultType::gain);
+  EXPECT_NEAR(feet.outs[ContactForceFdi::kRecovered][2], 10.0, 1.0) << "x / k";
+}
+
 TEST(ContactForceFdi, AGainCorrectionThatDoesNotLowerTheResidualIsDroppedWithoutIsolation) {
   FaultType middle = FaultType::none;
   EXPECT_EQ(gain_held_then(true, middle), FaultType::none) << "re-admitted by model comparison";

@@ -673,6 +673,10 @@ class ContactForceFdi {
       air_block_reads_zero = false;
     }
     double recovered = 0.0;
+    // The type its recovered value (and so the tick's sum residual) was computed with: a test
+    // later in the tick may re-type it (an offset taken as a gain), and that tick then belongs
+    // to neither correction.
+    FaultType recovered_as = FaultType::none;
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
     double noise_bias = 0.0;  // 10 Hz low-pass of reading - leave-one-out force, while flagged noise
     bool noise_bias_set = false;
