@@ -1662,7 +1662,9 @@ TEST(ContactForceFdi, AnOffsetTakenAsAGainIsNotJudgedOnTheTickItWasRetyped) {
       ASSERT_NE(feet.type(2), FaultType::none) << "tick " << k << " (typed gain on " << typed_gain << ")";
     }
     for (std::size_t j = 0; j < kChannels; ++j) {
-      if (j != 2) ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      if (j != 2) {
+        ASSERT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
     }
   }
   EXPECT_EQ(typed_gain, 320) << "typed once the load had moved, not at its onset";
