@@ -156,7 +156,10 @@
 //             stepping by sum_j w_j jump_j within max(z sigma, 50 %), and the step and that
 //             expectation both beyond z sigma in the relations' norm; sigma the window step's
 //             RMS measured on the log's healthy full-contact ticks (at least 100), z the
-//             two-sided normal quantile of alpha = T / false_alarm_interval_s. A jump the plane
+//             two-sided normal quantile of alpha = T / false_alarm_interval_s; a group of several
+//             pads only if no member alone explains the step as well (the same bounds, beyond z
+//             on its own): one relation cannot tell which of them stepped, and a lifting sole's
+//             pads fall as one while its plane departs by about one pad's share. A jump the plane
 //             cannot judge (its foot not in full contact over both windows: a heel rocking on
 //             and off as the foot lands) is judged by the sum residual once the guard is over and
 //             a jump window has passed: the residual's step from its mean over the jump window
