@@ -2025,8 +2025,9 @@ TEST(ContactForceFdi, AStepInsideATouchdownGuardIsConfirmedByItsSolesPlane) {
   EXPECT_EQ(offset_flagged_inside_a_touchdown_guard(true, 5e-3), 168 + 1);
 }
 
-// The trace of offset_flagged_inside_a_touchdown_guard (soles' layout given, 1 kHz), but on the
-// onset tick, 40 ms after the left foot's touchdown, the right foot's pads (4-7) step by
+// The trace of offset_flagged_inside_a_touchdown_guard (soles' layout given, 1 kHz), but each
+// reading carries the sensors' white noise (2 N, as told; seed 7, a fixed std::mt19937), and on
+// the onset tick, 40 ms after the left foot's touchdown, the right foot's pads (4-7) step by
 // `load_steps` (their loads: the readings and the total force alike) and their readings further
 // by `sensor_steps` (sensor faults). Returns the channels flagged by the trace's end (0.94 s).
 std::vector<std::size_t> flagged_after_right_pads_step(std::array<double, 4> load_steps,
@@ -2034,6 +2035,8 @@ std::vector<std::size_t> flagged_after_right_pads_step(std::array<double, 4> loa
   auto p = suralp();
   p.points = kSuralpSole;
   Feet feet(p, 1e-3);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, p.noise_std_N);
   constexpr double kPi = std::numbers::pi;
   constexpr double kWeight = 1100.0;
   for (int k = 0; k < 940; ++k) {
@@ -2047,9 +2050,8 @@ std::vector<std::size_t> flagged_after_right_pads_step(std::array<double, 4> loa
       const double x = j % 4 < 2 ? 0.12 : -0.12, y = j % 2 == 0 ? 0.075 : -0.075;
       double load = share * (kWeight / 4.0 + pitch * x + roll * y);
       if (j >= 4 && k >= 840) load += load_steps[j - 4];
-      const double wiggle = load > 0.0 ? (k % 2 == 0 ? 0.3 : -0.3) : 0.0;
       sum += load;
-      feet.measured[j] = load + wiggle + (j >= 4 && k >= 840 ? sensor_steps[j - 4] : 0.0);
+      feet.measured[j] = load + noise(rng) + (j >= 4 && k >= 840 ? sensor_steps[j - 4] : 0.0);
     }
     feet.step(sum);
   }
@@ -2069,6 +2071,11 @@ TEST(ContactForceFdi, PadsThatFallAsOneInsideAGuardAreNotNamedByAPlaneOneOfThemE
   // Two sensors stepping +40 N together on a diagonal (x0 and x3: +80 N on the plane, twice what
   // either alone implies) are still named together, and one alone as before.
   EXPECT_EQ(flagged_after_right_pads_step({}, {40.0, 0.0, 0.0, 40.0}), (std::vector<std::size_t>{4, 7}));
+  // Two unequal ones (+60 N and +25 N: the +60 N alone leaves 25 N of the plane's step, beyond
+  // its noise) are named too. (A member that "explained" the step within the group test's 50 %
+  // allowance, as a first version let it, named neither on this trace without its noise, in a
+  // review's probe: there the noise bar is near 0 and the allowance decided.)
+  EXPECT_EQ(flagged_after_right_pads_step({}, {60.0, 0.0, 0.0, 25.0}), (std::vector<std::size_t>{4, 7}));
   EXPECT_EQ(flagged_after_right_pads_step({}, {0.0, 0.0, 40.0, 0.0}), std::vector<std::size_t>{6});
 }
 

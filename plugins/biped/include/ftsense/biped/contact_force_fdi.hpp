@@ -157,9 +157,10 @@
 //             expectation both beyond z sigma in the relations' norm; sigma the window step's
 //             RMS measured on the log's healthy full-contact ticks (at least 100), z the
 //             two-sided normal quantile of alpha = T / false_alarm_interval_s; a group of several
-//             pads only if no member alone explains the step as well (the same bounds, beyond z
-//             on its own): one relation cannot tell which of them stepped, and a lifting sole's
-//             pads fall as one while its plane departs by about one pad's share. A jump the plane
+//             pads only if no member alone explains the step within z sigma (and beyond z on its
+//             own): one relation cannot tell which of them stepped, and a lifting sole's pads fall
+//             as one while its plane departs by about one pad's share (none is named then; a
+//             fault among them waits for another test, the air test at the swing). A jump the plane
 //             cannot judge (its foot not in full contact over both windows: a heel rocking on
 //             and off as the foot lands) is judged by the sum residual once the guard is over and
 //             a jump window has passed: the residual's step from its mean over the jump window
@@ -676,9 +677,9 @@ class ContactForceFdi {
       air_block_reads_zero = false;
     }
     double recovered = 0.0;
-    // The type its recovered value (and so the tick's sum residual) was computed with: a test
-    // later in the tick may re-type it (an offset taken as a gain), and that tick then belongs
-    // to neither correction.
+    // The type its recovered value (and so the tick's sum residual) was computed with, stamped
+    // after the recovery and the follow test: a test later in the tick may re-type it (an offset
+    // taken as a gain), and that tick then belongs to neither correction (gain_regression).
     FaultType recovered_as = FaultType::none;
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
     double noise_bias = 0.0;  // 10 Hz low-pass of reading - leave-one-out force, while flagged noise
