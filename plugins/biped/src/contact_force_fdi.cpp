@@ -1788,12 +1788,15 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, std::span<const doubl
       relation_step_count_[foot] < UnmeasuredContactLoads::kMinSamples) {
     return false;
   }
+  // Relation r's fault-free window step sigma on this foot: the RMS of its healthy steps [N].
+  const auto step_sigma = [&](std::size_t r) {
+    return std::sqrt(std::max(relation_step_square_[foot * relations + r] / relation_step_count_[foot], 1e-12));
+  };
   // In units of each relation's fault-free step sigma: the step and the jumps' expected step both
   // beyond z (the false-alarm target's quantile), alike in sign, and within z or half of it apart.
   double observed = 0.0, expected = 0.0, agreement = 0.0;
   for (std::size_t r = 0; r < relations; ++r) {
-    const double sigma =
-        std::sqrt(std::max(relation_step_square_[foot * relations + r] / relation_step_count_[foot], 1e-12));
+    const double sigma = step_sigma(r);
     const double step = relation_step_[foot * relations + r];
     const double e = relation_expect_[foot * relations + r];
     if (std::abs(step - e) > std::max(relation_z_ * sigma, 0.5 * std::abs(e))) return false;
@@ -1833,8 +1836,7 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, std::span<const doubl
     bool fits = true;
     double alone = 0.0;
     for (std::size_t r = 0; r < relations; ++r) {
-      const double sigma =
-          std::sqrt(std::max(relation_step_square_[foot * relations + r] / relation_step_count_[foot], 1e-12));
+      const double sigma = step_sigma(r);
       const double e = unmeasured_.relation_weight(i, r) * jump;
       fits = fits && std::abs(relation_step_[foot * relations + r] - e) <= relation_z_ * sigma;
       alone += (e / sigma) * (e / sigma);
@@ -1851,8 +1853,7 @@ bool ContactForceFdi::relation_confirmed(std::size_t foot, std::span<const doubl
   }
   if (!may_be_gain) return true;
   for (std::size_t r = 0; r < relations; ++r) {
-    const double sigma =
-        std::sqrt(std::max(relation_step_square_[foot * relations + r] / relation_step_count_[foot], 1e-12));
+    const double sigma = step_sigma(r);
     double step = relation_step_[foot * relations + r];
     for (std::size_t i = 0; i < feet_points_; ++i) {
       const std::size_t j = foot * feet_points_ + i;
