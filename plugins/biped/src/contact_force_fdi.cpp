@@ -2521,8 +2521,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     // fault that ends late in a long stance is judged on the ticks since its end, not against
     // the stance it was right in. (Not for a gain: its stance so far judges it, as before.)
     const double correction = measured[j] - recovered[j];
-    stance.add(raw, residual, correction);
-    run.add(raw, residual, correction);
+    stance.add(raw, residual, correction, t, period_s_);
+    run.add(raw, residual, correction, t, period_s_);
     if (c.type == FaultType::offset && !c.fit_has_air) {
       if (const auto k = onset_gain(c); k && std::abs(*k) >= kMinGain) {
         const double as_gain = residual - recovered[j] + measured[j] / *k;

@@ -1388,7 +1388,8 @@ struct LongStance {
 template <class After>
 LongStance drift_in_a_long_stance(const After& after, unsigned seed, double total_bias_N = 0.0,
                                   double jump_threshold_N = 0.0, double total_noise_N = 2.0,
-                                  double clear_s = 0.0, double total_step_N = 0.0) {
+                                  double clear_s = 0.0, double total_step_N = 0.0, int gap_from = -1,
+                                  int gap_to = -1) {
   ContactForceFdi::Params params = suralp();
   params.jump_threshold_N = jump_threshold_N;
   if (clear_s > 0.0) params.clear_s = clear_s;
@@ -1403,7 +1404,8 @@ LongStance drift_in_a_long_stance(const After& after, unsigned seed, double tota
     left_swing_loads(feet, k, swinging);
     const double load = feet.measured[0];
     feet.measured[0] += k < 150 ? 0.0 : k < 1000 ? 10.0 + 40.0 * (k - 150) * 1e-3 : after(k);
-    feet.step(800.0 + total_bias_N + (k >= 1000 ? total_step_N : 0.0) + total_error(rng));
+    const double total = 800.0 + total_bias_N + (k >= 1000 ? total_step_N : 0.0) + total_error(rng);
+    feet.step(total, !(k >= gap_from && k < gap_to));  // in the gap, the total force is unknown
     drift = drift || feet.type(0) == FaultType::drift;
     if (drift && out.cleared < 0 && feet.type(0) == FaultType::none) out.cleared = k;
     for (std::size_t j = 1; j < kChannels; ++j) EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
@@ -1457,6 +1459,28 @@ TEST(ContactForceFdi, ADriftThatEndsWhileItsPadStaysLoadedIsReadmittedOnceTheRea
   std::printf("faded, then growing again at 15 N/s: re-admitted at tick %d\n", regrown.cleared);
   EXPECT_EQ(regrown.cleared, -1);
   EXPECT_EQ(regrown.type_at_end, FaultType::drift);
+}
+
+TEST(ContactForceFdi, ADriftsEndIsJudgedOnTheTimeItsTicksWereTakenAtNotOnTheirCount) {
+  const unsigned seed = 5;
+  std::printf("total force error N(0, 2 N), std::mt19937(%u)\n", seed);
+  const auto fades = [](int k) { return k < 1200 ? kDriftLevelAt1000 * (1200 - k) / 200.0 : 0.0; };
+  // The drift of ADriftThatEndsWhileItsPadStaysLoadedIsReadmittedOnceTheReadingStaysFlat fades
+  // out over ticks 1000-1200; here the total force is unknown over ticks 1300-2300 (no tick of
+  // that second is usable). The trend window's abscissa is the ticks' time: the flat readings
+  // before the gap and after it lie 1000 ticks apart, which a drift going on at a quarter of its
+  // rate would have moved them by, so the window is decided on fewer ticks after the gap than it
+  // needed without one. Counted by usable ticks, the two sides were glued into one line and the
+  // channel was re-admitted at tick 3012 (run once): about the 2026 of the walk without a gap
+  // plus the gap's 1000 ticks.
+  const LongStance no_gap = drift_in_a_long_stance(fades, seed);
+  const LongStance gap = drift_in_a_long_stance(fades, seed, 0.0, 0.0, 2.0, 0.0, 0.0, 1300, 2300);
+  std::printf("a drift faded out over ticks 1000-1200: re-admitted at tick %d; with the total force unknown "
+              "over ticks 1300-2300: at tick %d\n", no_gap.cleared, gap.cleared);
+  EXPECT_EQ(no_gap.cleared, 2026);
+  EXPECT_GE(gap.cleared, 2300);
+  EXPECT_LE(gap.cleared, no_gap.cleared + 1000 - 200);
+  EXPECT_EQ(gap.type_at_end, FaultType::none);
 }
 
 TEST(ContactForceFdi, ADriftThatEndsByAStepUnderTheJumpThresholdIsReadmittedOnceItsReadingSitsOnTheLoad) {
