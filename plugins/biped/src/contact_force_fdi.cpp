@@ -2553,7 +2553,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       const StancePowers::Trend trend = run.trend(c.slope * period_s_, relation_z_);
       flat = trend == StancePowers::Trend::flat;
       if (trend == StancePowers::Trend::sloped) {
-        run.restart_trend();
+        run.trend_window.restart();
         run.level_before = std::numeric_limits<double>::quiet_NaN();  // the reading has moved since
       }
       // The reading as it is, flat over the stance where the drift would have shown, after a window
@@ -2569,14 +2569,14 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       // does not lead.
       const StancePowers::Trend stance_trend = stance.trend(c.slope * period_s_, relation_z_);
       if (stance_trend == StancePowers::Trend::sloped) {
-        stance.rose_with_drift = stance.trend_slope() * c.slope > 0.0;
-        stance.restart_trend();
+        stance.rose_with_drift = stance.trend_window.slope() * c.slope > 0.0;
+        stance.trend_window.restart();
       }
       // (A still-load drift's lead is taken from the residual's healthy level it was raised on:
       // the total force's bias, which a walking stance averages out, stays in a standing one.)
-      const double lead = stance.trend_mean() - (c.still_load_drift ? c.still_load_healthy_level : 0.0);
+      const double lead = stance.trend_window.mean() - (c.still_load_drift ? c.still_load_healthy_level : 0.0);
       if (stance_trend == StancePowers::Trend::flat && stance.rose_with_drift && corrections == 1 &&
-          stance.trend_ticks >= stance_min_ticks_ && std::abs(lead) > plateau_bar(c, stance.trend_ticks)) {
+          stance.trend_window.count() >= stance_min_ticks_ && std::abs(lead) > plateau_bar(c, stance.trend_window.count())) {
         hold_as_offset(channels_[j], lead);
         restart_gain_window();  // its window holds residuals taken with the drift's correction
         continue;
@@ -2586,7 +2586,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     // (its mean lead within gain_min_load_N, what the residual's own error can mimic) is enough,
     // with the comparison. A drift regrowing after a fade never stepped.
     const auto ended_by_step = [&] {
-      return std::abs(run.trend_mean()) <= params_.gain_min_load_N && run.stepped_back(relation_z_);
+      return std::abs(run.trend_window.mean()) <= params_.gain_min_load_N && run.stepped_back(relation_z_);
     };
     const bool wins = c.type == FaultType::drift
                           ? run.reading_wins(stance_min_ticks_, stance_bound) && (flat || ended_by_step())

@@ -480,6 +480,7 @@
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/onset_shape.hpp"
 #include "ftsense/generic/spike_episode.hpp"
+#include "ftsense/generic/trend_window.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::biped {
@@ -1039,65 +1040,18 @@ class ContactForceFdi {
     // As constructed for `t`: every sum grows only through add (which counts a tick) or
     // add_gain_model (which sets gain_model), so these three say it.
     [[nodiscard]] bool fresh_for(FaultType t) const noexcept { return ticks == 0 && !gain_model && type == t; }
-    // r_raw's sums over the present trend window (for a drift's end or its plateau, below), at
-    // abscissae k, the ticks of time since the window's first (t - t0) / T: a drift grows with
-    // time, and the usable ticks the window takes need not be consecutive (a substituted loaded
-    // pad or a landing elsewhere leaves gaps; counted by usable ticks, a stance before a gap of
-    // seconds and one after it were glued into one line). Also the sums of k's own powers.
-    int trend_ticks = 0;
-    double trend_t0_s = 0.0;
-    double k_sum = 0.0, kk_sum = 0.0, kkk_sum = 0.0, kkkk_sum = 0.0;
-    double raw_sum = 0.0, k_raw_sum = 0.0, kk_raw_sum = 0.0, trend_rr = 0.0;
+    // r_raw over the present trend window (for a drift's end or its plateau, below), on the
+    // ticks' times (generic::TrendWindow): a drift grows with time, and the usable ticks the
+    // window takes need not be consecutive (a substituted loaded pad or a landing elsewhere leaves
+    // gaps; counted by usable ticks, a stance before a gap of seconds and one after it were glued
+    // into one line).
+    generic::TrendWindow trend_window{};
     void add(double raw, double held, double correction, double t_s, double period_s) noexcept {
       raw_rr += raw * raw;
       held_rr += held * held;
       correction_cc += correction * correction;
       ticks = ticks < std::numeric_limits<int>::max() ? ticks + 1 : ticks;
-      if (trend_ticks == 0) trend_t0_s = t_s;
-      const double k = std::max(0.0, std::round((t_s - trend_t0_s) / period_s));
-      k_sum += k, kk_sum += k * k, kkk_sum += k * k * k, kkkk_sum += k * k * k * k;
-      raw_sum += raw, k_raw_sum += k * raw, kk_raw_sum += k * k * raw, trend_rr += raw * raw;
-      trend_ticks = trend_ticks < std::numeric_limits<int>::max() ? trend_ticks + 1 : trend_ticks;
-    }
-    void restart_trend() noexcept {
-      trend_ticks = 0;
-      k_sum = kk_sum = kkk_sum = kkkk_sum = raw_sum = k_raw_sum = kk_raw_sum = trend_rr = 0.0;
-    }
-    // r_raw's mean over the trend window [N] (0 before its first tick).
-    [[nodiscard]] double trend_mean() const noexcept {
-      return trend_ticks > 0 ? raw_sum / static_cast<double>(trend_ticks) : 0.0;
-    }
-    // The window's abscissae as orthogonal polynomials: p1 = k - m (m their mean) and
-    // p2 = p1^2 - a p1 - b, with b = mu2 and a = mu3 / mu2 (mu_i the abscissae's central moments),
-    // so that 1, p1 and p2 are orthogonal over the window:
-    //   sum p1^2 = n mu2,  sum p2^2 = n (mu4 - a mu3 - mu2^2).
-    // On consecutive ticks these are the discrete orthogonal polynomials (a = 0, b = (n^2 - 1) / 12,
-    // sum p1^2 = n (n^2 - 1) / 12, sum p2^2 = n (n^2 - 1) (n^2 - 4) / 180).
-    struct TrendBasis {
-      double n, m, a, b, p1p1, p2p2;
-    };
-    [[nodiscard]] TrendBasis trend_basis() const noexcept {
-      const double n = static_cast<double>(trend_ticks);
-      const double m = k_sum / n;
-      const double e2 = kk_sum / n, e3 = kkk_sum / n, e4 = kkkk_sum / n;
-      const double mu2 = std::max(e2 - m * m, 0.0);
-      const double mu3 = e3 - 3.0 * m * e2 + 2.0 * m * m * m;
-      const double mu4 = e4 - 4.0 * m * e3 + 6.0 * m * m * e2 - 3.0 * m * m * m * m;
-      const double a = mu2 > 0.0 ? mu3 / mu2 : 0.0;
-      return {n, m, a, mu2, n * mu2, std::max(n * (mu4 - a * mu3 - mu2 * mu2), 0.0)};
-    }
-    // sum r p1 and sum r p2 over the window.
-    [[nodiscard]] double raw_p1(const TrendBasis& q) const noexcept { return k_raw_sum - q.m * raw_sum; }
-    [[nodiscard]] double raw_p2(const TrendBasis& q) const noexcept {
-      const double raw_p1p1 = kk_raw_sum - 2.0 * q.m * k_raw_sum + q.m * q.m * raw_sum;
-      return raw_p1p1 - q.a * raw_p1(q) - q.b * raw_sum;
-    }
-    // r_raw's least-squares slope over the trend window [N per tick] (0 before its abscissae span
-    // two ticks).
-    [[nodiscard]] double trend_slope() const noexcept {
-      if (trend_ticks < 2) return 0.0;
-      const TrendBasis q = trend_basis();
-      return q.p1p1 > 0.0 ? raw_p1(q) / q.p1p1 : 0.0;
+      trend_window.add(raw, t_s, period_s);
     }
     // The last window closed as sloped rose the way the drift does (a plateau's flat window
     // follows the drift going on; a fade's follows its fall).
@@ -1131,36 +1085,16 @@ class ContactForceFdi {
       return ticks >= min_ticks && reading_leads() && correction_cc >= bound && (!gain_model || gain_cc >= bound);
     }
     // A drift's end: does the reading as it is stay flat where the drift, had it gone on, would
-    // have shown? Over the trend window's n ticks, r_raw's line and bend on the orthogonal
-    // polynomials p1, p2 of the ticks' times (TrendBasis):
-    //   c_i = sum r p_i / sum p_i^2,
-    // each with its standard error se_i = s / sqrt(sum p_i^2), s^2 the residual variance about
-    // both (n - 3 degrees of freedom). Undecided while z se_1 is more than a quarter of the fitted
+    // have shown? Over the trend window, r_raw's slope c_1 and bend c_2 with their standard errors
+    // (generic::TrendWindow). Undecided while z se_1 is more than a quarter of the fitted
     // drift's slope per tick (the window could not yet show a drift going on at a quarter of its
     // fitted rate); then flat when neither the slope c_1 nor the bend c_2 is beyond z of its
     // standard error, else sloped (a bend: the reading fell and rose again within the window,
     // which a line through it would call flat).
     enum class Trend { undecided, flat, sloped };
-    struct TrendFit {
-      double c1, se1, c2, se2;
-      double s;  // r_raw's standard deviation about the line and the bend [N]
-      [[nodiscard]] bool flat(double z) const noexcept { return std::abs(c1) <= z * se1 && std::abs(c2) <= z * se2; }
-    };
-    // Over the trend window; needs 4 ticks or more (its residual variance has n - 3 degrees of freedom).
-    [[nodiscard]] TrendFit trend_fit() const noexcept {
-      const TrendBasis q = trend_basis();
-      const double rp1 = raw_p1(q), rp2 = raw_p2(q);
-      const double c1 = q.p1p1 > 0.0 ? rp1 / q.p1p1 : 0.0;
-      const double c2 = q.p2p2 > 0.0 ? rp2 / q.p2p2 : 0.0;
-      const double ssr = trend_rr - raw_sum * raw_sum / q.n - c1 * rp1 - c2 * rp2;
-      const double s = std::sqrt(std::max(ssr, 0.0) / (q.n - 3.0));
-      // An abscissa spread of 0 leaves its coefficient unknown: infinite standard error.
-      const double inf = std::numeric_limits<double>::infinity();
-      return {c1, q.p1p1 > 0.0 ? s / std::sqrt(q.p1p1) : inf, c2, q.p2p2 > 0.0 ? s / std::sqrt(q.p2p2) : inf, s};
-    }
     [[nodiscard]] Trend trend(double drift_per_tick, double z) const noexcept {
-      if (trend_ticks < 4) return Trend::undecided;
-      const TrendFit fit = trend_fit();
+      if (trend_window.count() < 4) return Trend::undecided;
+      const generic::TrendWindow::Fit fit = trend_window.fit();
       if (!(z * fit.se1 <= 0.25 * std::abs(drift_per_tick))) return Trend::undecided;
       return fit.flat(z) ? Trend::flat : Trend::sloped;
     }
@@ -1172,11 +1106,11 @@ class ContactForceFdi {
     // slope, no bend beyond z of their standard errors): it need not be long enough to show the
     // drift going on, since a step, not a fade, brought the reading to the load.
     [[nodiscard]] bool stepped_back(double z) const noexcept {
-      if (!std::isfinite(level_before) || trend_ticks != ticks || trend_ticks < 4) return false;
+      if (!std::isfinite(level_before) || trend_window.count() != ticks || ticks < 4) return false;
       const double n = static_cast<double>(ticks);
       const double step = level_sum / n - level_before;
       if (!(std::abs(step + correction_before) < 0.5 * std::abs(correction_before))) return false;
-      const TrendFit fit = trend_fit();
+      const generic::TrendWindow::Fit fit = trend_window.fit();
       const double se = fit.s * std::sqrt(level_variance + 1.0 / n);
       return 0.5 * std::abs(correction_before) >= z * se && fit.flat(z);
     }
