@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <random>
 #include <vector>
 
@@ -108,6 +107,28 @@ TEST(TrendWindow, OnConsecutiveTicksTheSumsAreTheDiscreteOrthogonalPolynomials) 
   EXPECT_NEAR(a.se1, a.s / std::sqrt(17.5), 1e-12);
   EXPECT_NEAR(a.se2, a.s / std::sqrt(6.0 * 35.0 * 32.0 / 180.0), 1e-12);
   EXPECT_NEAR(a.c2, direct.bend, 1e-12);
+}
+
+TEST(TrendWindow, LongWindowsKeepTheirPrecision) {
+  // The moments come from raw sums of k^4, which lose digits to cancellation as the window grows:
+  // on consecutive ticks with alternating values (a healthy reading, flat), se_2 / s must still be
+  // 1 / sqrt(n (n^2 - 1) (n^2 - 4) / 180) and se_1 / s 1 / sqrt(n (n^2 - 1) / 12): over 1e5 ticks
+  // (100 s at 1 kHz) and 3.6e6 (an hour).
+  for (const int n : {100000, 3600000}) {
+    TrendWindow window;
+    for (int tick = 0; tick < n; ++tick) window.add(tick % 2 == 0 ? 1.0 : -1.0, tick * 1e-3, 1e-3);
+    const TrendWindow::Fit fit = window.fit();
+    const double nd = n;
+    const double p1p1 = nd * (nd * nd - 1.0) / 12.0, p2p2 = nd * (nd * nd - 1.0) * (nd * nd - 4.0) / 180.0;
+    // se = s / sqrt(sum p^2): the sum's relative error is twice se's.
+    const double rel1 = 2.0 * std::abs(fit.se1 * std::sqrt(p1p1) / fit.s - 1.0);
+    const double rel2 = 2.0 * std::abs(fit.se2 * std::sqrt(p2p2) / fit.s - 1.0);
+    std::printf("n = %d: relative error of sum p1^2 %.1e, of sum p2^2 %.1e\n", n, rel1, rel2);
+    // What the header states: below 1e-12 on sum p2^2 over 1e5 ticks, 1e-9 over 3.6e6.
+    EXPECT_LT(rel1, 1e-10) << n;
+    EXPECT_LT(rel2, n <= 100000 ? 1e-12 : 1e-9) << n;
+    EXPECT_TRUE(fit.flat(5.0)) << n;
+  }
 }
 
 TEST(TrendWindow, SamplesAtOneTimeShowNoSlopeAndAreNotFlat) {

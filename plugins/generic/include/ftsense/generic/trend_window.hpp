@@ -20,7 +20,8 @@
 //
 // Kept as running sums of k^0..k^4, r, k r, k^2 r and r^2: O(1) per sample, no allocation. The
 // moments are taken from the raw sums, which loses a few digits to cancellation: relative error
-// 1e-12 on sum p2^2 over 1e5 ticks, 1e-10 over 3.6e6 (an hour at 1 kHz).
+// 6e-13 on sum p2^2 over 1e5 consecutive ticks, 1.2e-10 over 3.6e6 (an hour at 1 kHz), as
+// tests/test_trend_window.cpp (LongWindowsKeepTheirPrecision) prints and bounds them.
 
 namespace ftsense::generic {
 
