@@ -373,10 +373,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
       1, static_cast<int>(std::lround(window_ticks(params.ramp_history_s, context.sample_period_s(), 1, "ramp_history_s") /
                                       static_cast<double>(generic::LevelHistory::kCapacity))));
   gain_forgetting_ = std::exp(-1.0 / gain_window_ticks_);
-  gain_xx_.assign(n, 0.0);
-  gain_xr_.assign(n, 0.0);
-  gain_x_.assign(n, 0.0);
-  gain_stance_.assign(n, StanceSums{});
+  gain_window_.resize(n);
+  since_unexplained_.resize(n);
   gain_raw_rr_.assign(n, 0.0);
   gain_held_ticks_.assign(n, 0);
   joint_gain_set_.assign(n, 0);
@@ -483,8 +481,9 @@ void ContactForceFdi::reset() noexcept {
   std::fill(foot_sum_.begin(), foot_sum_.end(), std::array<double, 2>{0.0, 0.0});
   std::fill(foot_sum_ticks_.begin(), foot_sum_ticks_.end(), 0);
   std::fill(foot_airborne_.begin(), foot_airborne_.end(), 0);
-  std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
   restart_gain_window();
+  since_unexplained_.restart();
+  since_unexplained_open_ = false;
   gain_unisolated_ = false;
   unmeasured_.reset();
   sum_levels_.clear();
@@ -2421,29 +2420,23 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     usable_ticks_in_a_row_ = std::min(usable_ticks_in_a_row_ + 1, kCountCap);
   }
   const double f = gain_forgetting_;
-  for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
-    const double x = recovered[j];
-    const bool on_ground = height[j] <= params_.airborne_height_m;
-    gain_xx_[j] = f * gain_xx_[j] + x * x;
-    gain_xr_[j] = f * gain_xr_[j] + x * residual;
-    gain_x_[j] = f * gain_x_[j] + x;
-    // The same fit within each stance of the channel's point (each centred on its own means):
-    // the current stance's sums, and the centred sums of the stances closed before it.
-    StanceSums& g = gain_stance_[j];
-    g.w *= f, g.x *= f, g.r *= f, g.xx *= f, g.xr *= f, g.closed_xx *= f, g.closed_xr *= f;
-    if (on_ground) {
-      g.w += 1.0, g.x += x, g.r += residual, g.xx += x * x, g.xr += x * residual;
-    } else if (g.w > 0.0) {
-      g.closed_xx += centred(g.xx, g.x, g.x, g.w);
-      g.closed_xr += centred(g.xr, g.x, g.r, g.w);
-      g.w = g.x = g.r = g.xx = g.xr = 0.0;
-    }
-  }
-  gain_r_ = f * gain_r_ + residual;
-  gain_rr_ = f * gain_rr_ + residual * residual;
-  if (!std::isfinite(gain_rr_)) {  // readings too large to square: start again rather than stay blind
+  if (!gain_window_.add(recovered, height, params_.airborne_height_m, residual, f)) {
     restart_gain_window();
     return;
+  }
+  // The window since an unexplained residual's onset: opened on a usable tick while no channel is
+  // flagged and the residual is off (as `unisolated` says), closed by any flag and after 3 windows.
+  const bool none_flagged =
+      std::all_of(channels_.begin(), channels_.end(), [](const Channel& c) { return c.type == FaultType::none; });
+  if (since_unexplained_open_ && (!none_flagged || since_unexplained_.ticks >= 3 * gain_window_ticks_)) {
+    since_unexplained_open_ = false;
+  }
+  if (!since_unexplained_open_ && none_flagged && std::abs(sum_filtered_) > params_.sum_threshold_N) {
+    since_unexplained_.restart();
+    since_unexplained_open_ = true;
+  }
+  if (since_unexplained_open_ && !since_unexplained_.add(recovered, height, params_.airborne_height_m, residual, f)) {
+    since_unexplained_open_ = false;
   }
   // Every channel held as a gain, read as it is together with the others (the joint test below).
   {
@@ -2598,21 +2591,119 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       return;
     }
   }
-  gain_weight_ = f * gain_weight_ + 1.0;
-  // Saturates by whole windows of 10, so the judging cadence and a full window both hold.
-  gain_ticks_ = gain_ticks_ < kCountCap ? gain_ticks_ + 1 : gain_ticks_ - 10 * (kCountCap / 20) + 1;
-  // Judge once per 10 ms, and only over a full window.
-  if (gain_ticks_ < gain_window_ticks_ || gain_ticks_ % 10 != 0 || !(gain_rr_ > 0.0)) return;
+  // Judge once per 10 ticks, and only over a full window; then the window since an unexplained
+  // residual's onset, while no channel is flagged.
+  if (gain_window_.ticks >= gain_window_ticks_ && gain_window_.ticks % 10 == 0 && gain_window_.rr > 0.0) {
+    judge_gain_window(t);
+  }
+  if (since_unexplained_open_ && since_unexplained_.ticks % 10 == 0 &&
+      std::all_of(channels_.begin(), channels_.end(), [](const Channel& c) { return c.type == FaultType::none; })) {
+    judge_since_unexplained(t);
+  }
+}
 
+void ContactForceFdi::GainWindow::resize(std::size_t channels) {
+  xx.assign(channels, 0.0);
+  xr.assign(channels, 0.0);
+  x.assign(channels, 0.0);
+  stance.assign(channels, StanceSums{});
+  restart();
+}
+
+void ContactForceFdi::GainWindow::restart() noexcept {
+  std::fill(xx.begin(), xx.end(), 0.0);
+  std::fill(xr.begin(), xr.end(), 0.0);
+  std::fill(x.begin(), x.end(), 0.0);
+  std::fill(stance.begin(), stance.end(), StanceSums{});
+  r = rr = weight = 0.0;
+  ticks = 0;
+}
+
+bool ContactForceFdi::GainWindow::add(std::span<const double> recovered, std::span<const double> height,
+                                      double airborne_height_m, double residual, double f) noexcept {
+  for (std::size_t j = 0; j < xx.size(); ++j) {
+    const double v = recovered[j];
+    const bool on_ground = height[j] <= airborne_height_m;
+    xx[j] = f * xx[j] + v * v;
+    xr[j] = f * xr[j] + v * residual;
+    x[j] = f * x[j] + v;
+    // The same fit within each stance of the channel's point (each centred on its own means):
+    // the current stance's sums, and the centred sums of the stances closed before it.
+    StanceSums& g = stance[j];
+    g.w *= f, g.x *= f, g.r *= f, g.xx *= f, g.xr *= f, g.closed_xx *= f, g.closed_xr *= f;
+    g.air_after_stance *= f;
+    if (on_ground) {
+      g.w += 1.0, g.x += v, g.r += residual, g.xx += v * v, g.xr += v * residual;
+    } else {
+      if (g.w > 0.0) {
+        g.closed_xx += centred(g.xx, g.x, g.x, g.w);
+        g.closed_xr += centred(g.xr, g.x, g.r, g.w);
+        g.w = g.x = g.r = g.xx = g.xr = 0.0;
+        g.stance_closed = true;
+      }
+      if (g.stance_closed) g.air_after_stance += 1.0;
+    }
+  }
+  r = f * r + residual;
+  rr = f * rr + residual * residual;
+  weight = f * weight + 1.0;
+  // Saturates by whole windows of 10, so the judging cadence and a full window both hold.
+  ticks = ticks < kCountCap ? ticks + 1 : ticks - 10 * (kCountCap / 20) + 1;
+  return std::isfinite(rr);
+}
+
+ContactForceFdi::GainFit ContactForceFdi::best_gain_fit(const GainWindow& w, double min_power) const noexcept {
+  // The channel whose fit r ~ b + beta_j N^_j explains the most of the residual's variation.
+  // With the intercept b, an offset anywhere (a constant r) is b, not a gain: through the origin
+  // it would be fitted by beta_j N^_j of any pad that is loaded most of the time.
+  GainFit fit{.best = w.xx.size()};
+  const double r_mean = w.r / w.weight;
+  fit.r_variation = w.rr - w.r * r_mean;
+  if (!(fit.r_variation > 0.0)) return fit;
+  for (std::size_t j = 0; j < w.xx.size(); ++j) {
+    const Channel& c = channels_[j];
+    // Hardly loaded: not blamed, but its share still counts against the best one's isolation (at
+    // the end of a stance every pad of the foot unloads alike, and a loaded neighbour was blamed
+    // for what such a pad explained better).
+    const bool loaded = w.xx[j] >= min_power;
+    const double x_variation = centred(w.xx[j], w.x[j], w.x[j], w.weight);
+    const double covariation = w.xr[j] - w.x[j] * r_mean;
+    if (!(x_variation > 0.0)) continue;
+    const double explained = covariation * covariation / (x_variation * fit.r_variation);
+    const bool judged = c.type == FaultType::none || c.type == FaultType::gain;  // others: by their own evidence
+    if (loaded && judged && explained > fit.explained) {
+      fit.second_explained = std::max(fit.second_explained, fit.explained);
+      fit.best = j;
+      fit.explained = explained;
+      fit.beta = covariation / x_variation;
+      fit.x_variation = x_variation;
+      fit.covariation = covariation;
+    } else {
+      fit.second_explained = std::max(fit.second_explained, explained);
+    }
+  }
+  return fit;
+}
+
+bool ContactForceFdi::stances_confirm(const GainWindow& w, const GainFit& fit, double threshold) noexcept {
+  const GainWindow::StanceSums& g = w.stance[fit.best];
+  const double x_variation = g.closed_xx + (g.w > 0.0 ? centred(g.xx, g.x, g.x, g.w) : 0.0);
+  const double covariation = g.closed_xr + (g.w > 0.0 ? centred(g.xr, g.x, g.r, g.w) : 0.0);
+  const double stance_beta = x_variation > 0.0 ? covariation / x_variation : 0.0;
+  return stance_beta * fit.beta > 0.0 && std::abs(stance_beta) > threshold;
+}
+
+void ContactForceFdi::judge_gain_window(double t) noexcept {
+  GainWindow& w = gain_window_;
   // Re-admission by model comparison, once the correction has held for a window: a channel held
   // as a gain fault that carried load and whose reading, taken as it is, leaves no more residual
   // power than its correction does is healthy again (this needs no isolation: the pads of one
   // foot are fitted alike, so a small gain error on a healthy pad might never stand out).
-  const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * gain_weight_;
+  const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * w.weight;
   bool readmitted = false;
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
     if (channels_[j].type == FaultType::gain && gain_held_ticks_[j] >= gain_window_ticks_ &&
-        gain_xx_[j] >= min_power && gain_raw_rr_[j] <= gain_held_rr_[j]) {
+        w.xx[j] >= min_power && gain_raw_rr_[j] <= gain_held_rr_[j]) {
       clear(channels_[j]);
       readmitted = true;
     }
@@ -2628,7 +2719,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   if (!readmitted && joint_gain_ticks_ >= gain_window_ticks_ && joint_held_rr_ > kReadingWinsPowerRatio * joint_raw_rr_) {
     bool loaded = true;
     for (std::size_t j = 0; j < channels_.size(); ++j) {
-      if (joint_gain_set_[j] != 0) loaded = loaded && gain_xx_[j] >= min_power;
+      if (joint_gain_set_[j] != 0) loaded = loaded && w.xx[j] >= min_power;
     }
     for (std::size_t j = 0; j < channels_.size() && loaded; ++j) {
       if (joint_gain_set_[j] != 0) {
@@ -2641,77 +2732,42 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     restart_gain_window();
     return;
   }
-  // The channel whose fit r ~ b + beta_j N^_j explains the most of the residual's variation.
-  // With the intercept b, an offset anywhere (a constant r) is b, not a gain: through the origin
-  // it would be fitted by beta_j N^_j of any pad that is loaded most of the time.
-  const double r_mean = gain_r_ / gain_weight_;
-  const double r_variation = gain_rr_ - gain_r_ * r_mean;
-  if (!(r_variation > 0.0)) return;
-  std::size_t best = gain_xx_.size();
-  double best_explained = 0.0;
-  double second_explained = 0.0;  // of any other channel, flagged or not: isolation needs a clear winner
-  double beta = 0.0;  // the best channel's slope
-  double best_x_variation = 0.0, best_covariation = 0.0;
-  for (std::size_t j = 0; j < gain_xx_.size(); ++j) {
-    const Channel& c = channels_[j];
-    if (!(gain_xx_[j] >= min_power)) continue;  // hardly loaded: nothing to see
-    const double x_variation = centred(gain_xx_[j], gain_x_[j], gain_x_[j], gain_weight_);
-    const double covariation = gain_xr_[j] - gain_x_[j] * r_mean;
-    if (!(x_variation > 0.0)) continue;
-    const double explained = covariation * covariation / (x_variation * r_variation);
-    const bool judged = c.type == FaultType::none || c.type == FaultType::gain;  // others: by their own evidence
-    if (judged && explained > best_explained) {
-      second_explained = std::max(second_explained, best_explained);
-      best = j;
-      best_explained = explained;
-      beta = covariation / x_variation;
-      best_x_variation = x_variation;
-      best_covariation = covariation;
-    } else {
-      second_explained = std::max(second_explained, explained);
-    }
-  }
+  const GainFit fit = best_gain_fit(w, min_power);
   // The pads of one foot load together, so a gain fault on one is fitted almost as well by its
   // neighbours (the sum residual cannot see moments): blame a channel only when its fit stands out.
   // A strong fit that does not stand out is a fault that cannot be isolated: reported as such
   // (`unisolated`) until a window shows no strong fit or an isolated one.
-  if (best == gain_xx_.size() || best_explained < params_.gain_explained) {
+  if (fit.best == w.xx.size() || fit.explained < params_.gain_explained) {
     gain_unisolated_ = false;
     return;
   }
-  Channel& c = channels_[best];
+  Channel& c = channels_[fit.best];
   const double threshold = c.type == FaultType::none ? params_.gain_threshold : 0.5 * params_.gain_threshold;
-  if (std::abs(beta) <= threshold) {
+  if (std::abs(fit.beta) <= threshold) {
     gain_unisolated_ = false;
     return;
   }
-  gain_unisolated_ = best_explained - second_explained < params_.gain_isolation_margin;
+  gain_unisolated_ = fit.explained - fit.second_explained < params_.gain_isolation_margin;
   if (gain_unisolated_) return;
   // A new gain must hold within each stance too: a fault that begins as the pad lands (an offset
   // b: r = 0 with N^ = 0 in the air before, r = b with N^ = N + b after) lies on a line across the
   // landing, but within a stance r stays b while N^ moves. Only a confirmation: within a stance
   // the limb dynamics follow the loads, too weak a test to raise a flag by itself.
-  if (c.type == FaultType::none) {
-    const StanceSums& g = gain_stance_[best];
-    const double x_variation = g.closed_xx + (g.w > 0.0 ? centred(g.xx, g.x, g.x, g.w) : 0.0);
-    const double covariation = g.closed_xr + (g.w > 0.0 ? centred(g.xr, g.x, g.r, g.w) : 0.0);
-    const double stance_beta = x_variation > 0.0 ? covariation / x_variation : 0.0;
-    if (!(stance_beta * beta > 0.0) || std::abs(stance_beta) <= threshold) return;
-  }
+  if (c.type == FaultType::none && !stances_confirm(w, fit, threshold)) return;
   // A gain reads its load N k times, so k is told from an additive error only where the load
   // moved. A new flag whose implied load N^ = x - r stayed within gain_min_load_N RMS over the
   // window (a robot standing while a pad drifts: r and x rise together, beta near 1, k = 10 from
   // the clamp below) is an additive fault, typed and sized from the sum residual's history.
   if (c.type == FaultType::none) {
-    const double load_variation = best_x_variation - 2.0 * best_covariation + r_variation;
+    const double load_variation = fit.x_variation - 2.0 * fit.covariation + fit.r_variation;
     if (load_variation < min_power) {
-      raise_still_load_fault(c, (gain_x_[best] - gain_r_) / gain_weight_, t);
+      raise_still_load_fault(c, (w.x[fit.best] - w.r) / w.weight, t);
       restart_gain_window();
       return;
     }
   }
   // recovered_new = recovered (1 - beta): k_new = k / (1 - beta).
-  double gain = (c.type == FaultType::gain ? c.gain : 1.0) / (1.0 - std::clamp(beta, -5.0, 0.9));
+  double gain = (c.type == FaultType::gain ? c.gain : 1.0) / (1.0 - std::clamp(fit.beta, -5.0, 0.9));
   if (std::abs(gain) < kMinGain) gain = std::copysign(kMinGain, gain);  // the recovery divides by it
   if (c.type == FaultType::gain && std::abs(1.0 - 1.0 / gain) < 0.5 * params_.gain_threshold) {
     clear(c);  // the reading is its force again
@@ -2720,6 +2776,33 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     c.gain = gain;
   }
   // The window's residuals were computed with the old correction: start a new one.
+  restart_gain_window();
+}
+
+void ContactForceFdi::judge_since_unexplained(double t) noexcept {
+  // The same tests as the gain window's for a new flag, on the ticks since the residual left its
+  // bound. Not before the best channel's point has closed a stance within it and been in the air
+  // clear_s since: a gain reads its load k times, so its residual follows the load to 0 in the
+  // air, where an additive fault's stays. Still loads are left to the gain window (their type is
+  // the residual's history, which this window does not hold).
+  const GainWindow& w = since_unexplained_;
+  const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * w.weight;
+  const GainFit fit = best_gain_fit(w, min_power);
+  if (fit.best == w.xx.size() || fit.explained < params_.gain_explained ||
+      std::abs(fit.beta) <= params_.gain_threshold ||
+      fit.explained - fit.second_explained < params_.gain_isolation_margin) {
+    return;
+  }
+  if (w.stance[fit.best].air_after_stance < stance_min_ticks_) return;
+  if (!stances_confirm(w, fit, params_.gain_threshold)) return;
+  if (fit.x_variation - 2.0 * fit.covariation + fit.r_variation < min_power) return;
+  Channel& c = channels_[fit.best];
+  double gain = 1.0 / (1.0 - std::clamp(fit.beta, -5.0, 0.9));
+  if (std::abs(gain) < kMinGain) gain = std::copysign(kMinGain, gain);  // the recovery divides by it
+  raise(c, FaultType::gain, t);
+  c.gain = gain;
+  since_unexplained_open_ = false;
+  // The gain window's residuals were computed without the correction: start a new one.
   restart_gain_window();
 }
 
@@ -2819,18 +2902,12 @@ void ContactForceFdi::restart_gain_window() noexcept {
   std::fill(joint_gain_set_.begin(), joint_gain_set_.end(), 0);
   joint_raw_rr_ = joint_held_rr_ = 0.0;
   joint_gain_ticks_ = 0;
-  std::fill(gain_xx_.begin(), gain_xx_.end(), 0.0);
-  std::fill(gain_xr_.begin(), gain_xr_.end(), 0.0);
-  std::fill(gain_x_.begin(), gain_x_.end(), 0.0);
-  std::fill(gain_stance_.begin(), gain_stance_.end(), StanceSums{});
-  gain_r_ = 0.0;
+  gain_window_.restart();
   std::fill(gain_raw_rr_.begin(), gain_raw_rr_.end(), 0.0);
   std::fill(gain_held_rr_.begin(), gain_held_rr_.end(), 0.0);
   std::fill(gain_held_ticks_.begin(), gain_held_ticks_.end(), 0);
   std::fill(stance_powers_.begin(), stance_powers_.end(), StancePowers{});
   std::fill(stance_cusum_.begin(), stance_cusum_.end(), StancePowers{});
-  gain_rr_ = gain_weight_ = 0.0;
-  gain_ticks_ = 0;
 }
 
 }  // namespace ftsense::biped

@@ -293,6 +293,21 @@
 //             refined on them would fit the change of correction), and takes no tick while a loaded channel is
 //             substituted from the total force (which absorbs the residual) or within
 //             touchdown_guard_s of a touchdown (impacts).
+//             A gain that begins in the air lands reading k N with no jump, and the window then
+//             holds the stances before it, in which its pad carried load with r at 0: mixed
+//             with them its fit is flat (0.3 % of r explained in a walk where it explained
+//             99.6 % over its first stance), and it waited seconds for them to be forgotten.
+//             So the same sums are kept beside it since the low-passed residual last left
+//             sum_threshold_N with no channel flagged (`unisolated`), closed by any flag and
+//             after 3 gain windows, and a new gain is raised from them by the same tests (share
+//             explained, its isolation margin, |beta|, the stances' confirmation, a load that
+//             moved) once the best channel's point has closed a stance within them and stayed
+//             in the air clear_s after: a gain reads 0 there as its load does, where an
+//             additive fault's residual stays. In both windows a channel under gain_min_load_N
+//             RMS is not blamed but still competes for isolation: at the end of a stance every
+//             pad of the foot unloads alike, and a loaded healthy neighbour was blamed for what
+//             the gain's own pad explained better. Not a restart of the gain window: a full
+//             window after the onset delayed gains that the window found within a second.
 //   follow    a channel raised as offset or drift whose smoothed reading spans less than
 //             follow_ratio of what its leave-one-out force (smoothed alike) spans since, once that force has moved
 //             by 2 sum_threshold_N (beyond its own error), both spans taken from when the
@@ -720,6 +735,10 @@ class ContactForceFdi {
                        std::span<const double> height, double residual,
                        bool usable, double t) noexcept;
   void restart_gain_window() noexcept;
+  // The gain window's verdicts once it is full: re-admissions, then a new or refined gain.
+  void judge_gain_window(double t) noexcept;
+  // A new gain from the window since an unexplained residual's onset (since_unexplained_).
+  void judge_since_unexplained(double t) noexcept;
   // A drift that has stopped, its reading `level` [N] off its load: held as an offset there.
   void hold_as_offset(Channel& c, double level) noexcept;
   // How far off its load [N] a drift's flat reading over `ticks` must sit to be held as a plateau
@@ -1000,19 +1019,51 @@ class ContactForceFdi {
   // How long an end or onset seen inside a guard may wait for its judgment (the guards keep coming).
   double guard_pending_limit_s_ = 0.0;
   generic::SpikeHoldRule spike_rule_;  // spike_hold_s, min(clear_s, spike_hold_s), ln(1 / spike_gap_probability)
-  // Gain test: exponentially weighted <N^_j, N^_j>, <N^_j, r> per channel and <r, r>.
-  std::vector<double> gain_xx_;
-  std::vector<double> gain_xr_;
-  std::vector<double> gain_x_;  // exponentially weighted sum of N^_j (the fit's intercept)
-  double gain_r_ = 0.0;         // and of r
-  // The fit within each stance of channel j's point, exponentially weighted alike: the current
-  // stance's weight and sums of N^_j, r, N^_j^2, N^_j r, and the centred sums of closed stances.
-  struct StanceSums {
-    double w = 0.0, x = 0.0, r = 0.0, xx = 0.0, xr = 0.0;
-    double closed_xx = 0.0, closed_xr = 0.0;
+  // Gain test: the fit r ~ b + beta_j N^_j of the corrected sum residual r on every channel's
+  // recovered reading N^_j, exponentially weighted over a window (forgetting factor f per usable
+  // tick): <N^_j, N^_j>, <N^_j, r>, sum N^_j per channel, sum r, <r, r> and the weight sum f^i.
+  struct GainWindow {
+    // The fit within each stance of channel j's point, weighted alike: the current stance's
+    // weight and sums of N^_j, r, N^_j^2, N^_j r, and the centred sums of closed stances;
+    // whether a stance of its point closed within the window, and the weight of its ticks in the
+    // air since (a gain reads 0 there, as its load does: the line through the origin needs those
+    // ticks as well).
+    struct StanceSums {
+      double w = 0.0, x = 0.0, r = 0.0, xx = 0.0, xr = 0.0;
+      double closed_xx = 0.0, closed_xr = 0.0;
+      bool stance_closed = false;
+      double air_after_stance = 0.0;
+    };
+    std::vector<double> xx, xr, x;
+    std::vector<StanceSums> stance;
+    double r = 0.0, rr = 0.0, weight = 0.0;
+    int ticks = 0;  // usable ticks since the window last restarted (saturating by whole windows of 10)
+    void resize(std::size_t channels);
+    void restart() noexcept;
+    // One usable tick; false when <r, r> has grown too large to hold (start again, not stay blind).
+    bool add(std::span<const double> recovered, std::span<const double> height, double airborne_height_m,
+             double residual, double f) noexcept;
   };
-  std::vector<StanceSums> gain_stance_;
-  double gain_rr_ = 0.0;
+  // A window's best fit among the channels not flagged or held as gains that carried load
+  // (<N^_j, N^_j> at least min_power): the share of r's variation it explains
+  // (cov^2 / (var N^ var r)), the best share of any other channel (those under min_power too),
+  // its slope and the centred sums it came from. best == channels when no channel carried load.
+  struct GainFit {
+    std::size_t best;
+    double explained = 0.0, second_explained = 0.0, beta = 0.0;
+    double x_variation = 0.0, covariation = 0.0, r_variation = 0.0;
+  };
+  [[nodiscard]] GainFit best_gain_fit(const GainWindow& w, double min_power) const noexcept;
+  // A new gain's confirmation within the stances of `w` (see gain_regression): beta of the fit's
+  // sign and beyond `threshold` there too.
+  [[nodiscard]] static bool stances_confirm(const GainWindow& w, const GainFit& fit, double threshold) noexcept;
+  GainWindow gain_window_;
+  // The same fit since the corrected sum residual last left its bound with no channel flagged
+  // (`unisolated`): a gain that begins in the air lands reading k times its load with no jump, and
+  // the gain window then holds the stances before it, on which its pad's fit is flat. Kept beside
+  // gain_window_ (which judges as before), for 3 gain windows at most, closed by any flag.
+  GainWindow since_unexplained_;
+  bool since_unexplained_open_ = false;
   // Per channel held as a gain fault, since its correction was last set: ticks, <r_raw, r_raw>
   // with r_raw = r + N_j - N^_j (the reading taken as it is) and <r, r>.
   std::vector<int> gain_held_ticks_;
@@ -1127,9 +1178,7 @@ class ContactForceFdi {
   double corrected_level_ = 0.0;  // the same low-pass of the corrected sum residual (offsets and drifts in it corrected)
   double residual_level_seed_weight_ = 1.0;
   double residual_level_gain_ = 0.02;  // 1 / stance_min_ticks_
-  double gain_weight_ = 0.0;
   double gain_forgetting_ = 1.0;
-  int gain_ticks_ = 0;   // ticks accumulated since the window last restarted
   bool gain_unisolated_ = false;  // a strong gain fit that no single channel stands out in
   int gain_window_ticks_ = 1;
   // Substituted channels' loads: the sum and, on rigid soles, the plane relations.
