@@ -2425,7 +2425,10 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     return;
   }
   // The window since an unexplained residual's onset: opened on a usable tick while no channel is
-  // flagged and the residual is off (as `unisolated` says), closed by any flag and after 3 windows.
+  // flagged and the residual is off (as `unisolated` says), closed by any flag and after 3 windows,
+  // not when the residual returns within its bound (a gain's does in every swing). So an earlier
+  // excursion that resolved itself keeps the stances after it in the window (the 2 s window then
+  // judges as before, or this one once 3 windows have passed).
   const bool none_flagged =
       std::all_of(channels_.begin(), channels_.end(), [](const Channel& c) { return c.type == FaultType::none; });
   if (since_unexplained_open_ && (!none_flagged || since_unexplained_.ticks >= 3 * gain_window_ticks_)) {
@@ -2802,6 +2805,7 @@ void ContactForceFdi::judge_since_unexplained(double t) noexcept {
   raise(c, FaultType::gain, t);
   c.gain = gain;
   since_unexplained_open_ = false;
+  gain_unisolated_ = false;  // isolated now: the gain window, restarted below, judges again in a window
   // The gain window's residuals were computed without the correction: start a new one.
   restart_gain_window();
 }

@@ -297,12 +297,13 @@
 //             holds the stances before it, in which its pad carried load with r at 0: mixed
 //             with them its fit is flat (0.3 % of r explained in a walk where it explained
 //             99.6 % over its first stance), and it waited seconds for them to be forgotten.
-//             So the same sums are kept beside it since the low-passed residual last left
-//             sum_threshold_N with no channel flagged (`unisolated`), closed by any flag and
-//             after 3 gain windows, and a new gain is raised from them by the same tests (share
-//             explained, its isolation margin, |beta|, the stances' confirmation, a load that
-//             moved) once the best channel's point has closed a stance within them and stayed
-//             in the air clear_s after: a gain reads 0 there as its load does, where an
+//             So the same sums are kept beside it from where the low-passed residual left
+//             sum_threshold_N with no channel flagged (`unisolated`; it stays open while the
+//             residual returns within its bound, as a gain's does in every swing), closed by
+//             any flag and after 3 gain windows, and a new gain is raised from them by the same
+//             tests (share explained, its isolation margin, |beta|, the stances' confirmation, a
+//             load that moved) once the best channel's point has closed a stance within them and
+//             been in the air clear_s (weighted alike) since the first such stance: a gain reads 0 there as its load does, where an
 //             additive fault's residual stays. In both windows a channel under gain_min_load_N
 //             RMS is not blamed but still competes for isolation: at the end of a stance every
 //             pad of the foot unloads alike, and a loaded healthy neighbour was blamed for what
@@ -1058,8 +1059,8 @@ class ContactForceFdi {
   // sign and beyond `threshold` there too.
   [[nodiscard]] static bool stances_confirm(const GainWindow& w, const GainFit& fit, double threshold) noexcept;
   GainWindow gain_window_;
-  // The same fit since the corrected sum residual last left its bound with no channel flagged
-  // (`unisolated`): a gain that begins in the air lands reading k times its load with no jump, and
+  // The same fit from where the corrected sum residual left its bound with no channel flagged
+  // (`unisolated`; open through its returns within the bound): a gain that begins in the air lands reading k times its load with no jump, and
   // the gain window then holds the stances before it, on which its pad's fit is flat. Kept beside
   // gain_window_ (which judges as before), for 3 gain windows at most, closed by any flag.
   GainWindow since_unexplained_;
