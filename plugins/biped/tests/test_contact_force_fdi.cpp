@@ -1032,12 +1032,30 @@ TEST(ContactForceFdi, AGainThatEndedInTheAirIsDroppedWithinTheNextStance) {
   EXPECT_EQ(doubling_gain_cleared_at(false, recovered), -1);
 }
 
-// A walk of 1 s strides: the left foot stands for 700 ticks and swings (3 cm up) for 300; its
-// pads roll from heel to toe and sway from side to side, each with a load of its own shape
-// (s the stance's phase in [0, 1)):
+// One tick k of a walk of 1 s strides: the left foot stands for 700 ticks and swings (3 cm up)
+// for 300, its pads' loads in stance given by `left_loads(s)` (s the stance's phase in [0, 1);
+// 0 in the swing); the right foot's pads carry 150 N; every reading +-0.5 N alternately, and
+// l_foot/p4's k_true times its load from tick gain_from.
+template <class LeftLoads>
+void walk_tick(Feet& feet, int k, const LeftLoads& left_loads, int gain_from, double k_true) {
+  const int phase = k % 1000;
+  const bool swinging = phase >= 700;
+  feet.left_foot_at(swinging ? 0.03 : 0.0);
+  const std::array<double, 4> left = left_loads(phase / 700.0);
+  const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+  double truth = 0.0;
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    feet.measured[j] = (j < 4 ? (swinging ? 0.0 : left[j]) : 150.0) + wiggle;
+    truth += feet.measured[j];
+  }
+  if (k >= gain_from) feet.measured[3] *= k_true;
+  feet.step(truth);
+}
+
+// That walk with the left pads rolling from heel to toe and swaying from side to side, each with a
+// load of its own shape:
 //   rear  (p3, p4): 300 (1 - s) + 50 +- 60 sin(2 pi s),  front (p1, p2): 300 s + 50 +- 60 sin(2 pi s),
-// + on the left side (p1, p3), - on the right (p2, p4); the right foot's pads read 150 N each.
-// From tick `gain_from` l_foot/p4 reads `k_true` times its load. Returns the first tick it is
+// + on the left side (p1, p3), - on the right (p2, p4). Returns the first tick l_foot/p4 is
 // flagged (-1: never, by tick 12000), and its type and gain (reading / recovered value) on tick
 // `check` (in a stance).
 struct Flagged {
@@ -1048,22 +1066,13 @@ struct Flagged {
 Flagged walking_gain(int gain_from, double k_true, int check) {
   Feet feet(suralp(), 1e-3);
   Flagged out;
-  for (int k = 0; k < 12000; ++k) {
-    const int phase = k % 1000;
-    const bool swinging = phase >= 700;
-    feet.left_foot_at(swinging ? 0.03 : 0.0);
-    const double s = phase / 700.0;
+  const auto rolling = [](double s) {
     const double sway = 60.0 * std::sin(2.0 * std::numbers::pi * s);
-    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
-    const std::array<double, 4> left = {300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway,
-                                        300.0 * (1.0 - s) + 50.0 + sway, 300.0 * (1.0 - s) + 50.0 - sway};
-    double truth = 0.0;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : left[j]) : 150.0) + wiggle;
-      truth += feet.measured[j];
-    }
-    if (k >= gain_from) feet.measured[3] *= k_true;
-    feet.step(truth);
+    return std::array<double, 4>{300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway, 300.0 * (1.0 - s) + 50.0 + sway,
+                                 300.0 * (1.0 - s) + 50.0 - sway};
+  };
+  for (int k = 0; k < 12000; ++k) {
+    walk_tick(feet, k, rolling, gain_from, k_true);
     for (std::size_t j = 0; j < kChannels; ++j) {
       if (j != 3) {
         EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
@@ -1103,7 +1112,7 @@ TEST(ContactForceFdi, AGainThatBeginsInTheAirIsFittedOnTheTicksSinceTheResidualL
 }
 
 // The walk of walking_gain, judged on a 6 N sum bound: l_foot/p4 carries 30 (1 - s) + 10 N in
-// stance and reads `k_true` times it from tick 4800 (a swing), under gain_min_load_N (30 N) RMS;
+// stance and reads `k_true` times it from tick gain_from (4800: a swing), under gain_min_load_N (30 N) RMS;
 // l_foot/p2 carries 20 + 1.2 (30 (1 - s) + 10) N, p4's shape on a load, and p3
 // 150 + 100 sin(2 pi s). Returns the ticks x channels flagged other than p4 over 12 s.
 int light_gain_beside_a_loaded_neighbour_blames(double k_true, double sum_threshold_N = 6.0, int gain_from = 4800) {
@@ -1111,22 +1120,13 @@ int light_gain_beside_a_loaded_neighbour_blames(double k_true, double sum_thresh
   p.sum_threshold_N = sum_threshold_N;
   Feet feet(p, 1e-3);
   int others = 0;
-  for (int k = 0; k < 12000; ++k) {
-    const int phase = k % 1000;
-    const bool swinging = phase >= 700;
-    feet.left_foot_at(swinging ? 0.03 : 0.0);
-    const double s = phase / 700.0;
+  const auto light_heel = [](double s) {
     const double heel = 30.0 * (1.0 - s) + 10.0;
-    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
-    const std::array<double, 4> left = {300.0 * s + 50.0, 20.0 + 1.2 * heel,
-                                        150.0 + 100.0 * std::sin(2.0 * std::numbers::pi * s), heel};
-    double truth = 0.0;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : left[j]) : 150.0) + wiggle;
-      truth += feet.measured[j];
-    }
-    if (k >= gain_from) feet.measured[3] *= k_true;
-    feet.step(truth);
+    return std::array<double, 4>{300.0 * s + 50.0, 20.0 + 1.2 * heel,
+                                 150.0 + 100.0 * std::sin(2.0 * std::numbers::pi * s), heel};
+  };
+  for (int k = 0; k < 12000; ++k) {
+    walk_tick(feet, k, light_heel, gain_from, k_true);
     for (std::size_t j = 0; j < kChannels; ++j) {
       if (j != 3 && feet.type(j) != FaultType::none) {
         if (others == 0) std::printf("  channel %zu flagged %s at tick %d\n", j, std::string(to_string(feet.type(j))).c_str(), k);
