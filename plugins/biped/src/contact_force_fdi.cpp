@@ -381,6 +381,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
   gain_held_rr_.assign(n, 0.0);
   stance_powers_.assign(n, StancePowers{});
   stance_cusum_.assign(n, StancePowers{});
+  guard_powers_.assign(n, StancePowers{});
   stance_min_ticks_ = std::max(2, static_cast<int>(std::min(std::round(params.clear_s / period_s_), 1e9)));
   residual_level_gain_ = 1.0 / static_cast<double>(stance_min_ticks_);
   channels_.resize(n);
@@ -1637,6 +1638,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   unread_load_test(height, fz_ok && all_finite_readings && std::isfinite(residual), t);
   gain_regression(measured, recovered, height, residual,
                   fz_ok && all_finite_readings && !touching_down && !uncorrected_loaded, t);
+  if (fz_ok && all_finite_readings && touching_down && !uncorrected_loaded) {
+    compare_held_gain_in_guard(measured, recovered, height, residual, t);
+  }
   // The recovered value within what the physics allows, before (or while) the tests decide. Only
   // the output: the tests judge the reading, and the channel's state keeps its own value.
   // - A pad in the air carries nothing: an unflagged airborne reading beyond airborne_threshold_N
@@ -2505,7 +2509,21 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
       gain_held_rr_[j] = f * gain_held_rr_[j] + residual * residual;
       gain_held_ticks_[j] = std::min(gain_held_ticks_[j] + 1, kCountCap);
     }
-    if (!judged) continue;
+    if (!judged) {
+      if (guard_powers_[j].ticks > 0) guard_powers_[j] = StancePowers{};
+      continue;
+    }
+    // The guard's ticks, judged alone once it is over (compare_held_gain_in_guard).
+    if (guard_powers_[j].ticks > 0) {
+      const bool reading_won = c.type == FaultType::gain && corrections == 1 &&
+                               guard_powers_[j].reading_wins(stance_min_ticks_, stance_bound);
+      guard_powers_[j] = StancePowers{};
+      if (reading_won) {
+        clear(channels_[j]);
+        restart_gain_window();
+        return;
+      }
+    }
     // Two explanations of the stance, the correction and the reading as it is: the reading wins
     // when the correction leaves 4 times its residual power (twice its RMS), over clear_s of
     // usable ticks in which the correction itself moved the reading by gain_min_load_N RMS or
@@ -2602,6 +2620,38 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   if (since_unexplained_open_ && since_unexplained_.ticks % 10 == 0 &&
       std::all_of(channels_.begin(), channels_.end(), [](const Channel& c) { return c.type == FaultType::none; })) {
     judge_since_unexplained(t);
+  }
+}
+
+void ContactForceFdi::compare_held_gain_in_guard(std::span<const double> measured, std::span<const double> recovered,
+                                                 std::span<const double> height, double residual,
+                                                 double t) noexcept {
+  // A gain that ended while its pad was in the air lands reading its load again, its correction
+  // x / k now wrong by d = x (1 / k - 1) in the sum residual. Judged only on the ticks after the
+  // landing's guard, it was still held when the jump test resumed there, and that test took the
+  // wrong correction's moves for its neighbours' jumps (a x0.5 gain that ended in the air: three
+  // healthy pads raised as offsets 10 ms after the guard). So the guard's ticks get the stance
+  // comparison of their own, judged on the first usable tick after the guard, before a group the
+  // jump test forms there has had its jump window. Apart from the stance's: a gain that ends
+  // within the guard, after ticks on which it was right, is judged after the guard as before.
+  // Not judged inside the guard: the impact's error e of the total force enters both
+  // explanations alike (the correction leaves e, or e + d where the gain has ended; the reading
+  // leaves e - d, or e), but a pulse of e of d's sign and size, early in the guard, can make a
+  // gain still right look ended over clear_s (a 300 N impact fading over 20 ms against
+  // d = 150 N). Over the whole guard the pulse is diluted by the ticks after it, where only d
+  // remains.
+  for (const Channel& c : channels_) {
+    if (c.type != c.recovered_as) return;  // re-typed this tick: the tick belongs to neither model
+  }
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    const Channel& c = channels_[j];
+    StancePowers& guard = guard_powers_[j];
+    if (c.type != FaultType::gain || height[j] > params_.airborne_height_m) {
+      if (guard.ticks > 0) guard = StancePowers{};
+      continue;
+    }
+    const double correction = measured[j] - recovered[j];
+    guard.add(residual + correction, residual, correction, t, period_s_);
   }
 }
 
@@ -2912,6 +2962,7 @@ void ContactForceFdi::restart_gain_window() noexcept {
   std::fill(gain_held_ticks_.begin(), gain_held_ticks_.end(), 0);
   std::fill(stance_powers_.begin(), stance_powers_.end(), StancePowers{});
   std::fill(stance_cusum_.begin(), stance_cusum_.end(), StancePowers{});
+  std::fill(guard_powers_.begin(), guard_powers_.end(), StancePowers{});
 }
 
 }  // namespace ftsense::biped

@@ -247,7 +247,11 @@
 //             changed (a gain window at least), each having carried load over the window); and
 //             within one stance, once it has clear_s of usable ticks, when the correction leaves
 //             4 times the residual power the reading leaves as it is, and moved the reading by
-//             gain_min_load_N RMS or more: the two explanations of that stance, compared (for an
+//             gain_min_load_N RMS or more: the two explanations of that stance, compared (a gain:
+//             also over a touchdown guard's ticks alone, judged once on the first usable tick
+//             after it, before the jump test resumed there takes the moves of a correction gone
+//             wrong in the air for its neighbours' jumps; over the whole guard, where a pulse of
+//             the impact's error is diluted; for an
 //             offset too, whose end stepped under jump_threshold_N; an offset raised by a jump
 //             under load and not yet seen in the air must beat the gain its onset implies too,
 //             which must have moved the reading by gain_min_load_N RMS), over the stance so far or
@@ -736,6 +740,10 @@ class ContactForceFdi {
                        std::span<const double> height, double residual,
                        bool usable, double t) noexcept;
   void restart_gain_window() noexcept;
+  // A touchdown guard's tick (the regression's usable ticks but for the guard): a held gain's
+  // comparison of its two explanations over the guard (guard_powers_), judged after it.
+  void compare_held_gain_in_guard(std::span<const double> measured, std::span<const double> recovered,
+                                  std::span<const double> height, double residual, double t) noexcept;
   // The gain window's verdicts once it is full: re-admissions, then a new or refined gain.
   void judge_gain_window(double t) noexcept;
   // A new gain from the window since an unexplained residual's onset (since_unexplained_).
@@ -1171,6 +1179,9 @@ class ContactForceFdi {
   // reading's lead was last at 0 (a fault that ends late in a long stance: judged on the ticks
   // since its end).
   std::vector<StancePowers> stance_powers_, stance_cusum_;
+  // A held gain's same comparison over a touchdown guard's ticks alone, judged on the first usable
+  // tick after it (compare_held_gain_in_guard).
+  std::vector<StancePowers> guard_powers_;
   int stance_min_ticks_ = 50;  // round(clear_s / T), at least 2
   int usable_ticks_in_a_row_ = 0;  // ticks the stance comparison took in a row (capped)
   // The sum residual's level over those ticks: a first-order low-pass of time constant
