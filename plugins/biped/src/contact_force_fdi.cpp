@@ -478,6 +478,8 @@ void ContactForceFdi::reset() noexcept {
   started_ = false;
   group_pending_ = false;
   late_pending_ = group_deferred_ = false;
+  ticks_since_divisor_change_ = kCountCap;
+  guard_powers_last_s_ = -1e300;
   std::fill(last_touchdown_s_.begin(), last_touchdown_s_.end(), -1e9);
   std::fill(foot_sum_.begin(), foot_sum_.end(), std::array<double, 2>{0.0, 0.0});
   std::fill(foot_sum_ticks_.begin(), foot_sum_ticks_.end(), 0);
@@ -679,6 +681,26 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   double raw_sum = 0.0;
   double median_lag_correction = 0.0;  // for the last tick's residual (below)
   bool all_finite_readings = true;  // the gain test takes only ticks where every channel has a value
+  // A gain fault's reading enters the jump test's residual as x / k (below): a gain set, refitted or
+  // dropped on a loaded pad steps that residual by x (1 / k_new - 1 / k_old) on the next tick,
+  // which a group of jumps whose windows straddle it would take for its own step (a x0.5 gain that
+  // ended in the air, dropped as its heel took 200 N: three healthy neighbours confirmed as
+  // offsets 2 ms later). Counted from jump_confirm_N, the step the confirmation tells from none:
+  // a sign flip's k, refined on every tick it is loaded, moves it by less (counted, it kept every
+  // group from forming and the flip's end was judged 10 ms late). In the air, or without a
+  // value, its reading is not in the residual as x / k.
+  bool divisor_changed = false;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    Channel& c = channels_[j];
+    const double divisor = c.type == FaultType::gain ? c.gain : 1.0;
+    const double x = measured[j];
+    if (!(height[j] > params_.airborne_height_m) && std::isfinite(x) &&
+        std::abs(x / divisor - x / c.residual_divisor) >= params_.jump_confirm_N) {
+      divisor_changed = true;
+    }
+    c.residual_divisor = divisor;
+  }
+  ticks_since_divisor_change_ = divisor_changed ? 0 : std::min(ticks_since_divisor_change_ + 1, kCountCap);
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
@@ -999,7 +1021,9 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   // landing heel), and loads moving in or out of it step the residual like a sensor would: its
   // steps are no evidence, and the other tests name that fault first.
   const bool sum_held = !residual_smoothed_started_ || std::abs(residual_smoothed_) <= params_.sum_threshold_N;
-  if (jump_candidates > 0 && fz_ok && sum_held && !unread_landing_may_explain(height, jump_sum)) {
+  // Nor while the jump window before this tick holds a change of a gain's correction.
+  const bool divisor_settled = ticks_since_divisor_change_ >= jump_window_ticks_;
+  if (jump_candidates > 0 && fz_ok && sum_held && divisor_settled && !unread_landing_may_explain(height, jump_sum)) {
     group_pending_ = true;
     ++group_serial_;
     group_before_ = recent_residual_mean(1);  // the window before this tick's jump
@@ -1058,7 +1082,12 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     group_pending_ = false;
     group_dropped = true;
   }
-  if (substituting_rolling && (late_pending_ || group_deferred_)) {
+  // A gain's correction changed within a pending group's window: its step is in the residual's.
+  if (divisor_changed && group_pending_) {
+    group_pending_ = false;
+    group_dropped = true;
+  }
+  if ((substituting_rolling || divisor_changed) && (late_pending_ || group_deferred_)) {
     group_dropped = group_dropped || group_deferred_;
     late_pending_ = group_deferred_ = false;
     for (auto& c : channels_) c.late_member = false;
@@ -2515,7 +2544,8 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     }
     // The guard's ticks, judged alone once it is over (compare_held_gain_in_guard).
     if (guard_powers_[j].ticks > 0) {
-      const bool reading_won = c.type == FaultType::gain && corrections == 1 &&
+      const bool fresh = t - guard_powers_last_s_ < (jump_window_ticks_ + 0.5) * period_s_;
+      const bool reading_won = fresh && c.type == FaultType::gain && corrections == 1 &&
                                guard_powers_[j].reading_wins(stance_min_ticks_, stance_bound);
       guard_powers_[j] = StancePowers{};
       if (reading_won) {
@@ -2630,26 +2660,37 @@ void ContactForceFdi::compare_held_gain_in_guard(std::span<const double> measure
   // x / k now wrong by d = x (1 / k - 1) in the sum residual. Judged only on the ticks after the
   // landing's guard, it was still held when the jump test resumed there, and that test took the
   // wrong correction's moves for its neighbours' jumps (a x0.5 gain that ended in the air: three
-  // healthy pads raised as offsets 10 ms after the guard). So the guard's ticks get the stance
-  // comparison of their own, judged on the first usable tick after the guard, before a group the
-  // jump test forms there has had its jump window. Apart from the stance's: a gain that ends
-  // within the guard, after ticks on which it was right, is judged after the guard as before.
+  // healthy pads raised as offsets 10 ms after the guard). So the ticks of its own foot's guard
+  // get the stance comparison of their own, judged on the first usable tick after the guards
+  // (within a jump window of the last: sums kept across a gap of unusable ticks would judge a
+  // stance long over), before a group the jump test forms there has had its jump window. Apart
+  // from the stance's: a gain that ends within the guard, after ticks on which it was right, is
+  // judged after the guard as before. Only its own foot's landing: another foot's is no new
+  // evidence of this pad, and its impact error would be judged against a gain held right.
   // Not judged inside the guard: the impact's error e of the total force enters both
   // explanations alike (the correction leaves e, or e + d where the gain has ended; the reading
   // leaves e - d, or e), but a pulse of e of d's sign and size, early in the guard, can make a
   // gain still right look ended over clear_s (a 300 N impact fading over 20 ms against
-  // d = 150 N). Over the whole guard the pulse is diluted by the ticks after it, where only d
-  // remains.
+  // d = 150 N). Over the whole guard such a pulse is diluted by the ticks after it, where only d
+  // remains; an error of d's sign and two thirds of its size that lasts the guard is not (the
+  // reading wins where e > 2 |e - d|), as it would not be over clear_s after the guard.
+  guard_powers_last_s_ = t;
+  int corrections = 0;
+  bool retyped = false;
   for (const Channel& c : channels_) {
-    if (c.type != c.recovered_as) return;  // re-typed this tick: the tick belongs to neither model
+    corrections += corrects(c.type) ? 1 : 0;
+    retyped = retyped || c.type != c.recovered_as;
   }
+  if (retyped) return;  // re-typed this tick: the tick belongs to neither model
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     const Channel& c = channels_[j];
     StancePowers& guard = guard_powers_[j];
-    if (c.type != FaultType::gain || height[j] > params_.airborne_height_m) {
+    // Only while it is the one correction in the residual (as judged), on the ground.
+    if (c.type != FaultType::gain || corrections != 1 || height[j] > params_.airborne_height_m) {
       if (guard.ticks > 0) guard = StancePowers{};
       continue;
     }
+    if (t - last_touchdown_s_[channel_foot_[j]] >= params_.touchdown_guard_s) continue;  // another foot's guard
     const double correction = measured[j] - recovered[j];
     guard.add(residual + correction, residual, correction, t, period_s_);
   }

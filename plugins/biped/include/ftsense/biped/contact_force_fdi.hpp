@@ -122,7 +122,11 @@
 //             while it carries load, or an offset the air test measured whose reading has not yet
 //             spanned follow_ratio of its load's move (a reading frozen at a load reads as that
 //             offset in the air; its correction then says nothing of its load) (the unread-load,
-//             still-reading and follow tests judge that pad);
+//             still-reading and follow tests judge that pad), nor within jump_window_s after a
+//             loaded pad's gain correction (its reading taken as x / k in this residual) was set,
+//             refitted or dropped, stepping the residual by |x (1 / k_new - 1 / k_old)| >=
+//             jump_confirm_N, and a pending group whose windows such a change falls in is
+//             dropped;
 //             confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
@@ -247,11 +251,14 @@
 //             changed (a gain window at least), each having carried load over the window); and
 //             within one stance, once it has clear_s of usable ticks, when the correction leaves
 //             4 times the residual power the reading leaves as it is, and moved the reading by
-//             gain_min_load_N RMS or more: the two explanations of that stance, compared (a gain:
-//             also over a touchdown guard's ticks alone, judged once on the first usable tick
-//             after it, before the jump test resumed there takes the moves of a correction gone
-//             wrong in the air for its neighbours' jumps; over the whole guard, where a pulse of
-//             the impact's error is diluted; for an
+//             gain_min_load_N RMS or more: the two explanations of that stance, compared (for a
+//             gain also over its own foot's touchdown guard alone, while it is the one
+//             correction, judged once on the first usable tick after the guards, within
+//             jump_window_s of the last, before the jump test resumed there takes the moves of a
+//             correction gone wrong in the air for its neighbours' jumps: over the whole guard a
+//             short pulse of the impact's error is diluted, but an error of the total force over
+//             the guard of the correction's sign and two thirds of its size drops a gain still
+//             right, as it would over clear_s after the guard; for an
 //             offset too, whose end stepped under jump_threshold_N; an offset raised by a jump
 //             under load and not yet seen in the air must beat the gain its onset implies too,
 //             which must have moved the reading by gain_min_load_N RMS), over the stance so far or
@@ -600,6 +607,9 @@ class ContactForceFdi {
   struct Channel {
     // evidence
     double previous = 0.0, previous2 = 0.0;
+    // The divisor its reading was taken with in the jump test's sum residual on the last tick on
+    // the ground (k for a gain fault, else 1).
+    double residual_divisor = 1.0;
     int stale_count = 0;
     double last_stale_value = -1e300;  // the value of the last stuck episode
     int stale_episodes = 0;            // consecutive stuck episodes at that same value
@@ -998,6 +1008,9 @@ class ContactForceFdi {
   // two sums the residual's step from before the first group's jump matches best.
   bool late_pending_ = false;
   bool group_deferred_ = false;  // the first group's window is over; decided with the late group
+  // Ticks since a loaded channel's gain correction in the jump test's residual was set, changed
+  // or dropped (capped): a group's two windows must not straddle it.
+  int ticks_since_divisor_change_ = 1'000'000'000;
   int late_age_ = 0;
   double late_sum_ = 0.0;
   int late_size_ = 0;
@@ -1182,6 +1195,7 @@ class ContactForceFdi {
   // A held gain's same comparison over a touchdown guard's ticks alone, judged on the first usable
   // tick after it (compare_held_gain_in_guard).
   std::vector<StancePowers> guard_powers_;
+  double guard_powers_last_s_ = -1e300;  // the last guard tick they were kept on
   int stance_min_ticks_ = 50;  // round(clear_s / T), at least 2
   int usable_ticks_in_a_row_ = 0;  // ticks the stance comparison took in a row (capped)
   // The sum residual's level over those ticks: a first-order low-pass of time constant
