@@ -694,7 +694,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     Channel& c = channels_[j];
     const double divisor = c.type == FaultType::gain ? c.gain : 1.0;
     const double x = measured[j];
-    if (!(height[j] > params_.airborne_height_m) && std::isfinite(x) &&
+    if (divisor != c.residual_divisor && !(height[j] > params_.airborne_height_m) && std::isfinite(x) &&
         std::abs(x / divisor - x / c.residual_divisor) >= params_.jump_confirm_N) {
       divisor_changed = true;
     }
