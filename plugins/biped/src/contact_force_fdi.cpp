@@ -692,19 +692,14 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   bool divisor_changed = false;
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
-    const double divisor = c.type == FaultType::gain ? c.gain : 1.0;
     const double x = measured[j];
-    if (divisor != c.residual_divisor && !(height[j] > params_.airborne_height_m) && std::isfinite(x) &&
+    const bool airborne = height[j] > params_.airborne_height_m;
+    const double divisor = c.type == FaultType::gain ? c.gain : 1.0;
+    if (divisor != c.residual_divisor && !airborne && std::isfinite(x) &&
         std::abs(x / divisor - x / c.residual_divisor) >= params_.jump_confirm_N) {
       divisor_changed = true;
     }
     c.residual_divisor = divisor;
-  }
-  ticks_since_divisor_change_ = divisor_changed ? 0 : std::min(ticks_since_divisor_change_ + 1, kCountCap);
-  for (std::size_t j = 0; j < channels_.size(); ++j) {
-    Channel& c = channels_[j];
-    const double x = measured[j];
-    const bool airborne = height[j] > params_.airborne_height_m;
     if (!std::isfinite(x)) {
       all_finite_readings = false;
       raise(c, FaultType::invalid, t);
@@ -1007,6 +1002,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     }
   }
 
+  ticks_since_divisor_change_ = divisor_changed ? 0 : std::min(ticks_since_divisor_change_ + 1, kCountCap);
   relation_jumps(measured, height, t);
   // Sum residual history for the jump confirmation.
   const double raw_residual = fz_ok ? raw_sum - fz : 0.0;
@@ -2690,7 +2686,7 @@ void ContactForceFdi::compare_held_gain_in_guard(std::span<const double> measure
       if (guard.ticks > 0) guard = StancePowers{};
       continue;
     }
-    if (t - last_touchdown_s_[channel_foot_[j]] >= params_.touchdown_guard_s) continue;  // another foot's guard
+    if (!foot_landing(channel_foot_[j], t)) continue;  // another foot's guard
     const double correction = measured[j] - recovered[j];
     guard.add(residual + correction, residual, correction, t, period_s_);
   }
