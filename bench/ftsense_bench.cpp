@@ -6,8 +6,9 @@
 //   ftsense-bench [Google Benchmark flags]   per-stage and whole-tick benchmarks
 //   ftsense-bench --latency-histogram N      N whole ticks timed one by one: median, p99, p99.9, max
 //   ftsense-bench --ticks N [CONFIG]         just N whole ticks of configs/suralp.json, or of CONFIG
-//                                            (a config reading the same inputs, path relative to
-//                                            the source tree), for valgrind --tool=callgrind
+//                                            (a config reading the same inputs; a path as given,
+//                                            else relative to the source tree), for valgrind
+//                                            --tool=callgrind
 //
 // Per stage: the stage's inputs are recorded tick by tick during a full run, then replayed into a
 // one-stage pipeline of the same plugin and parameters, so each stage is timed alone on the data
@@ -20,7 +21,7 @@
 #include <random>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -33,6 +34,7 @@
 #include "ftsense/pipeline.hpp"
 #include "ftsense/reference_plugins.hpp"
 #include "ftsense/sim/simulator.hpp"
+#include "ftsense/text_file.hpp"
 
 #ifndef FTSENSE_SOURCE_DIR
 #define FTSENSE_SOURCE_DIR "."
@@ -43,11 +45,14 @@ namespace {
 using ftsense::Json;
 using ftsense::Pipeline;
 
-Json read_json(const std::string& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return ftsense::parse_json_text(text.str(), path);
+Json read_json(const std::string& path) { return ftsense::parse_json_text(ftsense::read_text_file(path, "config file"), path); }
+
+// CONFIG as given (absolute, or relative to the working directory) when it names a file there,
+// else relative to the source tree (the form the docs' commands use, run from anywhere).
+std::string config_path(const std::string& config) {
+  std::error_code error;
+  if (std::filesystem::is_regular_file(config, error)) return config;
+  return std::string(FTSENSE_SOURCE_DIR) + "/" + config;
 }
 
 // The walk: per tick, the concatenated values of the pipeline's inputs.
@@ -274,7 +279,7 @@ int latency_histogram(std::size_t ticks) {
 
 int run_ticks(std::size_t ticks, const std::string& config) {
   Pipeline p = Pipeline::build(config.empty() ? suralp_config("active_set")
-                                              : read_json(std::string(FTSENSE_SOURCE_DIR) + "/" + config),
+                                              : read_json(config_path(config)),
                                ftsense::reference_plugins::registry());
   const Pipeline suralp = Pipeline::build(suralp_config("active_set"), ftsense::reference_plugins::registry());
   for (std::size_t i = 0; i < std::max(p.inputs().size(), suralp.inputs().size()); ++i) {
@@ -301,7 +306,13 @@ int run_ticks(std::size_t ticks, const std::string& config) {
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "--latency-histogram") return latency_histogram(parse_count(argv[2]));
   if ((argc == 3 || argc == 4) && std::string(argv[1]) == "--ticks") {
-    return run_ticks(parse_count(argv[2]), argc == 4 ? argv[3] : "");
+    // A config that cannot be read or built ends with its diagnostic, not std::terminate.
+    try {
+      return run_ticks(parse_count(argv[2]), argc == 4 ? argv[3] : "");
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "ftsense-bench: %s\n", error.what());
+      return 2;
+    }
   }
   register_benchmarks();
   benchmark::Initialize(&argc, argv);
