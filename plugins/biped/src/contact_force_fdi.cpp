@@ -2506,10 +2506,10 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   // that stops and stands) has no next swing, and its correction grew without bound. Only while
   // it is the one correction the residual carries: with two, the
   // one that ended and the one that did not both move it, and the one still faulty could win
-  // first (a +48 N offset beside a +60 N one fading out).
+  // first (a +48 N offset beside a +60 N one fading out). A pad in the air carries none (it is
+  // recovered as 0, what it carries there).
   const double stance_bound = params_.gain_min_load_N * params_.gain_min_load_N;
-  int corrections = 0;
-  for (const Channel& c : channels_) corrections += corrects(c.type) ? 1 : 0;
+  const int corrections = corrections_in_residual(height);
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
     const Channel& c = channels_[j];
     const bool on_ground = height[j] <= params_.airborne_height_m;
@@ -2671,12 +2671,9 @@ void ContactForceFdi::compare_held_gain_in_guard(std::span<const double> measure
   // remains; an error of d's sign and two thirds of its size that lasts the guard is not (the
   // reading wins where e > 2 |e - d|), as it would not be over clear_s after the guard.
   guard_powers_last_s_ = t;
-  int corrections = 0;
+  const int corrections = corrections_in_residual(height);
   bool retyped = false;
-  for (const Channel& c : channels_) {
-    corrections += corrects(c.type) ? 1 : 0;
-    retyped = retyped || c.type != c.recovered_as;
-  }
+  for (const Channel& c : channels_) retyped = retyped || c.type != c.recovered_as;
   if (retyped) return;  // re-typed this tick: the tick belongs to neither model
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     const Channel& c = channels_[j];
@@ -2690,6 +2687,14 @@ void ContactForceFdi::compare_held_gain_in_guard(std::span<const double> measure
     const double correction = measured[j] - recovered[j];
     guard.add(residual + correction, residual, correction, t, period_s_);
   }
+}
+
+int ContactForceFdi::corrections_in_residual(std::span<const double> height) const noexcept {
+  int corrections = 0;
+  for (std::size_t j = 0; j < channels_.size(); ++j) {
+    corrections += corrects(channels_[j].type) && !(height[j] > params_.airborne_height_m) ? 1 : 0;
+  }
+  return corrections;
 }
 
 void ContactForceFdi::GainWindow::resize(std::size_t channels) {

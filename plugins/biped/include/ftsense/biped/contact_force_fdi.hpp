@@ -285,7 +285,8 @@
 //             (a drift regrowing after a fade never stepped; load moving between a foot's pads
 //             leaves its summed reading alone, load moving between feet the residual): a pad that stays
 //             loaded to the end of a log has no next swing to judge it; only while it is the one correction
-//             the residual carries (with two, the one still faulty can win first). A drift whose
+//             the residual carries (with two, the one still faulty can win first; a pad in the
+//             air, recovered as 0 whatever its correction, carries none). A drift whose
 //             reading stays flat over such a window of its stance (the same test, clear_s at
 //             least), after a window of that stance in which it rose the drift's way, but off its
 //             load by more than gain_min_load_N, the window's mean of r_raw, has stopped at that
@@ -1079,6 +1080,10 @@ class ContactForceFdi {
   // A new gain's confirmation within the stances of `w` (see gain_regression): beta of the fit's
   // sign and beyond `threshold` there too.
   [[nodiscard]] static bool stances_confirm(const GainWindow& w, const GainFit& fit, double threshold) noexcept;
+  // How many corrections (offset, drift, gain) the sum residual carries: those of pads on the
+  // ground (heights unknown, NaN, count as on the ground). A corrected pad in the air is
+  // recovered as 0, what it carries there, whatever its correction.
+  [[nodiscard]] int corrections_in_residual(std::span<const double> height) const noexcept;
   GainWindow gain_window_;
   // The same fit from where the corrected sum residual left its bound with no channel flagged
   // (`unisolated`; open through its returns within the bound): a gain that begins in the air lands reading k times its load with no jump, and
