@@ -2560,6 +2560,15 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
     // lead was last at 0: its sums start again whenever the correction has won so far, so a
     // fault that ends late in a long stance is judged on the ticks since its end, not against
     // the stance it was right in. (Not for a gain: its stance so far judges it, as before.)
+    // Summed only over ticks with this one correction in the residual: sums that held another's
+    // would be judged once that one lifts or ends (a true +48 N offset, leading while a +60 N
+    // one beside it had ended, was dropped the tick that one's foot lifted).
+    if (corrections != 1) {
+      const bool rose = stance.rose_with_drift;
+      stance = run = StancePowers{.type = c.type};
+      stance.rose_with_drift = rose;
+      continue;
+    }
     const double correction = measured[j] - recovered[j];
     stance.add(raw, residual, correction, t, period_s_);
     run.add(raw, residual, correction, t, period_s_);

@@ -286,7 +286,9 @@
 //             leaves its summed reading alone, load moving between feet the residual): a pad that stays
 //             loaded to the end of a log has no next swing to judge it; only while it is the one correction
 //             the residual carries (with two, the one still faulty can win first; a pad in the
-//             air, recovered as 0 whatever its correction, carries none). A drift whose
+//             air, recovered as 0 whatever its correction, carries none), and over those ticks
+//             only: a tick with two restarts the sums (else they would be judged once the other
+//             lifts or ends). A drift whose
 //             reading stays flat over such a window of its stance (the same test, clear_s at
 //             least), after a window of that stance in which it rose the drift's way, but off its
 //             load by more than gain_min_load_N, the window's mean of r_raw, has stopped at that
