@@ -1921,16 +1921,16 @@ TEST(ContactForceFdi, AnOffsetBesideACorrectionInTheAirIsReadmittedOnTheTicksSin
 
 // l_foot/p1 reads a true +48 N offset from tick 200 that stays; r_foot/p1 a +60 N one that fades
 // out over ticks [1200, 1300) with both feet down; the right foot hands its load to the left over
-// [lift - 100, lift) and lifts 3 cm at `lift`. Returns the tick l_foot/p1 is re-admitted (-1:
-// never by tick 2400).
-int true_offset_beside_an_ended_one_that_lifts(int lift) {
+// [lift - 100, lift) and lifts 3 cm (or to `lifted_height` m) at `lift`. Returns the tick l_foot/p1
+// is re-admitted (-1: never by tick 2400).
+int true_offset_beside_an_ended_one_that_lifts(int lift, double lifted_height = 0.03) {
   Feet feet(suralp(), 1e-3);
   int cleared = -1;
   bool raised = false;
   for (int k = 0; k < 2400; ++k) {
     const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
     const double handed = std::clamp((k - (lift - 100)) / 100.0, 0.0, 1.0);
-    std::fill(feet.height.begin() + 4, feet.height.end(), k >= lift ? 0.03 : 0.0);
+    std::fill(feet.height.begin() + 4, feet.height.end(), k >= lift ? lifted_height : 0.0);
     for (std::size_t j = 0; j < kChannels; ++j) {
       const double load = j < 4 ? 100.0 * (1.0 + handed) : 100.0 * (1.0 - handed);
       feet.measured[j] = load + (j % 2 == 0 ? wiggle : -wiggle);
@@ -1957,6 +1957,88 @@ TEST(ContactForceFdi, ATrueOffsetIsNotJudgedOnTicksThatHeldAnotherCorrection) {
     const int cleared = true_offset_beside_an_ended_one_that_lifts(lift);
     std::printf("the other foot lifts at tick %d: the true offset re-admitted at tick %d\n", lift, cleared);
     EXPECT_EQ(cleared, -1) << "lift at tick " << lift;
+  }
+}
+
+TEST(ContactForceFdi, APadAtTheAirborneHeightOrOfUnknownHeightKeepsItsCorrectionInTheResidual) {
+  // Pins the count of corrections in the sum residual (corrections_in_residual): a pad is in the
+  // air only when its height is known and above airborne_height_m. The previous test's scenario,
+  // the right foot "lifted" to exactly airborne_height_m (not above it: on the ground), or to an
+  // unknown height (NaN: taken as on the ground). Either way r_foot/p1's ended +60 N correction
+  // stays in the sum residual (near -60 N from its fade on), so the residual holds two
+  // corrections and l_foot/p1's true +48 N offset is never judged: held to the end (-1).
+  // Counted as in the air (`>=` for `>` at the boundary, or NaN taken as airborne), the sums
+  // restart at the lift with one correction: l_foot/p1's reading as it is leaves (-60 + 48)^2 =
+  // 144, under a quarter of its correction's 60^2, and it wins after clear_s (50 ticks, lift to
+  // lift + 49), shown on lift + 50: the true offset dropped on ticks 1370, 1550, 1750 (measured
+  // with each mutant).
+  const double boundary = suralp().airborne_height_m;
+  for (const double lifted_height : {boundary, std::nan("")}) {
+    for (const int lift : {1320, 1500, 1700}) {
+      const int cleared = true_offset_beside_an_ended_one_that_lifts(lift, lifted_height);
+      std::printf("the other foot at %g m from tick %d: the true offset re-admitted at tick %d\n", lifted_height, lift,
+                  cleared);
+      EXPECT_EQ(cleared, -1) << "lift at tick " << lift << " to " << lifted_height << " m";
+    }
+  }
+}
+
+// As doubling_gain_cleared_at(false, ...): l_foot/p1 is held as a gain from the air (k = 1.98:
+// 450 / 227.25) and lands on tick 500 on 300 N, still faulty (reading 450 N: its correction
+// leaves -72.75 N in the residual, the reading as it is +150 N). r_foot/p1 reads a +150 N offset
+// from tick 200 (raised by the jump test), which ends inside the left foot's landing guard (ticks
+// 500-649): it fades out over ticks [503, 523) at 7.5 N a tick (under jump_threshold_N). The
+// right foot lifts 10 cm, its pads to 0, at `right_lift`. Returns the first tick from 500 on where
+// l_foot/p1 is not a gain fault (-1: none by tick 1500); no pad but the two is flagged.
+int gain_beside_an_offset_ended_in_its_guard(int right_lift) {
+  Feet feet(suralp(), 1e-3);
+  int cleared = -1;
+  for (int k = 0; k < 1500; ++k) {
+    const bool lifted = k >= 300 && k < 500;
+    const bool right_lifted = k >= right_lift;
+    feet.left_foot_at(lifted ? 0.1 : 0.0);
+    std::fill(feet.height.begin() + 4, feet.height.end(), right_lifted ? 0.1 : 0.0);
+    const double load = lifted ? 0.0 : k < 300 ? 100.0 : 300.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      feet.measured[j] = j < 4 ? load + (k % 2) : right_lifted ? 0.0 : moving(j, k, 0.0);
+    }
+    double truth = 0.0;
+    for (double x : feet.measured) truth += x;
+    if (k >= 100 && k < 300) feet.measured[0] += 100.0;
+    if (k >= 500) feet.measured[0] *= 1.5;
+    const double fade = std::clamp((k - 503) / 20.0, 0.0, 1.0);
+    if (k >= 200 && !right_lifted) feet.measured[4] += 150.0 * (1.0 - fade);
+    feet.step(truth);
+    if (k == 499) {
+      EXPECT_EQ(feet.type(0), FaultType::gain) << "the jump, read 0 in the air, is a gain";
+    }
+    if (k >= 500 && cleared < 0 && feet.type(0) != FaultType::gain) cleared = k;
+    for (std::size_t j = 1; j < kChannels; ++j) {
+      if (j != 4) {
+        EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
+      }
+    }
+  }
+  return cleared;
+}
+
+TEST(ContactForceFdi, AGuardsTicksThatHeldAnotherCorrectionAreNoEvidenceOfAGainsEnd) {
+  // Pins compare_held_gain_in_guard's "one correction in the residual": a guard tick holding two
+  // restarts the guard's sums. From tick 523 to the right foot's lift (645) the residual is
+  // -72.75 - 150 = -222.75 N (both corrections in it, r_foot/p1's wrong), which l_foot/p1's
+  // reading as it is (its correction 450 - 227.25 = 222.75 N added back) explains exactly: those
+  // ticks say nothing of which correction is wrong. Its guard sums hold only the ticks from the
+  // lift to 649 (5 at most, under clear_s's 50): no verdict on tick 650, the first after the
+  // guard; the stance after it holds one correction, which leaves 72.75 N against the reading's
+  // 150 N: the gain, still there, is held to the end (-1). Summing the guard's ticks whatever
+  // the count (the condition dropped, or `corrections > 2`), the reading leaves 0.05 of the
+  // correction's power over the 150 ticks, and with one correction on tick 650 the gain was
+  // dropped there, shown on tick 651 (measured with each mutant for lifts on ticks 645 and 650;
+  // in probes also 610, 620 and 649).
+  for (const int right_lift : {645, 650}) {
+    const int cleared = gain_beside_an_offset_ended_in_its_guard(right_lift);
+    std::printf("the other foot lifts on tick %d: the faulty gain dropped at tick %d\n", right_lift, cleared);
+    EXPECT_EQ(cleared, -1) << "right foot lifted on tick " << right_lift;
   }
 }
 
