@@ -879,6 +879,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       any_step = any_step || (steps && (c.type != FaultType::none || !foot_landing(foot, t)));
       if (steps && may_jump && !group_pending_ && !late_pending_) {
         c.jump_pending = true;
+        c.jump_gain_led = gain_leads(c);  // this tick's powers are not yet added
+        c.jump_virtual_before = c.last_virtual;
         c.jump_size = change;
         c.candidate_load = c.previous;
         c.candidate_flagged = c.type != FaultType::none;
@@ -1297,13 +1299,24 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     // load is its end, whichever test re-admitted it while the group was pending (the follow
     // test, on that very step).
     const bool in_air = height[j] > params_.airborne_height_m;
-    const auto decide = [&](double jump, double load_before, bool from_flagged) {
+    const auto decide = [&](double jump, double load_before, bool from_flagged, bool gains_load) {
       if (corrects(c.type) && !gain_reads_air_level(c, x) && steps_back(jump, fault_size(c, t, load_before))) {
         // The fault ended with a jump back. In the air, where the reading is the fault itself, a
         // step back by half the fault's size is within steps_back's band and is a fault that
         // changed: there the reading must be back within its noise of 0 (else the mean of the
         // readings after the step decides: the air test, below).
-        if (!(in_air && c.fit_has_air) || std::abs(x) < params_.airborne_threshold_N) clear(c);
+        // But an offset that may be a gain, whose gain explained the residual better before the
+        // step and whose load stepped with it as the gain implies, is a gain whose pad is
+        // unloading: its reading falls by k times the load's fall, which steps back by about the
+        // offset when the pad sheds its onset load within a jump window (a lift-off logged at
+        // 200 Hz), and the residual then steps by the offset as an end's would. The
+        // offset-or-gain test's own decision, taken on the step that would otherwise have ended
+        // it (step_is_gains_load).
+        if (gains_load) {
+          take_gain(c, *onset_gain(c));
+        } else if (!(in_air && c.fit_has_air) || std::abs(x) < params_.airborne_threshold_N) {
+          clear(c);
+        }
       } else if (c.type == FaultType::none && !from_flagged) {
         raise_jump_onset(c, jump, load_before, t);
       }
@@ -1313,19 +1326,19 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
     if (first_member) c.jump_member = false;
     if (late_member) c.late_member = false;
     if (first_member && group_confirmed && late_member && late_confirmed && !c.late_from_flagged) {
-      decide(c.jump_size + c.late_jump, c.jump_load_before, c.jump_from_flagged);  // both its steps: one onset
+      decide(c.jump_size + c.late_jump, c.jump_load_before, c.jump_from_flagged, false);  // both its steps: one onset
     } else if (late_member && late_confirmed && c.late_from_flagged) {
-      decide(c.late_jump, c.late_load_before, true);  // a flagged member's end is its step back alone
+      decide(c.late_jump, c.late_load_before, true, false);  // a flagged member's end is its step back alone
     } else if (first_member && group_confirmed) {
-      decide(c.jump_size, c.jump_load_before, c.jump_from_flagged);
+      decide(c.jump_size, c.jump_load_before, c.jump_from_flagged, step_is_gains_load(c, c.jump_load_before));
     } else if (late_member && late_confirmed) {
-      decide(c.late_jump, c.late_load_before, false);  // a healthy channel's (flagged: above)
+      decide(c.late_jump, c.late_load_before, false, false);  // a healthy channel's (flagged: above)
     }
     const std::size_t foot = channel_foot_[j];
     if (c.relation_member && relation_group_[foot] == 2) {
       c.relation_member = false;
       if (relation_verdict_[foot] != 0) {
-        decide(c.relation_jump_size, c.relation_load_before, c.relation_from_flagged);
+        decide(c.relation_jump_size, c.relation_load_before, c.relation_from_flagged, false);
       } else if (relation_step_known_[foot] == 0 && c.type == FaultType::none && !c.relation_from_flagged &&
                  residual_before_known_ && c.relation_load_before > params_.airborne_threshold_N &&
                  x > params_.airborne_threshold_N) {
@@ -2372,7 +2385,18 @@ void ContactForceFdi::offset_or_gain_test(Channel& c, double reading, bool airbo
   // clear win, not a tie on noise).
   c.load_move_from_onset = std::max(c.load_move_from_onset, std::abs(c.virtual_smoothed - c.onset_load));
   if (c.load_move_from_onset < 2.0 * params_.sum_threshold_N) return;
-  if (c.gain_power < 0.5 * c.offset_power) take_gain(c, *k);
+  if (gain_leads(c)) take_gain(c, *k);
+}
+
+bool ContactForceFdi::gain_leads(const Channel& c) const noexcept {
+  return c.following && offset_may_be_gain(c) && c.gain_power < 0.5 * c.offset_power;
+}
+
+bool ContactForceFdi::step_is_gains_load(const Channel& c, double load_before) const noexcept {
+  if (!c.jump_gain_led || !offset_may_be_gain(c)) return false;
+  const double k = *onset_gain(c);
+  return residual_steps_by(c.last_virtual - c.jump_virtual_before, (c.previous - load_before) / k,
+                           params_.jump_confirm_N);
 }
 
 bool ContactForceFdi::offset_may_be_gain(const Channel& c) const noexcept {
@@ -2512,7 +2536,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   const int corrections = corrections_in_residual(height);
   for (std::size_t j = 0; j < gain_raw_rr_.size(); ++j) {
     const Channel& c = channels_[j];
-    const bool on_ground = height[j] <= params_.airborne_height_m;
+    const bool on_ground = !(height[j] > params_.airborne_height_m);  // unknown: on the ground, as it is corrected
     const bool judged =
         (c.type == FaultType::gain || c.type == FaultType::offset || c.type == FaultType::drift) && on_ground;
     StancePowers& stance = stance_powers_[j];
@@ -2727,7 +2751,10 @@ bool ContactForceFdi::GainWindow::add(std::span<const double> recovered, std::sp
                                       double airborne_height_m, double residual, double f) noexcept {
   for (std::size_t j = 0; j < xx.size(); ++j) {
     const double v = recovered[j];
-    const bool on_ground = height[j] <= airborne_height_m;
+    // A tick of unknown height is in no stance and closes none: neither on the ground nor in
+    // the air (a foot pose lost for a few ticks splits no stance and is no air after one).
+    const bool known = !std::isnan(height[j]);
+    const bool on_ground = known && height[j] <= airborne_height_m;
     xx[j] = f * xx[j] + v * v;
     xr[j] = f * xr[j] + v * residual;
     x[j] = f * x[j] + v;
@@ -2738,7 +2765,7 @@ bool ContactForceFdi::GainWindow::add(std::span<const double> recovered, std::sp
     g.air_after_stance *= f;
     if (on_ground) {
       g.w += 1.0, g.x += v, g.r += residual, g.xx += v * v, g.xr += v * residual;
-    } else {
+    } else if (known) {
       if (g.w > 0.0) {
         g.closed_xx += centred(g.xx, g.x, g.x, g.w);
         g.closed_xr += centred(g.xr, g.x, g.r, g.w);

@@ -399,7 +399,12 @@
 //             force (smoothed) has moved by 2 sum_threshold_N from L0, where both models meet
 //             (they part by (k - 1)(L - L0): twice the force's error bound for k = 2), the gain
 //             is taken when it leaves under half the offset's power (a gain x2 raised on its jump
-//             no longer waits for the swing).
+//             no longer waits for the swing). A step back by about b is no end when the gain led
+//             by that bar at the jump (its power before the step) and the leave-one-out force
+//             stepped with the reading as the gain implies (dv about dx / k; an end leaves it):
+//             a pad that sheds its load L0 within a jump window (a lift-off at 200 Hz) falls by
+//             k L0 = L0 + b, and the residual then steps by b as an end's would; the gain is
+//             taken on that step instead.
 //   negative  a pad only pushes: a loaded pad (leave-one-out force above gain_min_load_N)
 //             reading below -airborne_threshold_N for as many ticks as the airborne mean takes
 //             is a gain fault with k < 0 (a sign flip) when the least-squares line of the reading
@@ -655,6 +660,12 @@ class ContactForceFdi {
     double jump_load_before = 0.0;
     double onset_load = 0.0;  // L0: the load before the jump that raised the offset (onset_gain)
     bool candidate_flagged = false;      // this tick's candidate jumped while flagged
+    // At the jump of its group (the first, not a late one): whether an offset that may yet be a
+    // gain had the gain leading the offset-or-gain comparison (gain_leads; the evidence from
+    // before the step: the ticks after an offset's end favour the gain's smaller correction), and
+    // its leave-one-out force on the tick before.
+    bool jump_gain_led = false;
+    double jump_virtual_before = 0.0;
     bool jump_from_flagged = false;      // the group's member did (its jump is no onset)
     bool relation_from_flagged = false;  // the plane group's member did
     // A reverse jump of the fault's size inside another foot's touchdown guard: judged by the
@@ -882,6 +893,15 @@ class ContactForceFdi {
   // An offset raised by a jump under load, not yet seen in the air, whose onset implies a gain of
   // at least kMinGain: it may yet be that gain, whose error (k - 1) L moves with its load.
   [[nodiscard]] bool offset_may_be_gain(const Channel& c) const noexcept;
+  // Such an offset whose gain leads the offset-or-gain comparison by its bar (under half the
+  // offset's residual power since the span began), whether or not the load has yet moved enough
+  // for that test to decide.
+  [[nodiscard]] bool gain_leads(const Channel& c) const noexcept;
+  // A first group member's step back, decided this tick: is it such an offset's gain shedding
+  // (or taking) load? The gain led at the jump, and the leave-one-out force stepped across it as
+  // the gain implies for the reading's step (both to last tick: x / k, within residual_steps_by's
+  // band), where an offset's end leaves that force where it was.
+  [[nodiscard]] bool step_is_gains_load(const Channel& c, double load_before) const noexcept;
   void take_gain(Channel& c, double k) noexcept;
   // An offset's or drift's size at time t, b + s (t - t0).
   [[nodiscard]] static double fault_at(const Channel& c, double t) noexcept { return c.offset + c.slope * (t - c.fit.t0); }
@@ -1052,7 +1072,8 @@ class ContactForceFdi {
     // weight and sums of N^_j, r, N^_j^2, N^_j r, and the centred sums of closed stances;
     // whether a stance of its point closed within the window, and the weight of its ticks in the
     // air since (a gain reads 0 there, as its load does: the line through the origin needs those
-    // ticks as well).
+    // ticks as well). A tick of unknown height (NaN) is in no stance and in no air: it splits no
+    // stance and is no evidence of an unloaded pad (the window-wide sums take it all the same).
     struct StanceSums {
       double w = 0.0, x = 0.0, r = 0.0, xx = 0.0, xr = 0.0;
       double closed_xx = 0.0, closed_xr = 0.0;
