@@ -989,6 +989,25 @@ FaultType gain_held_then(bool healthy, FaultType& middle) {
   return type;
 }
 
+// One tick of the walk below, before its total force's errors: the left foot 10 cm up over ticks
+// [300, 500), its pads loaded 100 N before and 300 N after (+ 0 or 1 N); the right foot's pads
+// moving(), or 10 cm up and reading 0 while `right_lifted`. l_foot/p1 reads +100 N over ticks
+// [100, 300) and, unless `healthy`, 1.5 times its load from tick 500. Returns the pads' true sum.
+double doubling_gain_tick(Feet& feet, int k, bool right_lifted, bool healthy) {
+  const bool lifted = k >= 300 && k < 500;
+  feet.left_foot_at(lifted ? 0.1 : 0.0);
+  std::fill(feet.height.begin() + 4, feet.height.end(), right_lifted ? 0.1 : 0.0);
+  const double load = lifted ? 0.0 : k < 300 ? 100.0 : 300.0;
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    feet.measured[j] = j < 4 ? load + (k % 2) : right_lifted ? 0.0 : moving(j, k, 0.0);
+  }
+  double truth = 0.0;
+  for (double x : feet.measured) truth += x;
+  if (k >= 100 && k < 300) feet.measured[0] += 100.0;
+  if (k >= 500 && !healthy) feet.measured[0] *= 1.5;
+  return truth;
+}
+
 // As gain_held_then, with a +100 N jump at 100 N: in the air it is taken for a gain (k = 1.5,
 // refined while loaded before the lift). The pad lands at tick 500 on a 300 N load and reads it
 // (healthy: the gain ended in the air, and the correction x / k reads 200 N) or 1.5 times it
@@ -1002,18 +1021,8 @@ int doubling_gain_cleared_at(bool healthy, double& recovered_then, double impact
   Feet feet(suralp(), 1e-3);
   int cleared = -1;
   for (int k = 0; k < 1500 && cleared < 0; ++k) {
-    const bool lifted = k >= 300 && k < 500;
     const bool right_lifted = right_landing_error_N != 0.0 && k >= 850 && k < 1000;
-    feet.left_foot_at(lifted ? 0.1 : 0.0);
-    std::fill(feet.height.begin() + 4, feet.height.end(), right_lifted ? 0.1 : 0.0);
-    const double load = lifted ? 0.0 : k < 300 ? 100.0 : 300.0;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      feet.measured[j] = j < 4 ? load + (k % 2) : right_lifted ? 0.0 : moving(j, k, 0.0);
-    }
-    double truth = 0.0;
-    for (double x : feet.measured) truth += x;
-    if (k >= 100 && k < 300) feet.measured[0] += 100.0;
-    if (k >= 500 && !healthy) feet.measured[0] *= 1.5;
+    double truth = doubling_gain_tick(feet, k, right_lifted, healthy);
     if (k >= 500 && k < 650) truth += impact_N * std::exp(-(k - 500) / 20.0);
     if (k >= 1000 && k < 1150) truth += right_landing_error_N;
     feet.step(truth);
@@ -2012,18 +2021,8 @@ int gain_beside_an_offset_ended_in_its_guard(int right_lift) {
   Feet feet(suralp(), 1e-3);
   int cleared = -1;
   for (int k = 0; k < 1500; ++k) {
-    const bool lifted = k >= 300 && k < 500;
     const bool right_lifted = k >= right_lift;
-    feet.left_foot_at(lifted ? 0.1 : 0.0);
-    std::fill(feet.height.begin() + 4, feet.height.end(), right_lifted ? 0.1 : 0.0);
-    const double load = lifted ? 0.0 : k < 300 ? 100.0 : 300.0;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      feet.measured[j] = j < 4 ? load + (k % 2) : right_lifted ? 0.0 : moving(j, k, 0.0);
-    }
-    double truth = 0.0;
-    for (double x : feet.measured) truth += x;
-    if (k >= 100 && k < 300) feet.measured[0] += 100.0;
-    if (k >= 500) feet.measured[0] *= 1.5;
+    const double truth = doubling_gain_tick(feet, k, right_lifted, false);
     const double fade = std::clamp((k - 503) / 20.0, 0.0, 1.0);
     if (k >= 200 && !right_lifted) feet.measured[4] += 150.0 * (1.0 - fade);
     feet.step(truth);
