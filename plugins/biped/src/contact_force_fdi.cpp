@@ -1313,7 +1313,7 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
         // offset-or-gain test's own decision, taken on the step that would otherwise have ended
         // it (step_is_gains_load).
         if (gains_load) {
-          take_gain(c, *onset_gain(c));
+          if (c.type != FaultType::gain) take_gain(c, *onset_gain(c));
         } else if (!(in_air && c.fit_has_air) || std::abs(x) < params_.airborne_threshold_N) {
           clear(c);
         }
@@ -2070,10 +2070,20 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
     const bool additive = c.type == FaultType::offset || c.type == FaultType::drift || c.type == FaultType::spikes;
     judged = c.type == FaultType::none || additive || height[j] > params_.airborne_height_m;
   }
+  // Candidates of two strengths: a pad at its air level since its foot landed (a dead pad that
+  // lands), and one at its air level since the residual was last within its bound (a pad that
+  // rolled off within the stance and died there; also, as often, a lifting sole's pad). The weaker
+  // are counted only where no stronger one stands, and only for a shortfall that began past every
+  // foot's latest landing guard: one that began within it may be the landing foot's pad (a
+  // stronger candidate once that guard is over) or the impact's error in F_z.
+  double latest_touchdown_s = -1e300;
+  for (std::size_t f = 0; f < feet_; ++f) latest_touchdown_s = std::max(latest_touchdown_s, last_touchdown_s_[f]);
+  const bool weak_judged = residual_within_bound_s_ - latest_touchdown_s >= params_.touchdown_guard_s;
   std::size_t candidates = 0, culprit = channels_.size();
+  std::size_t weak_candidates = 0, weak_culprit = channels_.size();
   for (std::size_t f = 0; f < feet_ && judged; ++f) {
     bool loaded = false;
-    std::size_t at_air_level = 0, last = channels_.size();
+    std::size_t since_landing = 0, since_bound = 0, last = channels_.size(), weak_last = channels_.size();
     for (std::size_t i = 0; i < feet_points_; ++i) {
       const std::size_t j = f * feet_points_ + i;
       const Channel& c = channels_[j];
@@ -2081,18 +2091,27 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
       if (c.smoothed > params_.airborne_threshold_N) {
         loaded = true;
       } else if (c.smoothed > -params_.airborne_threshold_N && c.loaded_at_s < last_touchdown_s_[f]) {
-        ++at_air_level;
+        ++since_landing;
         last = j;
+      } else if (weak_judged && c.smoothed > -params_.airborne_threshold_N && c.loaded_at_s < residual_within_bound_s_) {
+        ++since_bound;
+        weak_last = j;
       }
     }
     // The shortfall began after this foot landed (the residual was within its bound since), and
     // the landing's guard is over (an impact's error in F_z outlasts the smoother's settling).
     const bool landed = residual_within_bound_s_ >= last_touchdown_s_[f] &&
                         t - last_touchdown_s_[f] >= params_.touchdown_guard_s;
-    if (loaded && at_air_level > 0 && landed) {
-      candidates += at_air_level;
-      culprit = last;
+    if (loaded && landed) {
+      candidates += since_landing;
+      culprit = since_landing > 0 ? last : culprit;
+      weak_candidates += since_bound;
+      weak_culprit = since_bound > 0 ? weak_last : weak_culprit;
     }
+  }
+  if (candidates == 0) {
+    candidates = weak_candidates;
+    culprit = weak_culprit;
   }
   // Two or more cannot be told apart (a sole landing on its heel leaves both toe pads unloaded).
   if (candidates != 1) {
@@ -2113,24 +2132,36 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
 bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept {
   const bool fell = jump_sum < 0.0;  // the pads now read less than the total force
   for (std::size_t f = 0; f < feet_; ++f) {
-    bool member = false, loaded = false, unread_load = false;
+    bool loaded = false, unread_load = false;
+    int members = 0, onsets = 0;
     for (std::size_t i = 0; i < feet_points_; ++i) {
+      const Channel& c = channels_[f * feet_points_ + i];
+      members += c.jump_pending ? 1 : 0;
+      onsets += c.jump_pending && !c.candidate_flagged ? 1 : 0;
+    }
+    for (std::size_t i = 0; i < feet_points_ && members > 0; ++i) {
       const std::size_t j = f * feet_points_ + i;
       const Channel& c = channels_[j];
-      member = member || c.jump_pending;
       if (height[j] > params_.airborne_height_m) continue;
       loaded = loaded || (c.type == FaultType::none && c.smoothed > params_.airborne_threshold_N);
-      unread_load = unread_load || (!c.jump_pending && may_hold_unread_load(c, f, fell));
+      unread_load = unread_load || (!c.jump_pending && may_hold_unread_load(c, f, fell, onsets >= 2));
     }
-    if (member && loaded && unread_load) return true;
+    if (members > 0 && loaded && unread_load) return true;
   }
   return false;
 }
 
-bool ContactForceFdi::may_hold_unread_load(const Channel& c, std::size_t f, bool fell) const noexcept {
+bool ContactForceFdi::may_hold_unread_load(const Channel& c, std::size_t f, bool fell,
+                                           bool several_onsets) const noexcept {
   if (c.type == FaultType::none) {
-    // Its landing unread: on the ground at its air level, unloaded since the foot landed.
-    return fell && std::abs(c.smoothed) <= params_.airborne_threshold_N && c.loaded_at_s < last_touchdown_s_[f];
+    // Its landing unread: on the ground at its air level, unloaded since the foot landed. Or, where
+    // the jump would name two or more healthy sensors of its foot at once, unloaded since the
+    // pads' sum last matched F_z (a pad that rolled off within the stance, died there and takes
+    // its load back unread): one dead pad is the fewer faults. Not against one sensor's step or a
+    // fault's end, which are one fault or none.
+    const double unloaded_since = several_onsets ? std::max(last_touchdown_s_[f], residual_within_bound_s_)
+                                                 : last_touchdown_s_[f];
+    return fell && std::abs(c.smoothed) <= params_.airborne_threshold_N && c.loaded_at_s < unloaded_since;
   }
   if (!own_estimate(c.type) && c.type != FaultType::invalid) {
     // A stuck reading in the residual as read: load coming onto it reads nothing, and load
@@ -2393,8 +2424,12 @@ bool ContactForceFdi::gain_leads(const Channel& c) const noexcept {
 }
 
 bool ContactForceFdi::step_is_gains_load(const Channel& c, double load_before) const noexcept {
-  if (!c.jump_gain_led || !offset_may_be_gain(c)) return false;
-  const double k = *onset_gain(c);
+  if (!c.jump_gain_led) return false;
+  // An offset at the jump, already taken for the gain since (the offset-or-gain test may decide on
+  // the very tick the group is): the same step, judged with the gain it has.
+  const bool taken = c.type == FaultType::gain;
+  if (!taken && !offset_may_be_gain(c)) return false;
+  const double k = taken ? c.gain : *onset_gain(c);
   return residual_steps_by(c.last_virtual - c.jump_virtual_before, (c.previous - load_before) / k,
                            params_.jump_confirm_N);
 }

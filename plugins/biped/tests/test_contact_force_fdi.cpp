@@ -2119,6 +2119,53 @@ std::pair<FaultType, int> fault_on_a_pad_at_200_hz(double scale, double offset, 
   return {feet.type(0), typed_gain};
 }
 
+// At 500 Hz, l_foot/p1 (channel 0) carries `onset_load` N and reads `scale` times its load from
+// tick 100: a jump of (scale - 1) onset_load, raised as an offset that may be a gain. Over ticks
+// [150, 200) its load moves by `move` (handed to or taken from l_foot/p2, which carries 200 N) and
+// stays. The left foot then rolls off its other pads over ticks [250, 300) onto the right foot's,
+// and channel 0 sheds its load in `shed_ticks` ticks from tick 300 (a lift-off); the foot is 3 cm
+// up once it has. F_z is the pads' true sum. Returns the channel's type at tick 320 and the first
+// tick it was typed gain (-1: never).
+std::pair<FaultType, int> gain_pad_shedding_at_500_hz(double onset_load, double move, int shed_ticks, double scale) {
+  Feet feet(suralp(), 2e-3);
+  int typed_gain = -1;
+  for (int k = 0; k <= 320; ++k) {
+    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+    const double rolled = std::clamp((k - 250) / 50.0, 0.0, 1.0);  // of pads 1-3's loads
+    const double shed = std::clamp((k - 299) / static_cast<double>(shed_ticks), 0.0, 1.0);  // of pad 0's load
+    const double moved = move * std::clamp((k - 150) / 50.0, 0.0, 1.0);
+    feet.left_foot_at(k >= 300 + shed_ticks ? 0.03 : 0.0);
+    const double load0 = (1.0 - shed) * (onset_load + moved);
+    double left = 0.0;
+    for (std::size_t j = 0; j < 4; ++j) {
+      const double load = j == 0 ? load0 : (1.0 - rolled) * (j == 1 ? 200.0 - moved : 100.0);
+      left += load;
+      feet.measured[j] = load + (j % 2 == 0 ? wiggle : -wiggle);
+    }
+    const double right = (onset_load + 600.0 - left) / 4.0;  // the rest of a constant total
+    for (std::size_t j = 4; j < kChannels; ++j) feet.measured[j] = right + (j % 2 == 0 ? wiggle : -wiggle);
+    double fz = 0.0;
+    for (double x : feet.measured) fz += x;
+    if (k >= 100) feet.measured[0] += (scale - 1.0) * load0;
+    feet.step(fz);
+    if (typed_gain < 0 && feet.type(0) == FaultType::gain) typed_gain = k;
+  }
+  return {feet.type(0), typed_gain};
+}
+
+TEST(ContactForceFdi, AGainTakenOnTheTickItsStepBackIsDecidedIsNotTakenForAnEndedOffset) {
+  // A x1.5 gain on a pad carrying 380 N (raised as a +190 N offset), whose load falls to 260 N and
+  // is then shed in 6 ticks at 500 Hz. The offset-or-gain test waits for the load to move 160 N
+  // from its onset: the shedding takes it there on the tick the group of the shedding's step is
+  // decided (tick 304), and the gain was taken there, then cleared by that group's decision as a
+  // step back by the offset's size (a grid of onset loads 150-400 N, moves 0 to -120 N, sheds in 3-14
+  // ticks, x1.5 and x2 at 1 and 2 ms found this one shape: onset loads 360-400 N). The step is the
+  // gain's load leaving, judged with the gain it was taken for: it stays a gain.
+  const auto [type, typed_gain] = gain_pad_shedding_at_500_hz(380.0, -120.0, 6, 1.5);
+  EXPECT_EQ(typed_gain, 304);
+  EXPECT_EQ(type, FaultType::gain);
+}
+
 TEST(ContactForceFdi, AGainWhosePadLiftsWithinAJumpWindowIsNotTakenForAnEndedOffset) {
   // A x2 gain: its reading falls by twice the load its pad sheds, 67 N on tick 300 (within the
   // step-back band of its +100 N offset), and once the pad is unloaded the sum residual has
@@ -3424,12 +3471,23 @@ TEST(ContactForceFdi, APadThatReadsItsAirLevelOnALandedFootIsFrozenOnceTheShortf
     }
   }
   // The right sole lifts meanwhile: from tick 640 its pad 7 reads and carries 0 on the ground, a
-  // neighbour loaded. It read its load since its foot landed, so it is no rival of pad 3.
+  // neighbour loaded. It read its load after the residual left its bound (within 20 ticks of the
+  // landing), while the shortfall grew: it is no rival of pad 3.
   LandingTrace lifting;
   lifting.pad7_unloads_at = 640;
   const auto with_lifting = landing_flags(lifting, 900);
   EXPECT_EQ(with_lifting[3], expected);
   EXPECT_EQ(with_lifting[7], -1);
+  // From tick 450, before the left foot lands: pad 7 has read nothing since the residual was last
+  // within its bound, as a pad that died within its stance would have. But that shortfall began
+  // inside the left foot's landing guard, where it may be the landing foot's: pad 7 is no
+  // candidate (counted, it was named on tick 592), and pad 3, which has read nothing since its own
+  // foot landed, is named once that guard is over, as without pad 7.
+  LandingTrace lifted_before;
+  lifted_before.pad7_unloads_at = 450;
+  const auto with_lifted_before = landing_flags(lifted_before, 900);
+  EXPECT_EQ(with_lifted_before[3], expected);
+  EXPECT_EQ(with_lifted_before[7], -1);
 }
 
 TEST(ContactForceFdi, AnUnloadedPadIsNoUnreadLoadWhereTheShortfallIsAnImpactsOrTwoPadsReadNothing) {
@@ -3458,17 +3516,21 @@ TEST(ContactForceFdi, AShortfallFromBeforeTheLandingIsNoUnreadLoadOfTheLandedFoo
 // 0-2 (150 N each, read right) while pad 3 carries nothing; on tick `roll` 60 N of each of pads 0
 // and 1 moves onto pad 3 in one tick, and on tick 1100 another 45 N of each. Pad 3 reads its
 // load if `pad3_reads`, else its air level. Every reading alternates +-1 N, F_z is the true sum.
-std::vector<int> heel_roll_flags(bool pad3_reads, int roll, int ticks) {
+// `pad3_carries_until` > 500: pad 3 first carries 30 N from the landing to that tick, read right
+// (its sensor alive then), and carries nothing until the roll.
+std::vector<int> heel_roll_flags(bool pad3_reads, int roll, int ticks, int pad3_carries_until = -1) {
   return left_landing_first_flags(
       ticks,
       [&](int k, std::size_t j, double noise) {
         double load = j >= 4 ? 200.0 + 10.0 * static_cast<double>(j) : 0.0;
         if (j < 4 && k >= 500) load = j == 3 ? 0.0 : 150.0;
+        const bool early_load = j == 3 && k >= 500 && k < pad3_carries_until;
+        if (early_load) load = 30.0;
         if (k >= roll && j < 2) load -= 60.0;
         if (k >= roll && j == 3) load += 120.0;
         if (k >= 1100 && j < 2) load -= 45.0;
         if (k >= 1100 && j == 3) load += 90.0;
-        return std::pair{load, (j == 3 && !pad3_reads ? 0.0 : load) + noise};
+        return std::pair{load, (j == 3 && !pad3_reads && !early_load ? 0.0 : load) + noise};
       },
       [](int) { return 0.0; });
 }
@@ -3600,20 +3662,27 @@ TEST(ContactForceFdi, ALandingFootsPadAtItsAirLevelIsNotNamedWhileItsFootLands) 
   for (std::size_t j = 0; j < kChannels; ++j) EXPECT_EQ(first[j], -1) << "channel " << j;
 }
 
+// The first tick the residual of heel_roll_flags with pad 3 dead (sum(x) - F_z: its +-8 N noise,
+// 120 N short from the roll on tick 700), low-passed at 10 Hz from tick 0, is below
+// -sum_threshold_N (80 N).
+int heel_roll_shortfall_below_bound() {
+  const double a = -std::expm1(-2.0 * std::numbers::pi * 10.0 * 1e-3);
+  double smoothed = 0.0;
+  for (int k = 0; k < 1000; ++k) {
+    const double residual = 8.0 * (k % 2 == 0 ? 1.0 : -1.0) - (k >= 700 ? 120.0 : 0.0);
+    smoothed = k == 0 ? residual : smoothed + a * (residual - smoothed);
+    if (smoothed < -80.0) return k;
+  }
+  return -1;
+}
+
 TEST(ContactForceFdi, NeighboursHandingLoadToADeadPadAreNotItsFaultAndTheDeadPadIsFound) {
   // Tick 700, past the guard (650): pads 0 and 1 step by -60 N each and the sum falls by 120 N.
   // That is their sensors' step, or pad 3's landing unread (it reads its air level and has
   // carried nothing since its foot landed): the jump cannot tell, so it names no one (it named
   // both offsets on tick 709 before). The unread-load test names pad 3 once the low-passed
   // residual is below -80 N and the smoother has settled (the oracle of the test above).
-  int below = -1;
-  const double a = -std::expm1(-2.0 * std::numbers::pi * 10.0 * 1e-3);
-  double smoothed = 0.0;
-  for (int k = 0; k < 1000 && below < 0; ++k) {
-    const double residual = 8.0 * (k % 2 == 0 ? 1.0 : -1.0) - (k >= 700 ? 120.0 : 0.0);
-    smoothed = k == 0 ? residual : smoothed + a * (residual - smoothed);
-    if (smoothed < -80.0) below = k;
-  }
+  const int below = heel_roll_shortfall_below_bound();
   ASSERT_GT(below, 700);
   const auto dead = heel_roll_flags(false, 700, 1400);
   EXPECT_EQ(dead[3], below + 80 + 1);
@@ -3627,6 +3696,27 @@ TEST(ContactForceFdi, NeighboursHandingLoadToADeadPadAreNotItsFaultAndTheDeadPad
   }
   // Read, the heel's landing is in the sum: nothing steps, no one is named.
   const auto healthy = heel_roll_flags(true, 700, 1400);
+  for (std::size_t j = 0; j < kChannels; ++j) EXPECT_EQ(healthy[j], -1) << "channel " << j;
+}
+
+TEST(ContactForceFdi, APadThatCarriedLoadEarlierInItsStanceAndDiedAtItsAirLevelIsFoundAsItsLoadReturns) {
+  // Pad 3 carries 30 N from the landing to tick 600, read right, then nothing; its sensor dies
+  // there at its air level, and on tick 700 the roll hands it 120 N unread. What matters is that it
+  // read nothing since the pads' sum last matched F_z, not since its foot landed: the same
+  // shortfall, the same pad, found on the same tick as a pad dead from the landing (the oracle of
+  // the test above), and its neighbours' steps are no group of offsets (both named on tick 709
+  // while only a pad unloaded since the landing counted).
+  const int below = heel_roll_shortfall_below_bound();
+  ASSERT_GT(below, 700);
+  const auto dead = heel_roll_flags(false, 700, 1400, 600);
+  EXPECT_EQ(dead[3], below + 80 + 1);
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (j != 3) {
+      EXPECT_EQ(dead[j], -1) << "channel " << j;
+    }
+  }
+  // Alive, its load leaving and returning is in the sum: no one is named.
+  const auto healthy = heel_roll_flags(true, 700, 1400, 600);
   for (std::size_t j = 0; j < kChannels; ++j) EXPECT_EQ(healthy[j], -1) << "channel " << j;
 }
 

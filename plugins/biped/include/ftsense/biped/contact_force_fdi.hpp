@@ -116,7 +116,10 @@
 //             is beyond sum_threshold_N (a fault no test has named yet: loads moving into or out
 //             of it step the residual as a sensor would), nor when a pad of a member's loaded
 //             foot may have taken or given the load unread: a healthy pad on the ground at its
-//             air level that has carried nothing since its foot landed, while the pads' sum falls
+//             air level that has carried nothing since its foot landed (or, when two or more of
+//             the foot's candidates are healthy, since the pads' sum last matched F_z: a pad that
+//             rolled off within the stance and died there; one dead pad is the fewer faults, where
+//             against one sensor's step or a fault's end it is not), while the pads' sum falls
 //             (its own landing, as a heel rolls onto a dead sensor: the neighbours' steps are the
 //             load they hand it), or a stuck reading (frozen, saturated) while the sum falls or
 //             while it carries load, or an offset the air test measured whose reading has not yet
@@ -380,8 +383,14 @@
 //             +-airborne_threshold_N while a healthy neighbour on its foot reads above it, that
 //             pad is the candidate, if r was within +-sum_threshold_N at some tick since its foot
 //             landed (a shortfall from before is another fault's, a gain elsewhere), the pad has
-//             not read above the air level since (a lifting sole's pads, which read their loads,
-//             unload one by one), and that landing's touchdown_guard_s is over (an impact's error
+//             not read above the air level since its foot landed (a dead pad that lands) or, where
+//             no such pad stands and r left its bound past every foot's latest landing guard, since
+//             r was last within that bound (one that rolled off within the stance and died at its
+//             air level takes its load back as unread; a pad that read its load while the
+//             shortfall grew is not the one that reads none of it; a lifting sole's pads, which
+//             unload one by one, are such weaker candidates too, so they do not hide a stronger
+//             one, and a shortfall that began within a landing's guard may be that foot's), and
+//             that landing's touchdown_guard_s is over (an impact's error
 //             in F_z); held for the smoother's settling (five time constants), it is raised
 //             frozen (re-admitted by the follow test). Two such pads (a sole on its heel) cannot
 //             be told apart, and neither is blamed. Not judged while a channel on the ground is
@@ -823,13 +832,16 @@ class ContactForceFdi {
   }
   // This tick's jump candidates (net step jump_sum in the residual's terms) may be load handed to
   // a pad of their loaded foot that does not read it: a healthy pad on the ground at its air
-  // level, unloaded since its foot landed, while the sum falls (its landing, unread); a stuck
+  // level, unloaded since its foot landed (or, against two or more healthy candidates of its foot,
+  // since the pads' sum last matched F_z), while the sum falls (its landing, unread); a stuck
   // reading (frozen, saturated, not named) while the sum falls or while it carries load; an
   // offset the air test measured not yet seen to follow its load. Then no verdict from the jump.
   [[nodiscard]] bool unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept;
   // Pad c, not a jump candidate, on the ground of a loaded foot f, may take or give load unread
-  // (unread_landing_may_explain's three cases; `fell`: the sum's step is down).
-  [[nodiscard]] bool may_hold_unread_load(const Channel& c, std::size_t f, bool fell) const noexcept;
+  // (unread_landing_may_explain's three cases; `fell`: the sum's step is down; `several_onsets`:
+  // two or more of the foot's candidates are healthy).
+  [[nodiscard]] bool may_hold_unread_load(const Channel& c, std::size_t f, bool fell,
+                                          bool several_onsets) const noexcept;
   // A gain's reading x back at its air level (within airborne_threshold_N of 0): a step that took
   // it there is its load leaving (a scaled zero reads zero), no sign that the gain ended. Also an
   // offset that may yet be a gain (offset_may_be_gain) and read as one before the step
@@ -898,7 +910,8 @@ class ContactForceFdi {
   // for that test to decide.
   [[nodiscard]] bool gain_leads(const Channel& c) const noexcept;
   // A first group member's step back, decided this tick: is it such an offset's gain shedding
-  // (or taking) load? The gain led at the jump, and the leave-one-out force stepped across it as
+  // (or taking) load (the offset, or the gain it was taken for since the jump, with its k)? The
+  // gain led at the jump, and the leave-one-out force stepped across it as
   // the gain implies for the reading's step (both to last tick: x / k, within residual_steps_by's
   // band), where an offset's end leaves that force where it was.
   [[nodiscard]] bool step_is_gains_load(const Channel& c, double load_before) const noexcept;
