@@ -2071,14 +2071,11 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
     judged = c.type == FaultType::none || additive || height[j] > params_.airborne_height_m;
   }
   // Candidates of two strengths: a pad at its air level since its foot landed (a dead pad that
-  // lands), and one at its air level since the residual was last within its bound (a pad that
-  // rolled off within the stance and died there; also, as often, a lifting sole's pad). The weaker
-  // are counted only where no stronger one stands, and only for a shortfall that began past every
-  // foot's latest landing guard: one that began within it may be the landing foot's pad (a
-  // stronger candidate once that guard is over) or the impact's error in F_z.
-  double latest_touchdown_s = -1e300;
-  for (std::size_t f = 0; f < feet_; ++f) latest_touchdown_s = std::max(latest_touchdown_s, last_touchdown_s_[f]);
-  const bool weak_judged = residual_within_bound_s_ - latest_touchdown_s >= params_.touchdown_guard_s;
+  // lands), and one that has read nothing since the residual was last within its bound and was
+  // handed load since it last read any (its foot's healthy neighbours stepped together while the
+  // sum fell, a group the jump test left unnamed for it: a pad that rolled off within the stance,
+  // died there and takes its load back unread). The weaker are counted only where no stronger one
+  // stands.
   std::size_t candidates = 0, culprit = channels_.size();
   std::size_t weak_candidates = 0, weak_culprit = channels_.size();
   for (std::size_t f = 0; f < feet_ && judged; ++f) {
@@ -2093,7 +2090,8 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
       } else if (c.smoothed > -params_.airborne_threshold_N && c.loaded_at_s < last_touchdown_s_[f]) {
         ++since_landing;
         last = j;
-      } else if (weak_judged && c.smoothed > -params_.airborne_threshold_N && c.loaded_at_s < residual_within_bound_s_) {
+      } else if (c.smoothed > -params_.airborne_threshold_N && c.loaded_at_s < residual_within_bound_s_ &&
+                 c.handed_load_s > c.loaded_at_s) {
         ++since_bound;
         weak_last = j;
       }
@@ -2129,8 +2127,9 @@ void ContactForceFdi::unread_load_test(std::span<const double> height, bool usab
   unread_candidate_ = channels_.size();
 }
 
-bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept {
+bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height, double jump_sum) noexcept {
   const bool fell = jump_sum < 0.0;  // the pads now read less than the total force
+  bool explained = false;
   for (std::size_t f = 0; f < feet_; ++f) {
     bool loaded = false, unread_load = false;
     int members = 0, onsets = 0;
@@ -2146,22 +2145,33 @@ bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height,
       loaded = loaded || (c.type == FaultType::none && c.smoothed > params_.airborne_threshold_N);
       unread_load = unread_load || (!c.jump_pending && may_hold_unread_load(c, f, fell, onsets >= 2));
     }
-    if (members > 0 && loaded && unread_load) return true;
+    if (members > 0 && loaded && unread_load) {
+      explained = true;
+      // Two or more healthy sensors of this foot stepped while the sum fell, beside a pad at its
+      // air level: the load they handed it is the unread-load test's evidence for that pad.
+      for (std::size_t i = 0; i < feet_points_ && onsets >= 2 && fell; ++i) {
+        const std::size_t j = f * feet_points_ + i;
+        Channel& c = channels_[j];
+        if (!(height[j] > params_.airborne_height_m) && !c.jump_pending && c.type == FaultType::none &&
+            std::abs(c.smoothed) <= params_.airborne_threshold_N) {
+          c.handed_load_s = last_tick_s_;
+        }
+      }
+    }
   }
-  return false;
+  return explained;
 }
 
 bool ContactForceFdi::may_hold_unread_load(const Channel& c, std::size_t f, bool fell,
                                            bool several_onsets) const noexcept {
   if (c.type == FaultType::none) {
     // Its landing unread: on the ground at its air level, unloaded since the foot landed. Or, where
-    // the jump would name two or more healthy sensors of its foot at once, unloaded since the
-    // pads' sum last matched F_z (a pad that rolled off within the stance, died there and takes
-    // its load back unread): one dead pad is the fewer faults. Not against one sensor's step or a
-    // fault's end, which are one fault or none.
-    const double unloaded_since = several_onsets ? std::max(last_touchdown_s_[f], residual_within_bound_s_)
-                                                 : last_touchdown_s_[f];
-    return fell && std::abs(c.smoothed) <= params_.airborne_threshold_N && c.loaded_at_s < unloaded_since;
+    // the jump would name two or more healthy sensors of its foot at once, at its air level now
+    // (a pad that rolled off within the stance, died there and takes its load back unread): one
+    // dead pad is the fewer faults. Not against one sensor's step or a fault's end, which are one
+    // fault or none.
+    return fell && std::abs(c.smoothed) <= params_.airborne_threshold_N &&
+           (several_onsets || c.loaded_at_s < last_touchdown_s_[f]);
   }
   if (!own_estimate(c.type) && c.type != FaultType::invalid) {
     // A stuck reading in the residual as read: load coming onto it reads nothing, and load
@@ -2425,8 +2435,8 @@ bool ContactForceFdi::gain_leads(const Channel& c) const noexcept {
 
 bool ContactForceFdi::step_is_gains_load(const Channel& c, double load_before) const noexcept {
   if (!c.jump_gain_led) return false;
-  // An offset at the jump, already taken for the gain since (the offset-or-gain test may decide on
-  // the very tick the group is): the same step, judged with the gain it has.
+  // An offset at the jump, taken for the gain since (the offset-or-gain test may decide on the tick
+  // before the group is decided, within its window): the same step, judged with the gain it has.
   const bool taken = c.type == FaultType::gain;
   if (!taken && !offset_may_be_gain(c)) return false;
   const double k = taken ? c.gain : *onset_gain(c);

@@ -2156,8 +2156,8 @@ std::pair<FaultType, int> gain_pad_shedding_at_500_hz(double onset_load, double 
 TEST(ContactForceFdi, AGainTakenOnTheTickItsStepBackIsDecidedIsNotTakenForAnEndedOffset) {
   // A x1.5 gain on a pad carrying 380 N (raised as a +190 N offset), whose load falls to 260 N and
   // is then shed in 6 ticks at 500 Hz. The offset-or-gain test waits for the load to move 160 N
-  // from its onset: the shedding takes it there on the tick the group of the shedding's step is
-  // decided (tick 304), and the gain was taken there, then cleared by that group's decision as a
+  // from its onset: the shedding takes it there on tick 303, inside the window of the shedding's
+  // step, and the gain was taken there, then cleared by that group's decision on tick 304 as a
   // step back by the offset's size (a grid of onset loads 150-400 N, moves 0 to -120 N, sheds in 3-14
   // ticks, x1.5 and x2 at 1 and 2 ms found this one shape: onset loads 360-400 N). The step is the
   // gain's load leaving, judged with the gain it was taken for: it stays a gain.
@@ -3479,10 +3479,10 @@ TEST(ContactForceFdi, APadThatReadsItsAirLevelOnALandedFootIsFrozenOnceTheShortf
   EXPECT_EQ(with_lifting[3], expected);
   EXPECT_EQ(with_lifting[7], -1);
   // From tick 450, before the left foot lands: pad 7 has read nothing since the residual was last
-  // within its bound, as a pad that died within its stance would have. But that shortfall began
-  // inside the left foot's landing guard, where it may be the landing foot's: pad 7 is no
-  // candidate (counted, it was named on tick 592), and pad 3, which has read nothing since its own
-  // foot landed, is named once that guard is over, as without pad 7.
+  // within its bound, as a pad that died within its stance would have. But no load was handed to
+  // it (no step of its foot's pads was left unnamed for it): it is no candidate (counted as one, it
+  // was named on tick 592), and pad 3, which has read nothing since its own foot landed, is named
+  // once that foot's guard is over, as without pad 7.
   LandingTrace lifted_before;
   lifted_before.pad7_unloads_at = 450;
   const auto with_lifted_before = landing_flags(lifted_before, 900);
@@ -3702,7 +3702,8 @@ TEST(ContactForceFdi, NeighboursHandingLoadToADeadPadAreNotItsFaultAndTheDeadPad
 TEST(ContactForceFdi, APadThatCarriedLoadEarlierInItsStanceAndDiedAtItsAirLevelIsFoundAsItsLoadReturns) {
   // Pad 3 carries 30 N from the landing to tick 600, read right, then nothing; its sensor dies
   // there at its air level, and on tick 700 the roll hands it 120 N unread. What matters is that it
-  // read nothing since the pads' sum last matched F_z, not since its foot landed: the same
+  // read nothing since the pads' sum last matched F_z (and was handed its neighbours' load), not
+  // since its foot landed: the same
   // shortfall, the same pad, found on the same tick as a pad dead from the landing (the oracle of
   // the test above), and its neighbours' steps are no group of offsets (both named on tick 709
   // while only a pad unloaded since the landing counted).

@@ -117,9 +117,10 @@
 //             of it step the residual as a sensor would), nor when a pad of a member's loaded
 //             foot may have taken or given the load unread: a healthy pad on the ground at its
 //             air level that has carried nothing since its foot landed (or, when two or more of
-//             the foot's candidates are healthy, since the pads' sum last matched F_z: a pad that
-//             rolled off within the stance and died there; one dead pad is the fewer faults, where
-//             against one sensor's step or a fault's end it is not), while the pads' sum falls
+//             the foot's candidates are healthy, any healthy pad on the ground at its air level: a
+//             pad that rolled off within the stance and died there; one dead pad is the fewer
+//             faults, where against one sensor's step or a fault's end it is not; such a pad is
+//             marked as handed load, the unread-load test's evidence), while the pads' sum falls
 //             (its own landing, as a heel rolls onto a dead sensor: the neighbours' steps are the
 //             load they hand it), or a stuck reading (frozen, saturated) while the sum falls or
 //             while it carries load, or an offset the air test measured whose reading has not yet
@@ -384,13 +385,12 @@
 //             pad is the candidate, if r was within +-sum_threshold_N at some tick since its foot
 //             landed (a shortfall from before is another fault's, a gain elsewhere), the pad has
 //             not read above the air level since its foot landed (a dead pad that lands) or, where
-//             no such pad stands and r left its bound past every foot's latest landing guard, since
-//             r was last within that bound (one that rolled off within the stance and died at its
-//             air level takes its load back as unread; a pad that read its load while the
-//             shortfall grew is not the one that reads none of it; a lifting sole's pads, which
-//             unload one by one, are such weaker candidates too, so they do not hide a stronger
-//             one, and a shortfall that began within a landing's guard may be that foot's), and
-//             that landing's touchdown_guard_s is over (an impact's error
+//             no such pad stands, since r was last within that bound, having been handed load
+//             since it last read any (its foot's healthy neighbours stepped together while the sum
+//             fell, a group the jump test left unnamed for it): one that rolled off within the
+//             stance and died at its air level takes its load back unread, where a lifting sole's
+//             pads, which read their loads as they unload one by one, are handed nothing and are
+//             no candidates), and that landing's touchdown_guard_s is over (an impact's error
 //             in F_z); held for the smoother's settling (five time constants), it is raised
 //             frozen (re-admitted by the follow test). Two such pads (a sole on its heel) cannot
 //             be told apart, and neither is blamed. Not judged while a channel on the ground is
@@ -738,6 +738,9 @@ class ContactForceFdi {
     // taken as a gain), and that tick then belongs to neither correction (gain_regression).
     FaultType recovered_as = FaultType::none;
     double smoothed = 0.0;  // 10 Hz low-pass of the reading (recovery of a noise burst)
+    // The last tick a group of its foot's healthy steps, the sum falling, was left unnamed because
+    // this pad, at its air level, may have taken their load unread (the unread-load test's evidence).
+    double handed_load_s = -1e300;
     double noise_bias = 0.0;  // 10 Hz low-pass of reading - leave-one-out force, while flagged noise
     bool noise_bias_set = false;
     // Does the reading follow the load? Ranges of the smoothed reading and of the leave-one-out
@@ -833,10 +836,11 @@ class ContactForceFdi {
   // This tick's jump candidates (net step jump_sum in the residual's terms) may be load handed to
   // a pad of their loaded foot that does not read it: a healthy pad on the ground at its air
   // level, unloaded since its foot landed (or, against two or more healthy candidates of its foot,
-  // since the pads' sum last matched F_z), while the sum falls (its landing, unread); a stuck
+  // any such pad at its air level), while the sum falls (its landing, unread); a stuck
   // reading (frozen, saturated, not named) while the sum falls or while it carries load; an
   // offset the air test measured not yet seen to follow its load. Then no verdict from the jump.
-  [[nodiscard]] bool unread_landing_may_explain(std::span<const double> height, double jump_sum) const noexcept;
+  // Marks the pads such a group of two or more healthy steps may have handed load (handed_load_s).
+  [[nodiscard]] bool unread_landing_may_explain(std::span<const double> height, double jump_sum) noexcept;
   // Pad c, not a jump candidate, on the ground of a loaded foot f, may take or give load unread
   // (unread_landing_may_explain's three cases; `fell`: the sum's step is down; `several_onsets`:
   // two or more of the foot's candidates are healthy).
