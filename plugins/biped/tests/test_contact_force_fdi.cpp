@@ -2153,7 +2153,7 @@ std::pair<FaultType, int> gain_pad_shedding_at_500_hz(double onset_load, double 
   return {feet.type(0), typed_gain};
 }
 
-TEST(ContactForceFdi, AGainTakenOnTheTickItsStepBackIsDecidedIsNotTakenForAnEndedOffset) {
+TEST(ContactForceFdi, AGainTakenWithinItsStepBacksWindowIsNotTakenForAnEndedOffset) {
   // A x1.5 gain on a pad carrying 380 N (raised as a +190 N offset), whose load falls to 260 N and
   // is then shed in 6 ticks at 500 Hz. The offset-or-gain test waits for the load to move 160 N
   // from its onset: the shedding takes it there on tick 303, inside the window of the shedding's
@@ -3703,10 +3703,9 @@ TEST(ContactForceFdi, APadThatCarriedLoadEarlierInItsStanceAndDiedAtItsAirLevelI
   // Pad 3 carries 30 N from the landing to tick 600, read right, then nothing; its sensor dies
   // there at its air level, and on tick 700 the roll hands it 120 N unread. What matters is that it
   // read nothing since the pads' sum last matched F_z (and was handed its neighbours' load), not
-  // since its foot landed: the same
-  // shortfall, the same pad, found on the same tick as a pad dead from the landing (the oracle of
-  // the test above), and its neighbours' steps are no group of offsets (both named on tick 709
-  // while only a pad unloaded since the landing counted).
+  // since its foot landed: the same shortfall, the same pad, found on the same tick as a pad dead
+  // from the landing (the oracle of the test above), and its neighbours' steps are no group of
+  // offsets (both named on tick 709 while only a pad unloaded since the landing counted).
   const int below = heel_roll_shortfall_below_bound();
   ASSERT_GT(below, 700);
   const auto dead = heel_roll_flags(false, 700, 1400, 600);

@@ -380,17 +380,17 @@
 //             air level, which the still test does not name while its foot lands. While the smoothed
 //             residual r (as above) stays below -(sum_threshold_N + zero_clamp_N) (the pads read
 //             short of F_z by more than its error and a clamped zero can hide), and exactly one
-//             pad of the robot is on the ground, not flagged, with its smoothed reading within
-//             +-airborne_threshold_N while a healthy neighbour on its foot reads above it, that
-//             pad is the candidate, if r was within +-sum_threshold_N at some tick since its foot
+//             pad of the robot (of the strongest kind below) is on the ground, not flagged, with
+//             its smoothed reading within +-airborne_threshold_N while a healthy neighbour on its
+//             foot reads above it, that pad is the candidate, if r was within +-sum_threshold_N at some tick since its foot
 //             landed (a shortfall from before is another fault's, a gain elsewhere), the pad has
 //             not read above the air level since its foot landed (a dead pad that lands) or, where
 //             no such pad stands, since r was last within that bound, having been handed load
 //             since it last read any (its foot's healthy neighbours stepped together while the sum
 //             fell, a group the jump test left unnamed for it): one that rolled off within the
 //             stance and died at its air level takes its load back unread, where a lifting sole's
-//             pads, which read their loads as they unload one by one, are handed nothing and are
-//             no candidates), and that landing's touchdown_guard_s is over (an impact's error
+//             pads, which read their loads as they unload one by one, are normally handed nothing
+//             and are no candidates), and that landing's touchdown_guard_s is over (an impact's error
 //             in F_z); held for the smoother's settling (five time constants), it is raised
 //             frozen (re-admitted by the follow test). Two such pads (a sole on its heel) cannot
 //             be told apart, and neither is blamed. Not judged while a channel on the ground is
