@@ -2133,10 +2133,21 @@ bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height,
   for (std::size_t f = 0; f < feet_; ++f) {
     bool loaded = false, unread_load = false;
     int members = 0, onsets = 0;
+    bool gain_takes_load = false;
     for (std::size_t i = 0; i < feet_points_; ++i) {
       const Channel& c = channels_[f * feet_points_ + i];
       members += c.jump_pending ? 1 : 0;
       onsets += c.jump_pending && !c.candidate_flagged ? 1 : 0;
+      gain_takes_load = gain_takes_load || (c.jump_pending && c.type == FaultType::gain &&
+                                            std::abs(c.candidate_load) <= params_.airborne_threshold_N);
+    }
+    // A held gain that takes its load from its air level may have ended there (its reading in the
+    // air is its fault's end as much as its going on): its correction then errs by (1/k - 1) of
+    // the load, the group's step. One fault's end is fewer faults than two healthy sensors'
+    // onsets; the stance comparison judges the gain.
+    if (onsets >= 2 && gain_takes_load) {
+      explained = true;
+      continue;
     }
     for (std::size_t i = 0; i < feet_points_ && members > 0; ++i) {
       const std::size_t j = f * feet_points_ + i;
@@ -2723,7 +2734,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   if (since_unexplained_open_ && since_unexplained_.ticks % 10 == 0 &&
       std::all_of(channels_.begin(), channels_.end(), [](const Channel& c) { return c.type == FaultType::none; })) {
-    judge_since_unexplained(t);
+    judge_since_unexplained(height, t);
   }
 }
 
@@ -2828,7 +2839,17 @@ bool ContactForceFdi::GainWindow::add(std::span<const double> recovered, std::sp
   return std::isfinite(rr);
 }
 
-ContactForceFdi::GainFit ContactForceFdi::best_gain_fit(const GainWindow& w, double min_power) const noexcept {
+bool ContactForceFdi::fits_a_gain_from_the_air(const GainWindow& w, std::size_t j, double slope) const noexcept {
+  // A gain k > 0 of a reading that is positive on the whole has beta = 1 - 1/k < 1 (beyond: a
+  // reading of the opposite sign, a sign flip, which reads negative). One that began in the air,
+  // where its pad read its air level, took no step: r = beta N^_j, its residual at zero load
+  // (the fit's intercept) within the residual's bound.
+  const double zero_load_residual = (w.r - slope * w.x[j]) / w.weight;
+  return !(slope >= 1.0 && w.x[j] > 0.0) && std::abs(zero_load_residual) <= params_.sum_threshold_N;
+}
+
+ContactForceFdi::GainFit ContactForceFdi::best_gain_fit(const GainWindow& w, double min_power,
+                                                         bool only_gains_from_the_air) const noexcept {
   // The channel whose fit r ~ b + beta_j N^_j explains the most of the residual's variation.
   // With the intercept b, an offset anywhere (a constant r) is b, not a gain: through the origin
   // it would be fitted by beta_j N^_j of any pad that is loaded most of the time.
@@ -2846,12 +2867,17 @@ ContactForceFdi::GainFit ContactForceFdi::best_gain_fit(const GainWindow& w, dou
     const double covariation = w.xr[j] - w.x[j] * r_mean;
     if (!(x_variation > 0.0)) continue;
     const double explained = covariation * covariation / (x_variation * fit.r_variation);
+    const double slope = covariation / x_variation;
+    if (only_gains_from_the_air && !fits_a_gain_from_the_air(w, j, slope)) {
+      fit.no_gain_explained = std::max(fit.no_gain_explained, explained);
+      continue;
+    }
     const bool judged = c.type == FaultType::none || c.type == FaultType::gain;  // others: by their own evidence
     if (loaded && judged && explained > fit.explained) {
       fit.second_explained = std::max(fit.second_explained, fit.explained);
       fit.best = j;
       fit.explained = explained;
-      fit.beta = covariation / x_variation;
+      fit.beta = slope;
       fit.x_variation = x_variation;
       fit.covariation = covariation;
     } else {
@@ -2955,21 +2981,35 @@ void ContactForceFdi::judge_gain_window(double t) noexcept {
   restart_gain_window();
 }
 
-void ContactForceFdi::judge_since_unexplained(double t) noexcept {
+void ContactForceFdi::judge_since_unexplained(std::span<const double> height, double t) noexcept {
   // The same tests as the gain window's for a new flag, on the ticks since the residual left its
-  // bound. Not before the best channel's point has closed a stance within it and been in the air
-  // clear_s since: a gain reads its load k times, so its residual follows the load to 0 in the
-  // air, where an additive fault's stays. Still loads are left to the gain window (their type is
-  // the residual's history, which this window does not hold).
+  // bound (clear_s of them at least), among the fits a gain begun in the air makes (through zero
+  // load, k > 0), the best explaining at least as much as any fit that is not one. A gain reads its
+  // load k times, so its residual follows the load to 0 in the air, where an additive fault's
+  // stays: once the best channel's point has closed a stance within the window and been in the
+  // air clear_s since, that is settled; before, a still reading on the ground (below) may be a
+  // stuck sensor the fit mistakes. Still loads are left to the gain window (their type is the
+  // residual's history, which this window does not hold).
   const GainWindow& w = since_unexplained_;
+  if (w.ticks < stance_min_ticks_) return;
   const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * w.weight;
-  const GainFit fit = best_gain_fit(w, min_power);
+  const GainFit fit = best_gain_fit(w, min_power, true);
   if (fit.best == w.xx.size() || fit.explained < params_.gain_explained ||
-      std::abs(fit.beta) <= params_.gain_threshold ||
+      std::abs(fit.beta) <= params_.gain_threshold || fit.explained < fit.no_gain_explained ||
       fit.explained - fit.second_explained < params_.gain_isolation_margin) {
     return;
   }
-  if (w.stance[fit.best].air_after_stance < stance_min_ticks_) return;
+  // Before its pad has been in the air after a stance (where a gain reads 0 as its load does and
+  // an additive fault's residual stays), a reading on the ground that stayed still over the
+  // window may be a stuck one whose load is the residual: its neighbour's fit is then a load shift
+  // between them, not a gain.
+  if (w.stance[fit.best].air_after_stance < stance_min_ticks_) {
+    const double still = params_.follow_ratio * params_.follow_ratio * fit.r_variation;
+    for (std::size_t j = 0; j < channels_.size(); ++j) {
+      if (j == fit.best || channels_[j].type != FaultType::none || height[j] > params_.airborne_height_m) continue;
+      if (!(centred(w.xx[j], w.x[j], w.x[j], w.weight) >= still)) return;
+    }
+  }
   if (!stances_confirm(w, fit, params_.gain_threshold)) return;
   if (fit.x_variation - 2.0 * fit.covariation + fit.r_variation < min_power) return;
   Channel& c = channels_[fit.best];

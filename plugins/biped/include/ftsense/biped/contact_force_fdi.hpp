@@ -322,7 +322,17 @@
 //             tests (share explained, its isolation margin, |beta|, the stances' confirmation, a
 //             load that moved) once the best channel's point has closed a stance within them and
 //             been in the air clear_s (weighted alike) since the first such stance: a gain reads 0 there as its load does, where an
-//             additive fault's residual stays. In both windows a channel under gain_min_load_N
+//             additive fault's residual stays. Or within the stance it landed in, over clear_s of
+//             the window at least, by what a gain begun in the air is: its pad read its air level
+//             and took no step, so r = b + beta N^_j with |b| <= sum_threshold_N (the residual at
+//             zero load) and beta < 1 (k > 0; beyond, on a reading positive on the whole, the
+//             reading would have the wrong sign). Only such fits are candidates there; the best
+//             must explain at least as much of r as any fit that is not one (a load shifting
+//             between the feet fits the other foot's pads with an intercept, a stuck neighbour's
+//             load alike) and stand out of the others by gain_isolation_margin; and no healthy
+//             reading on the ground may have stayed still over the window (centred power under
+//             follow_ratio^2 of r's): a stuck sensor whose load is r makes its neighbours' fits
+//             gains until a swing tells them apart. In both windows a channel under gain_min_load_N
 //             RMS is not blamed but still competes for isolation: at the end of a stance every
 //             pad of the foot unloads alike, and a loaded healthy neighbour was blamed for what
 //             the gain's own pad explained better. Not a restart of the gain window: a full
@@ -783,7 +793,7 @@ class ContactForceFdi {
   // The gain window's verdicts once it is full: re-admissions, then a new or refined gain.
   void judge_gain_window(double t) noexcept;
   // A new gain from the window since an unexplained residual's onset (since_unexplained_).
-  void judge_since_unexplained(double t) noexcept;
+  void judge_since_unexplained(std::span<const double> height, double t) noexcept;
   // A drift that has stopped, its reading `level` [N] off its load: held as an offset there.
   void hold_as_offset(Channel& c, double level) noexcept;
   // How far off its load [N] a drift's flat reading over `ticks` must sit to be held as a plateau
@@ -838,7 +848,9 @@ class ContactForceFdi {
   // level, unloaded since its foot landed (or, against two or more healthy candidates of its foot,
   // any such pad at its air level), while the sum falls (its landing, unread); a stuck
   // reading (frozen, saturated, not named) while the sum falls or while it carries load; an
-  // offset the air test measured not yet seen to follow its load. Then no verdict from the jump.
+  // offset the air test measured not yet seen to follow its load; against two or more healthy
+  // candidates of its foot, a held gain among them stepping from its air level (it may have ended
+  // in the air; its correction's error is then the group's step). Then no verdict from the jump.
   // Marks the pads such a group of two or more healthy steps may have handed load (handed_load_s).
   [[nodiscard]] bool unread_landing_may_explain(std::span<const double> height, double jump_sum) noexcept;
   // Pad c, not a jump candidate, on the ground of a loaded foot f, may take or give load unread
@@ -1111,12 +1123,19 @@ class ContactForceFdi {
   // (<N^_j, N^_j> at least min_power): the share of r's variation it explains
   // (cov^2 / (var N^ var r)), the best share of any other channel (those under min_power too),
   // its slope and the centred sums it came from. best == channels when no channel carried load.
+  // With only_gains_from_the_air, channels whose fit is no gain begun in the air
+  // (fits_a_gain_from_the_air) are neither best nor other; their best share is no_gain_explained.
   struct GainFit {
     std::size_t best;
     double explained = 0.0, second_explained = 0.0, beta = 0.0;
+    double no_gain_explained = 0.0;  // the best share of a fit that is no gain (see best_gain_fit)
     double x_variation = 0.0, covariation = 0.0, r_variation = 0.0;
   };
-  [[nodiscard]] GainFit best_gain_fit(const GainWindow& w, double min_power) const noexcept;
+  [[nodiscard]] GainFit best_gain_fit(const GainWindow& w, double min_power,
+                                      bool only_gains_from_the_air = false) const noexcept;
+  // Channel j's fit r = b + slope N^_j in `w` is one of a gain begun in the air: slope < 1 (or the
+  // reading negative on the whole) and |b| <= sum_threshold_N.
+  [[nodiscard]] bool fits_a_gain_from_the_air(const GainWindow& w, std::size_t j, double slope) const noexcept;
   // A new gain's confirmation within the stances of `w` (see gain_regression): beta of the fit's
   // sign and beyond `threshold` there too.
   [[nodiscard]] static bool stances_confirm(const GainWindow& w, const GainFit& fit, double threshold) noexcept;
