@@ -2868,8 +2868,10 @@ ContactForceFdi::GainFit ContactForceFdi::best_gain_fit(const GainWindow& w, dou
     if (!(x_variation > 0.0)) continue;
     const double explained = covariation * covariation / (x_variation * fit.r_variation);
     const double slope = covariation / x_variation;
+    // A fit that is no gain begun in the air is no candidate there, but it explains the residual
+    // all the same (a load shifting between the feet with the total force's error): a rival.
     if (only_gains_from_the_air && !fits_a_gain_from_the_air(w, j, slope)) {
-      fit.no_gain_explained = std::max(fit.no_gain_explained, explained);
+      fit.second_explained = std::max(fit.second_explained, explained);
       continue;
     }
     const bool judged = c.type == FaultType::none || c.type == FaultType::gain;  // others: by their own evidence
@@ -2983,8 +2985,8 @@ void ContactForceFdi::judge_gain_window(double t) noexcept {
 
 void ContactForceFdi::judge_since_unexplained(std::span<const double> height, double t) noexcept {
   // The same tests as the gain window's for a new flag, on the ticks since the residual left its
-  // bound (clear_s of them at least), among the fits a gain begun in the air makes (through zero
-  // load, k > 0), the best explaining at least as much as any fit that is not one. A gain reads its
+  // bound (clear_s of them at least), the best among the fits a gain begun in the air makes
+  // (through zero load, k > 0) standing out of every other channel's fit. A gain reads its
   // load k times, so its residual follows the load to 0 in the air, where an additive fault's
   // stays: once the best channel's point has closed a stance within the window and been in the
   // air clear_s since, that is settled; before, a still reading on the ground (below) may be a
@@ -2995,7 +2997,7 @@ void ContactForceFdi::judge_since_unexplained(std::span<const double> height, do
   const double min_power = params_.gain_min_load_N * params_.gain_min_load_N * w.weight;
   const GainFit fit = best_gain_fit(w, min_power, true);
   if (fit.best == w.xx.size() || fit.explained < params_.gain_explained ||
-      std::abs(fit.beta) <= params_.gain_threshold || fit.explained < fit.no_gain_explained ||
+      std::abs(fit.beta) <= params_.gain_threshold ||
       fit.explained - fit.second_explained < params_.gain_isolation_margin) {
     return;
   }

@@ -1248,13 +1248,14 @@ TEST(ContactForceFdi, AGainThatBeginsInTheAirIsFittedOnTheTicksSinceTheResidualL
   EXPECT_EQ(heights_lost.type, FaultType::gain);
   EXPECT_NEAR(heights_lost.k, 0.5, 0.01);
   // With the right pads' loads moving (+-40 N) no reading on the ground stayed still, and p4's fit
-  // (through 0 at zero load: it began in the air) stands out of the window's fits that are gains:
-  // a gain within that stance, before its swing. (Until 2026-12-06 only after it: tick 5760.)
+  // (through 0 at zero load: it began in the air) stands out of every other channel's once its
+  // stance has closed: a gain before its pad has been in the air clear_s. (Until 2026-12-06 only
+  // after that: tick 5760.) Its twin p3 carries the same heel shape within the stance.
   const Flagged moving_right = walking_gain(4800, 0.5, 6300, false, 40.0);
   std::printf("the same with the right pads' loads moving: flagged at tick %d; at tick 6300 %s, k %.3f\n",
               moving_right.first, std::string(to_string(moving_right.type)).c_str(), moving_right.k);
-  EXPECT_GE(moving_right.first, 5000 + 150 + 50);  // the landing's guard, then clear_s of the window
-  EXPECT_LT(moving_right.first, 5700);
+  EXPECT_GE(moving_right.first, 5700);
+  EXPECT_LT(moving_right.first, 5700 + 50);
   EXPECT_EQ(moving_right.type, FaultType::gain);
   EXPECT_NEAR(moving_right.k, 0.5, 0.01);
   // Begun in stance, it is found by its jump, as before.
@@ -1264,6 +1265,86 @@ TEST(ContactForceFdi, AGainThatBeginsInTheAirIsFittedOnTheTicksSinceTheResidualL
   EXPECT_LE(in_stance.first, 5300 + 10);
   EXPECT_EQ(in_stance.type, FaultType::gain);
   EXPECT_NEAR(in_stance.k, 1.8, 0.02);
+}
+
+// walking_gain's walk with the right pads' loads moving (+-40 N), judged alone: l_foot/p4 reads
+// k_true times its load from tick 4800 (in the air) and the total force reads its landing's
+// error too, error_N (1 - s) over the stance that follows (5000-5700, s its phase), beyond the
+// residual's bound (80 N) at first; or l_foot/`drifting` drifts by rate_N_s from tick
+// drift_from. Returns the first channel flagged and when, and how long others were flagged.
+struct FirstFlag {
+  std::size_t channel = kChannels;
+  int tick = -1;
+  FaultType type = FaultType::none;
+  int faulty_channel_tick = -1;  // the first tick the faulty channel is flagged
+  int other_ticks = 0;           // ticks x channels flagged other than the faulty one
+};
+FirstFlag walking_with(double k_true, double error_N, std::size_t drifting = kChannels, double rate_N_s = 0.0,
+                       int drift_from = 0) {
+  Feet feet(suralp(), 1e-3);
+  FirstFlag out;
+  const std::size_t faulty = drifting < kChannels ? drifting : 3;
+  const auto rolling = [](double s) {
+    const double sway = 60.0 * std::sin(2.0 * std::numbers::pi * s);
+    return std::array<double, 4>{300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway, 300.0 * (1.0 - s) + 50.0 + sway,
+                                 300.0 * (1.0 - s) + 50.0 - sway};
+  };
+  for (int k = 0; k < 12000; ++k) {
+    const int phase = k % 1000;
+    const bool swinging = phase >= 700;
+    feet.left_foot_at(swinging ? 0.03 : 0.0);
+    const std::array<double, 4> left = rolling(phase / 700.0);
+    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
+    double truth = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double right = 150.0 + (j % 2 == 0 ? 40.0 : -40.0) * std::sin(2.0 * std::numbers::pi * k / 370.0);
+      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : left[j]) : right) + wiggle;
+      truth += feet.measured[j];
+    }
+    if (drifting < kChannels) {
+      if (k >= drift_from) feet.measured[drifting] += rate_N_s * (k - drift_from) * 1e-3;
+    } else if (k >= 4800) {
+      feet.measured[3] *= k_true;
+    }
+    const double error = k >= 5000 && k < 5700 ? error_N * (1.0 - (k - 5000) / 700.0) : 0.0;
+    feet.step(truth + error);
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      if (feet.type(j) == FaultType::none) continue;
+      if (out.tick < 0) {
+        out = FirstFlag{.channel = j, .tick = k, .type = feet.type(j)};
+      }
+      if (j == faulty && out.faulty_channel_tick < 0) out.faulty_channel_tick = k;
+      if (j != faulty) ++out.other_ticks;
+    }
+  }
+  return out;
+}
+
+TEST(ContactForceFdi, ATotalForceErrorShapedLikeTheLandingsLoadBlamesNoNeighbourOfAGainBegunInTheAir) {
+  // An error of the total force that fades over the stance fits the heel pads' shape. A fit that
+  // needs an intercept (no gain begun in the air) is no candidate, but it explains the residual as
+  // well: it rivals the best gain fit. Counted as no rival (a version of 2026-12-06), l_foot/p3
+  // was named a gain on tick 5310 and held to the end, and p4 never named.
+  const FirstFlag f = walking_with(0.5, 150.0);
+  std::printf("x0.5 from the air, the total force 150 N off at the landing: channel %zu flagged %s at tick %d; p4 "
+              "at tick %d; others flagged %d ticks\n",
+              f.channel, std::string(to_string(f.type)).c_str(), f.tick, f.faulty_channel_tick, f.other_ticks);
+  // p4 itself is flagged first, on tick 5573, as the version before these in-stance rules flags
+  // it (typed frozen on that tick by both; the test asks who is blamed).
+  EXPECT_EQ(f.channel, 3u);
+  EXPECT_EQ(f.other_ticks, 0);
+}
+
+TEST(ContactForceFdi, ADriftInStanceIsNoGainBegunInTheAir) {
+  // l_foot/p1 drifts by -300 N/s from tick 5200, in stance: the residual is a ramp in time, which
+  // the heel pads' falling loads fit over a short window with an intercept of hundreds of newtons.
+  // A gain begun in the air has none: without that rule, l_foot/p4 was named a gain on tick 5715.
+  const FirstFlag f = walking_with(1.0, 0.0, 0, -300.0, 5200);
+  std::printf("l_foot/p1 drifting -300 N/s from tick 5200: channel %zu flagged %s at tick %d; others flagged %d "
+              "ticks\n",
+              f.channel, std::string(to_string(f.type)).c_str(), f.tick, f.other_ticks);
+  EXPECT_EQ(f.channel, 0u);
+  EXPECT_NE(f.type, FaultType::gain);
 }
 
 // The walk of walking_gain, judged on a 6 N sum bound: l_foot/p4 carries 30 (1 - s) + 10 N in

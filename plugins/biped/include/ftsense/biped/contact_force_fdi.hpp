@@ -326,10 +326,10 @@
 //             the window at least, by what a gain begun in the air is: its pad read its air level
 //             and took no step, so r = b + beta N^_j with |b| <= sum_threshold_N (the residual at
 //             zero load) and beta < 1 (k > 0; beyond, on a reading positive on the whole, the
-//             reading would have the wrong sign). Only such fits are candidates there; the best
-//             must explain at least as much of r as any fit that is not one (a load shifting
-//             between the feet fits the other foot's pads with an intercept, a stuck neighbour's
-//             load alike) and stand out of the others by gain_isolation_margin; and no healthy
+//             reading would have the wrong sign). Only such fits are candidates there, and the
+//             best must stand out by gain_isolation_margin of every other channel's fit, one of
+//             a gain or not (a load shifting between the feet with the total force's error fits
+//             the other foot's pads with an intercept: that explanation rivals it); and no healthy
 //             reading on the ground may have stayed still over the window (centred power under
 //             follow_ratio^2 of r's): a stuck sensor whose load is r makes its neighbours' fits
 //             gains until a swing tells them apart. In both windows a channel under gain_min_load_N
@@ -1123,12 +1123,11 @@ class ContactForceFdi {
   // (<N^_j, N^_j> at least min_power): the share of r's variation it explains
   // (cov^2 / (var N^ var r)), the best share of any other channel (those under min_power too),
   // its slope and the centred sums it came from. best == channels when no channel carried load.
-  // With only_gains_from_the_air, channels whose fit is no gain begun in the air
-  // (fits_a_gain_from_the_air) are neither best nor other; their best share is no_gain_explained.
+  // With only_gains_from_the_air, a channel whose fit is no gain begun in the air
+  // (fits_a_gain_from_the_air) is never the best, and its share counts among the others'.
   struct GainFit {
     std::size_t best;
     double explained = 0.0, second_explained = 0.0, beta = 0.0;
-    double no_gain_explained = 0.0;  // the best share of a fit that is no gain (see best_gain_fit)
     double x_variation = 0.0, covariation = 0.0, r_variation = 0.0;
   };
   [[nodiscard]] GainFit best_gain_fit(const GainWindow& w, double min_power,
