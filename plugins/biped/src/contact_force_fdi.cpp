@@ -2135,20 +2135,20 @@ bool ContactForceFdi::unread_landing_may_explain(std::span<const double> height,
     int members = 0, onsets = 0;
     bool gain_takes_load = false;
     for (std::size_t i = 0; i < feet_points_; ++i) {
-      const Channel& c = channels_[f * feet_points_ + i];
+      const std::size_t j = f * feet_points_ + i;
+      const Channel& c = channels_[j];
       members += c.jump_pending ? 1 : 0;
       onsets += c.jump_pending && !c.candidate_flagged ? 1 : 0;
       gain_takes_load = gain_takes_load || (c.jump_pending && c.type == FaultType::gain &&
+                                            !(height[j] > params_.airborne_height_m) &&
                                             std::abs(c.candidate_load) <= params_.airborne_threshold_N);
     }
-    // A held gain that takes its load from its air level may have ended there (its reading in the
-    // air is its fault's end as much as its going on): its correction then errs by (1/k - 1) of
-    // the load, the group's step. One fault's end is fewer faults than two healthy sensors'
-    // onsets; the stance comparison judges the gain.
-    if (onsets >= 2 && gain_takes_load) {
-      explained = true;
-      continue;
-    }
+    // A held gain on the ground that takes its load from its air level may have ended in the air
+    // (its reading there is its fault's end as much as its going on): its correction then errs by
+    // (1/k - 1) of the load, the group's step. One fault's end is fewer faults than two healthy
+    // sensors' onsets; the stance comparison judges the gain. (A gain still right, beside two
+    // true onsets on that tick, loses them to the other tests: the stated limit.)
+    explained = explained || (onsets >= 2 && gain_takes_load);
     for (std::size_t i = 0; i < feet_points_ && members > 0; ++i) {
       const std::size_t j = f * feet_points_ + i;
       const Channel& c = channels_[j];
@@ -2734,7 +2734,7 @@ void ContactForceFdi::gain_regression(std::span<const double> measured, std::spa
   }
   if (since_unexplained_open_ && since_unexplained_.ticks % 10 == 0 &&
       std::all_of(channels_.begin(), channels_.end(), [](const Channel& c) { return c.type == FaultType::none; })) {
-    judge_since_unexplained(height, t);
+    judge_since_unexplained(t);
   }
 }
 
@@ -2983,7 +2983,7 @@ void ContactForceFdi::judge_gain_window(double t) noexcept {
   restart_gain_window();
 }
 
-void ContactForceFdi::judge_since_unexplained(std::span<const double> height, double t) noexcept {
+void ContactForceFdi::judge_since_unexplained(double t) noexcept {
   // The same tests as the gain window's for a new flag, on the ticks since the residual left its
   // bound (clear_s of them at least), the best among the fits a gain begun in the air makes
   // (through zero load, k > 0) standing out of every other channel's fit. A gain reads its
@@ -3002,14 +3002,17 @@ void ContactForceFdi::judge_since_unexplained(std::span<const double> height, do
     return;
   }
   // Before its pad has been in the air after a stance (where a gain reads 0 as its load does and
-  // an additive fault's residual stays), a reading on the ground that stayed still over the
-  // window may be a stuck one whose load is the residual: its neighbour's fit is then a load shift
-  // between them, not a gain.
+  // an additive fault's residual stays), a reading that stayed still on the ground within the
+  // window (its power about each stance's own mean, over the ticks its point was on the ground)
+  // may be a stuck one whose load is the residual: its neighbour's fit is then a load shift
+  // between them, not a gain. (Every channel is healthy while this window is judged.)
   if (w.stance[fit.best].air_after_stance < stance_min_ticks_) {
     const double still = params_.follow_ratio * params_.follow_ratio * fit.r_variation;
     for (std::size_t j = 0; j < channels_.size(); ++j) {
-      if (j == fit.best || channels_[j].type != FaultType::none || height[j] > params_.airborne_height_m) continue;
-      if (!(centred(w.xx[j], w.x[j], w.x[j], w.weight) >= still)) return;
+      const GainWindow::StanceSums& g = w.stance[j];
+      if (j == fit.best || !(g.w > 0.0 || g.stance_closed)) continue;  // never on the ground in the window
+      const double power = g.closed_xx + (g.w > 0.0 ? centred(g.xx, g.x, g.x, g.w) : 0.0);
+      if (!(power >= still)) return;
     }
   }
   if (!stances_confirm(w, fit, params_.gain_threshold)) return;

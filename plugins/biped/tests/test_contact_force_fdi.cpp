@@ -1276,8 +1276,7 @@ struct FirstFlag {
   std::size_t channel = kChannels;
   int tick = -1;
   FaultType type = FaultType::none;
-  int faulty_channel_tick = -1;  // the first tick the faulty channel is flagged
-  int other_ticks = 0;           // ticks x channels flagged other than the faulty one
+  int other_ticks = 0;  // ticks x channels flagged other than the faulty one
 };
 FirstFlag walking_with(double k_true, double error_N, std::size_t drifting = kChannels, double rate_N_s = 0.0,
                        int drift_from = 0) {
@@ -1313,7 +1312,6 @@ FirstFlag walking_with(double k_true, double error_N, std::size_t drifting = kCh
       if (out.tick < 0) {
         out = FirstFlag{.channel = j, .tick = k, .type = feet.type(j)};
       }
-      if (j == faulty && out.faulty_channel_tick < 0) out.faulty_channel_tick = k;
       if (j != faulty) ++out.other_ticks;
     }
   }
@@ -1326,12 +1324,13 @@ TEST(ContactForceFdi, ATotalForceErrorShapedLikeTheLandingsLoadBlamesNoNeighbour
   // well: it rivals the best gain fit. Counted as no rival (a version of 2026-12-06), l_foot/p3
   // was named a gain on tick 5310 and held to the end, and p4 never named.
   const FirstFlag f = walking_with(0.5, 150.0);
-  std::printf("x0.5 from the air, the total force 150 N off at the landing: channel %zu flagged %s at tick %d; p4 "
-              "at tick %d; others flagged %d ticks\n",
-              f.channel, std::string(to_string(f.type)).c_str(), f.tick, f.faulty_channel_tick, f.other_ticks);
-  // p4 itself is flagged first, on tick 5573, as the version before these in-stance rules flags
-  // it (typed frozen on that tick by both; the test asks who is blamed).
+  std::printf("x0.5 from the air, the total force 150 N off at the landing: channel %zu flagged %s at tick %d; "
+              "others flagged %d ticks\n",
+              f.channel, std::string(to_string(f.type)).c_str(), f.tick, f.other_ticks);
+  // p4 itself is flagged first, on tick 5573, as the version before these rules flags it (typed
+  // frozen on that tick by both; the test asks who is blamed).
   EXPECT_EQ(f.channel, 3u);
+  EXPECT_EQ(f.tick, 5573);
   EXPECT_EQ(f.other_ticks, 0);
 }
 
@@ -1345,6 +1344,7 @@ TEST(ContactForceFdi, ADriftInStanceIsNoGainBegunInTheAir) {
               f.channel, std::string(to_string(f.type)).c_str(), f.tick, f.other_ticks);
   EXPECT_EQ(f.channel, 0u);
   EXPECT_NE(f.type, FaultType::gain);
+  EXPECT_EQ(f.other_ticks, 0);
 }
 
 // The walk of walking_gain, judged on a 6 N sum bound: l_foot/p4 carries 30 (1 - s) + 10 N in
@@ -4609,8 +4609,8 @@ TEST(ContactForceFdi, ANoiseBurstOnAnUnloadedPadIsNoContactChatter) {
 }
 
 // The left foot lands on tick 500 with l_foot/p1 unloaded (its share on p2-p4, 400 N each), p1
-// held as a gain k_held since the air before (its reading k_held times its load over ticks
-// [100, 300), taken for a gain there and ended in the air). On tick 800 p1 takes 170 N from its
+// held as a gain k_held: its reading was k_held times its load over ticks [100, 300), in stance,
+// raised a gain there, and the fault ended in the air (ticks 300-500), where p1 read 0 either way. On tick 800 p1 takes 170 N from its
 // air level while p2 +100, p3 -100 and p4 -140 N step with it (a heel rolled onto late), and from
 // tick 600 the total force reads `bias` N more than the pads carry (its error; a pad at its air
 // level then has a leave-one-out force of that much, so its step is no pad landing). Returns the

@@ -322,17 +322,19 @@
 //             tests (share explained, its isolation margin, |beta|, the stances' confirmation, a
 //             load that moved) once the best channel's point has closed a stance within them and
 //             been in the air clear_s (weighted alike) since the first such stance: a gain reads 0 there as its load does, where an
-//             additive fault's residual stays. Or within the stance it landed in, over clear_s of
+//             additive fault's residual stays. Or without waiting for that air, over clear_s of
 //             the window at least, by what a gain begun in the air is: its pad read its air level
 //             and took no step, so r = b + beta N^_j with |b| <= sum_threshold_N (the residual at
 //             zero load) and beta < 1 (k > 0; beyond, on a reading positive on the whole, the
-//             reading would have the wrong sign). Only such fits are candidates there, and the
+//             reading would have the wrong sign). Only such fits are candidates in this window
+//             (before and after the swing alike), and the
 //             best must stand out by gain_isolation_margin of every other channel's fit, one of
 //             a gain or not (a load shifting between the feet with the total force's error fits
 //             the other foot's pads with an intercept: that explanation rivals it); and no healthy
-//             reading on the ground may have stayed still over the window (centred power under
-//             follow_ratio^2 of r's): a stuck sensor whose load is r makes its neighbours' fits
-//             gains until a swing tells them apart. In both windows a channel under gain_min_load_N
+//             reading may have stayed still on the ground within the window (its power about
+//             each stance's mean, over its point's ground ticks, under follow_ratio^2 of r's
+//             centred power): a stuck sensor whose load is r makes its neighbours' fits gains
+//             until a swing tells them apart. In both windows a channel under gain_min_load_N
 //             RMS is not blamed but still competes for isolation: at the end of a stance every
 //             pad of the foot unloads alike, and a loaded healthy neighbour was blamed for what
 //             the gain's own pad explained better. Not a restart of the gain window: a full
@@ -793,7 +795,7 @@ class ContactForceFdi {
   // The gain window's verdicts once it is full: re-admissions, then a new or refined gain.
   void judge_gain_window(double t) noexcept;
   // A new gain from the window since an unexplained residual's onset (since_unexplained_).
-  void judge_since_unexplained(std::span<const double> height, double t) noexcept;
+  void judge_since_unexplained(double t) noexcept;
   // A drift that has stopped, its reading `level` [N] off its load: held as an offset there.
   void hold_as_offset(Channel& c, double level) noexcept;
   // How far off its load [N] a drift's flat reading over `ticks` must sit to be held as a plateau
