@@ -1159,14 +1159,14 @@ TEST(ContactForceFdi, AGuardsGainComparisonIsNotJudgedAStanceLater) {
   EXPECT_EQ(dropped, -1);
 }
 
-// One tick k of a walk of 1 s strides: the left foot stands for 700 ticks and swings (3 cm up)
-// for 300, its pads' loads in stance given by `left_loads(s)` (s the stance's phase in [0, 1);
-// 0 in the swing); the right foot's pads carry 150 N (+ right_sway_N sin(2 pi k / 370), with
-// alternate signs pad by pad); every reading +-0.5 N alternately, and l_foot/p4's k_true times
-// its load from tick gain_from.
+// One tick k of a walk of 1 s strides, before its faults: the left foot stands for 700 ticks and
+// swings (3 cm up) for 300, its pads' loads in stance given by `left_loads(s)` (s the stance's
+// phase in [0, 1); 0 in the swing); the right foot's pads carry 150 N (+ right_sway_N
+// sin(2 pi k / 370), with alternate signs pad by pad); every reading +-0.5 N alternately. Sets the
+// heights and readings; returns the pads' true sum.
 template <class LeftLoads>
-void walk_tick(Feet& feet, int k, const LeftLoads& left_loads, int gain_from, double k_true,
-               bool heights_lost_mid_stance = false, double right_sway_N = 0.0) {
+double walk_loads(Feet& feet, int k, const LeftLoads& left_loads, bool heights_lost_mid_stance = false,
+                  double right_sway_N = 0.0) {
   const int phase = k % 1000;
   const bool swinging = phase >= 700;
   // Both feet's poses lost (heights unknown, NaN) for 20 ticks in the middle of each stance.
@@ -1181,16 +1181,30 @@ void walk_tick(Feet& feet, int k, const LeftLoads& left_loads, int gain_from, do
     feet.measured[j] = (j < 4 ? (swinging ? 0.0 : left[j]) : 150.0 + right_sway) + wiggle;
     truth += feet.measured[j];
   }
+  return truth;
+}
+
+// That walk's tick with l_foot/p4 reading k_true times its load from tick gain_from.
+template <class LeftLoads>
+void walk_tick(Feet& feet, int k, const LeftLoads& left_loads, int gain_from, double k_true,
+               bool heights_lost_mid_stance = false, double right_sway_N = 0.0) {
+  const double truth = walk_loads(feet, k, left_loads, heights_lost_mid_stance, right_sway_N);
   if (k >= gain_from) feet.measured[3] *= k_true;
   feet.step(truth);
 }
 
-// That walk with the left pads rolling from heel to toe and swaying from side to side, each with a
-// load of its own shape:
+// The left pads rolling from heel to toe and swaying from side to side, each with a load of its
+// own shape (s the stance's phase):
 //   rear  (p3, p4): 300 (1 - s) + 50 +- 60 sin(2 pi s),  front (p1, p2): 300 s + 50 +- 60 sin(2 pi s),
-// + on the left side (p1, p3), - on the right (p2, p4). Returns the first tick l_foot/p4 is
-// flagged (-1: never, by tick 12000), and its type and gain (reading / recovered value) on tick
-// `check` (in a stance).
+// + on the left side (p1, p3), - on the right (p2, p4).
+std::array<double, 4> rolling_sole(double s) {
+  const double sway = 60.0 * std::sin(2.0 * std::numbers::pi * s);
+  return {300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway, 300.0 * (1.0 - s) + 50.0 + sway,
+          300.0 * (1.0 - s) + 50.0 - sway};
+}
+
+// That walk on the rolling sole. Returns the first tick l_foot/p4 is flagged (-1: never, by tick
+// 12000), and its type and gain (reading / recovered value) on tick `check` (in a stance).
 struct Flagged {
   int first = -1;
   FaultType type = FaultType::none;
@@ -1200,13 +1214,8 @@ Flagged walking_gain(int gain_from, double k_true, int check, bool heights_lost_
                      double right_sway_N = 0.0) {
   Feet feet(suralp(), 1e-3);
   Flagged out;
-  const auto rolling = [](double s) {
-    const double sway = 60.0 * std::sin(2.0 * std::numbers::pi * s);
-    return std::array<double, 4>{300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway, 300.0 * (1.0 - s) + 50.0 + sway,
-                                 300.0 * (1.0 - s) + 50.0 - sway};
-  };
   for (int k = 0; k < 12000; ++k) {
-    walk_tick(feet, k, rolling, gain_from, k_true, heights_lost_mid_stance, right_sway_N);
+    walk_tick(feet, k, rolling_sole, gain_from, k_true, heights_lost_mid_stance, right_sway_N);
     for (std::size_t j = 0; j < kChannels; ++j) {
       if (j != 3) {
         EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
@@ -1283,23 +1292,8 @@ FirstFlag walking_with(double k_true, double error_N, std::size_t drifting = kCh
   Feet feet(suralp(), 1e-3);
   FirstFlag out;
   const std::size_t faulty = drifting < kChannels ? drifting : 3;
-  const auto rolling = [](double s) {
-    const double sway = 60.0 * std::sin(2.0 * std::numbers::pi * s);
-    return std::array<double, 4>{300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway, 300.0 * (1.0 - s) + 50.0 + sway,
-                                 300.0 * (1.0 - s) + 50.0 - sway};
-  };
   for (int k = 0; k < 12000; ++k) {
-    const int phase = k % 1000;
-    const bool swinging = phase >= 700;
-    feet.left_foot_at(swinging ? 0.03 : 0.0);
-    const std::array<double, 4> left = rolling(phase / 700.0);
-    const double wiggle = k % 2 == 0 ? 0.5 : -0.5;
-    double truth = 0.0;
-    for (std::size_t j = 0; j < kChannels; ++j) {
-      const double right = 150.0 + (j % 2 == 0 ? 40.0 : -40.0) * std::sin(2.0 * std::numbers::pi * k / 370.0);
-      feet.measured[j] = (j < 4 ? (swinging ? 0.0 : left[j]) : right) + wiggle;
-      truth += feet.measured[j];
-    }
+    const double truth = walk_loads(feet, k, rolling_sole, false, 40.0);
     if (drifting < kChannels) {
       if (k >= drift_from) feet.measured[drifting] += rate_N_s * (k - drift_from) * 1e-3;
     } else if (k >= 4800) {
