@@ -808,6 +808,50 @@ class ContactForceFdi {
   // residual's blocks since the last flag change rose along a ramp, else as an offset of their step.
   void raise_still_load_fault(Channel& c, double implied_load, double t) noexcept;
   void clear(Channel& c) noexcept;
+  // What the evidence loop leaves for the rest of the tick: whether any foot is within its
+  // touchdown guard, the jump test's candidates (a new group's and a late one's, with their summed
+  // steps), the readings' sum as the jump test's residual takes it (raw_sum, and the last tick's
+  // correction for a spiking median's lag), and the tick's flags.
+  struct TickEvidence {
+    bool touching_down = false;
+    int jump_candidates = 0;
+    bool group_emptied = false;  // every member of the pending group was a one-tick spike
+    bool any_step = false;       // a channel stepped (the still-reading test's window restarts)
+    double jump_sum = 0.0;
+    int late_candidates = 0;  // healthy channels stepping while a group is pending
+    double late_jump_sum = 0.0;
+    double raw_sum = 0.0;
+    double median_lag_correction = 0.0;
+    bool all_finite_readings = true;  // every channel has a value
+    bool divisor_changed = false;     // a gain's correction changed on a loaded pad
+  };
+  // The evidence, channel by channel: the feet's touchdowns and summed readings, then each
+  // channel's jump, repeat, spike, noise, air and sign evidence (the decisions come later).
+  TickEvidence observe_evidence(std::span<const double> measured, std::span<const double> height, bool fz_ok,
+                                int ticks_since_start, double t) noexcept;
+  // The jump groups' verdicts of this tick: the first group's and the late one's, each decided
+  // (its window complete) and confirmed (the residual stepped by its sum).
+  struct GroupDecisions {
+    bool decided = false, confirmed = false, late_decided = false, late_confirmed = false;
+    // A loaded channel is flagged as anything but a corrected fault: its reading is not its load,
+    // so the gain tests take no evidence from this tick.
+    bool uncorrected_loaded = false;
+  };
+  // The jump test's groups (contact_force_fdi_jump_groups.cpp): the sum residual's history, a
+  // new group formed from this tick's candidates, a pending one confirmed or dropped once its
+  // window is complete, ends and onsets seen inside a touchdown guard judged after it, and the
+  // feet's plane verdicts.
+  GroupDecisions judge_jump_groups(std::span<const double> measured, std::span<const double> height, double fz,
+                                   const TickEvidence& ev, double t) noexcept;
+  // The tick's decisions, channel by channel (contact_force_fdi_channel_decisions.cpp).
+  void decide_channels(std::span<const double> measured, std::span<const double> height,
+                       const GroupDecisions& groups, bool touching_down, double t) noexcept;
+  // Each channel's recovered value before the virtual sensor (contact_force_fdi_recovery.cpp):
+  // corrected from its own reading, or substituted from what the total force fz leaves (NaN fz:
+  // none substituted). Returns the sum of the values not substituted; unknown_loaded counts the
+  // loaded channels that had to be.
+  double recover(std::span<const double> measured, std::span<const double> height, double fz, double t,
+                 std::span<double> recovered, int& unknown_loaded) noexcept;
   // The still-reading test (header comment), once the corrected sum residual of this tick is known.
   void still_reading_test(std::span<const double> measured, std::span<const double> height, double residual,
                           bool usable, bool stepped, double t) noexcept;
