@@ -145,7 +145,7 @@ void ContactForceFdi::decide_channels(std::span<const double> measured, std::spa
         c.spikes.end();
       }
     }
-    // Negative reading under load (see the evidence loop).
+    // Negative reading under load (its evidence: observe_evidence, contact_force_fdi_evidence.cpp).
     if (c.sign_fault && c.type == FaultType::gain) {
       double k = 0.0;
       if (c.positive_ticks >= min_airborne_samples) {

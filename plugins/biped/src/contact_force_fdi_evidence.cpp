@@ -80,9 +80,9 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
   int late_candidates = 0;  // healthy channels stepping while a group is pending
   double late_jump_sum = 0.0;
   double raw_sum = 0.0;
-  double median_lag_correction = 0.0;  // for the last tick's residual (below)
+  double median_lag_correction = 0.0;  // for the last tick's residual (judge_jump_groups)
   bool all_finite_readings = true;  // the gain test takes only ticks where every channel has a value
-  // A gain fault's reading enters the jump test's residual as x / k (below): a gain set, refitted or
+  // A gain fault's reading enters the jump test's residual as x / k (the loop below): a gain set, refitted or
   // dropped on a loaded pad steps that residual by x (1 / k_new - 1 / k_old) on the next tick,
   // which a group of jumps whose windows straddle it would take for its own step (a x0.5 gain that
   // ended in the air, dropped as its heel took 200 N: three healthy neighbours confirmed as
@@ -297,7 +297,7 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
         // unloading at its lift-off, a fault starting within the jump window; a member of that
         // group too, as the load it moved keeps moving), or a member's step back by its fault's
         // size (the fault's end, which the end test below leaves to the group it is in): a late
-        // group, decided with the pending one (below), not lost.
+        // group, decided with the pending one (judge_jump_groups), not lost.
         c.late_candidate = true;
         c.late_jump = change;
         c.late_load_before = c.previous;
@@ -392,7 +392,7 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
     if (x > c.ceiling_N + repeat_band_N_) c.ceiling_N = std::numeric_limits<double>::quiet_NaN();  // not clipped there
     // A pad only pushes: a loaded pad reading below -airborne_threshold_N is a negative offset
     // or a negative multiple of its load (a sign flip). The least-squares line of the reading on
-    // the leave-one-out force (fitted once that force is known, below) tells them apart: slope
+    // the leave-one-out force (fitted in step once that force is known) tells them apart: slope
     // about 1, or k < 0; a pad read right side up again under load clears it.
     const bool shows_load = !airborne && std::isfinite(c.last_virtual) && c.last_virtual > params_.gain_min_load_N;
     if (!airborne && x < -params_.airborne_threshold_N) {
