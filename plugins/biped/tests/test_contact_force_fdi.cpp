@@ -1203,19 +1203,22 @@ std::array<double, 4> rolling_sole(double s) {
           300.0 * (1.0 - s) + 50.0 - sway};
 }
 
-// That walk on the rolling sole. Returns the first tick l_foot/p4 is flagged (-1: never, by tick
-// 12000), and its type and gain (reading / recovered value) on tick `check` (in a stance).
+// That walk on the rolling sole (or `left_loads`). Returns the first tick l_foot/p4 is flagged (-1:
+// never, by tick `ticks`), and its type and gain (reading / recovered value) on tick `check` (in a
+// stance).
 struct Flagged {
   int first = -1;
   FaultType type = FaultType::none;
   double k = 0.0;
 };
+using LeftSole = std::array<double, 4> (*)(double);
+template <class LeftLoads = LeftSole>
 Flagged walking_gain(int gain_from, double k_true, int check, bool heights_lost_mid_stance = false,
-                     double right_sway_N = 0.0) {
+                     double right_sway_N = 0.0, const LeftLoads& left_loads = rolling_sole, int ticks = 12000) {
   Feet feet(suralp(), 1e-3);
   Flagged out;
-  for (int k = 0; k < 12000; ++k) {
-    walk_tick(feet, k, rolling_sole, gain_from, k_true, heights_lost_mid_stance, right_sway_N);
+  for (int k = 0; k < ticks; ++k) {
+    walk_tick(feet, k, left_loads, gain_from, k_true, heights_lost_mid_stance, right_sway_N);
     for (std::size_t j = 0; j < kChannels; ++j) {
       if (j != 3) {
         EXPECT_EQ(feet.type(j), FaultType::none) << "channel " << j << ", tick " << k;
@@ -1274,6 +1277,51 @@ TEST(ContactForceFdi, AGainThatBeginsInTheAirIsFittedOnTheTicksSinceTheResidualL
   EXPECT_LE(in_stance.first, 5300 + 10);
   EXPECT_EQ(in_stance.type, FaultType::gain);
   EXPECT_NEAR(in_stance.k, 1.8, 0.02);
+}
+
+TEST(ContactForceFdi, AGainBegunInTheAirOfAnySizeIsNamedAndBlamesNoNeighbour) {
+  // walking_gain's walk, the right pads' loads moving (+-40 N), l_foot/p4 reading k times its
+  // load from tick 4800 (a swing; it lands at 5000). Every size is named a gain and no other
+  // channel is flagged (walking_gain asserts that on every tick). Its k is held within the
+  // refits' dead band, half gain_threshold of the truth (a k refitted beyond it only: both the
+  // gain window and the reading's own fit against its leave-one-out force leave a k that close).
+  // How soon is printed, not asserted: the window since the residual left its bound opens only
+  // where the 1 Hz residual passes sum_threshold_N (80 N here: |k - 1| of a heel load of up to
+  // 350 N over its stance), which x0.5 does at its first landing, named 0.9 s after the onset
+  // (7.1 s with that window switched off: probed 2026-12-06); x0.6-0.8 and x1.3-1.4 are left to
+  // the 2 s gain window, named 1.9-5.9 s after it (the known limit, docs/results.md "A gain begun
+  // in the air, of any size").
+  for (const double k_true : {0.5, 0.6, 0.7, 0.8, 1.3, 1.4}) {
+    const Flagged f = walking_gain(4800, k_true, 13300, false, 40.0, rolling_sole, 14000);
+    std::printf("x%.2f from tick 4800, in the air: flagged at tick %d (%.2f s after); at tick 13300 %s, k %.3f\n",
+                k_true, f.first, (f.first - 4800) * 1e-3, std::string(to_string(f.type)).c_str(), f.k);
+    EXPECT_GE(f.first, 5000) << "x" << k_true;  // not before its pad carries load
+    EXPECT_LT(f.first, 12000) << "x" << k_true;
+    EXPECT_EQ(f.type, FaultType::gain) << "x" << k_true;
+    EXPECT_LE(std::abs(f.k / k_true - 1.0), 0.5 * suralp().gain_threshold) << "x" << k_true;
+  }
+}
+
+TEST(ContactForceFdi, AStrongGainBegunInTheAirIsNamedWithinItsLandingsStance) {
+  // A sole that sways from side to side (+-200 N) loads p4 unlike its twin p3 within the stance,
+  // and the right pads' loads move (+-40 N). A x1.6 gain begun in the air (tick 4800) is then
+  // named within the stance it lands in (5000-5700): the 2 s gain window's fit on p4 explains
+  // the residual and stands out of every other channel's before the stance ends (with the window
+  // since the residual left its bound switched off, on the same tick: probed 2026-12-06). On this
+  // sole a x0.3-0.5 gain is named by that window instead, on ticks 5702-5710, once the stance has
+  // closed (never by tick 9000 with it switched off).
+  const auto swaying = [](double s) {
+    const double sway = 200.0 * std::sin(2.0 * std::numbers::pi * s);
+    return std::array<double, 4>{300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway, 300.0 * (1.0 - s) + 50.0 + sway,
+                                 300.0 * (1.0 - s) + 50.0 - sway};
+  };
+  const Flagged f = walking_gain(4800, 1.6, 6300, false, 40.0, swaying);
+  std::printf("x1.6 from tick 4800 on a swaying sole: flagged at tick %d; at tick 6300 %s, k %.3f\n", f.first,
+              std::string(to_string(f.type)).c_str(), f.k);
+  EXPECT_GT(f.first, 5000 + 50);  // the window holds clear_s of ticks first
+  EXPECT_LT(f.first, 5700);       // within the landing's stance
+  EXPECT_EQ(f.type, FaultType::gain);
+  EXPECT_NEAR(f.k, 1.6, 0.02);
 }
 
 // walking_gain's walk with the right pads' loads moving (+-40 N), judged alone: l_foot/p4 reads
