@@ -1,9 +1,11 @@
-// The biped robust detector's construction and its tick: the evidence loop whose tests (jump,
-// frozen, noise, airborne, sum residual) share each channel's state tick by tick, the decisions
-// and the recovery. The tests that are functions of their own live beside it, one file per
-// concept (contact_force_fdi_gain, _still_reading, _unread_load, _onset_shape, _plane_jumps);
-// the class's state is one (contact_force_fdi.hpp). Issue 13 replaces it with the generic FDI
-// layer (signal validators, constraint residuals, change detection, classification, recovery).
+// The biped robust detector's construction and its tick: `step` calls the tick's phases in order
+// (observe_evidence, judge_jump_groups, decide_channels, recover), then computes the virtual
+// sensor, runs the tests that need this tick's corrected sum residual and writes the outputs.
+// Each phase and each test that judges a stance or more lives in a file of its own beside this
+// one: contact_force_fdi_evidence, _jump_groups, _channel_decisions, _recovery, _still_reading,
+// _unread_load, _onset_shape, _gain and _plane_jumps; the class's state is one
+// (contact_force_fdi.hpp). Issue 13 replaces it with the generic FDI layer (signal validators,
+// constraint residuals, change detection, classification, recovery).
 #include "ftsense/biped/contact_force_fdi.hpp"
 
 #include <algorithm>
@@ -556,8 +558,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
   last_tick_s_ = t;
   const int ticks_since_start = started_ ? 2 : 0;
 
-  // Pad heights from kinematics (unknown, NaN, is taken as on the ground: every test below
-  // compares a height with "greater than").
+  // Pad heights from kinematics (unknown, NaN, is taken as on the ground: every test, in this
+  // file and the others, compares a height with "greater than").
   const auto height = io.in(kPointHeight);
 
   // Evidence, channel by channel.

@@ -1,6 +1,7 @@
 // The decisions of each tick, channel by channel, once the jump groups are judged: a decided jump's
 // onset or end, then the frozen and saturation, spike, noise-burst, negative-reading and air tests
-// (contact_force_fdi.hpp, "Tests"), in the order their evidence ranks.
+// (contact_force_fdi.hpp, "Tests"). Where several fire on one channel, `raise` keeps the type
+// whose evidence ranks highest (`priority`, contact_force_fdi_detail.hpp).
 #include "ftsense/biped/contact_force_fdi.hpp"
 
 #include <algorithm>
@@ -195,7 +196,7 @@ void ContactForceFdi::decide_channels(std::span<const double> measured, std::spa
                    t - c.flagged_since >= params_.hold_s) {
           clear(c);  // reads zero in the air again (this swing, or its latest block): the offset or drift is over
           // Judged healthy from here: the swing's mean, which still holds the fault's readings,
-          // starts again (else the raise below would take it back at once).
+          // starts again (else the air test's raise above would take it back on the next tick).
           c.airborne_sum = c.airborne_u_sum = c.airborne_uu_sum = c.airborne_ux_sum = 0.0;
           c.airborne_count = 0;
           c.air_window_flagged = false;

@@ -1,6 +1,9 @@
 // The evidence of each tick, channel by channel (contact_force_fdi.hpp, "Tests"): the feet's
 // touchdowns and summed readings, then each channel's jump candidates, repeats, spikes, noise,
-// air readings and sign. Decisions are taken later in the tick, once the jump groups are judged.
+// air readings and sign. Most decisions are taken later in the tick, once the jump groups are
+// judged; here only what a reading settles on its own: a reading without a value is invalid (and a
+// finite one re-admits it), a one-tick spike leaves its pending group, a flagged channel's step
+// back by its fault's size opens its end's judgment.
 #include "ftsense/biped/contact_force_fdi.hpp"
 
 #include <algorithm>

@@ -1283,8 +1283,9 @@ TEST(ContactForceFdi, AGainBegunInTheAirOfAnySizeIsNamedAndBlamesNoNeighbour) {
   // walking_gain's walk, the right pads' loads moving (+-40 N), l_foot/p4 reading k times its
   // load from tick 4800 (a swing; it lands at 5000). Every size is named a gain and no other
   // channel is flagged (walking_gain asserts that on every tick). Its k is held within the
-  // refits' dead band, half gain_threshold of the truth (a k refitted beyond it only: both the
-  // gain window and the reading's own fit against its leave-one-out force leave a k that close).
+  // refits' dead bands: the reading's own fit against its leave-one-out force leaves a held k
+  // alone within gain_threshold / 2 of its ratio to the fitted one, so up to 1 / (1 - 0.1) - 1
+  // of the truth (the gain window's band, on beta, is about the k's error itself: 0.1).
   // How soon is printed, not asserted: the window since the residual left its bound opens only
   // where the 1 Hz residual passes sum_threshold_N (80 N here: |k - 1| of a heel load of up to
   // 350 N over its stance), which x0.5 does at its first landing, named 0.9 s after the onset
@@ -1296,30 +1297,32 @@ TEST(ContactForceFdi, AGainBegunInTheAirOfAnySizeIsNamedAndBlamesNoNeighbour) {
     std::printf("x%.2f from tick 4800, in the air: flagged at tick %d (%.2f s after); at tick 13300 %s, k %.3f\n",
                 k_true, f.first, (f.first - 4800) * 1e-3, std::string(to_string(f.type)).c_str(), f.k);
     EXPECT_GE(f.first, 5000) << "x" << k_true;  // not before its pad carries load
-    EXPECT_LT(f.first, 12000) << "x" << k_true;
+    EXPECT_LT(f.first, 11000) << "x" << k_true;  // the slowest, x0.6, on tick 10706
     EXPECT_EQ(f.type, FaultType::gain) << "x" << k_true;
-    EXPECT_LE(std::abs(f.k / k_true - 1.0), 0.5 * suralp().gain_threshold) << "x" << k_true;
+    EXPECT_LE(std::abs(f.k / k_true - 1.0), 1.0 / (1.0 - 0.5 * suralp().gain_threshold) - 1.0) << "x" << k_true;
   }
 }
 
 TEST(ContactForceFdi, AStrongGainBegunInTheAirIsNamedWithinItsLandingsStance) {
-  // A sole that sways from side to side (+-200 N) loads p4 unlike its twin p3 within the stance,
-  // and the right pads' loads move (+-40 N). A x1.6 gain begun in the air (tick 4800) is then
-  // named within the stance it lands in (5000-5700): the 2 s gain window's fit on p4 explains
-  // the residual and stands out of every other channel's before the stance ends (with the window
-  // since the residual left its bound switched off, on the same tick: probed 2026-12-06). On this
-  // sole a x0.3-0.5 gain is named by that window instead, on ticks 5702-5710, once the stance has
-  // closed (never by tick 9000 with it switched off).
+  // A sole that sways from side to side (+-200 N, each pad's load at least 0: a pad only pushes)
+  // loads p4 unlike its twin p3 within the stance, and the right pads' loads move (+-40 N). A
+  // x1.6 gain begun in the air (tick 4800) is then named within the stance it lands in
+  // (5000-5700): the 2 s gain window's fit on p4 explains the residual and stands out of every
+  // other channel's before the stance ends (with the window since the residual left its bound
+  // switched off, on the same tick: a probe of 2026-12-06). (On a sole swaying +-100 N, a x2
+  // gain was named on tick 5654, but its healthy twin p3 was held frozen for a while from tick
+  // 5184: still at its load's turning point while the residual moved; docs/results.md.)
   const auto swaying = [](double s) {
     const double sway = 200.0 * std::sin(2.0 * std::numbers::pi * s);
-    return std::array<double, 4>{300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway, 300.0 * (1.0 - s) + 50.0 + sway,
-                                 300.0 * (1.0 - s) + 50.0 - sway};
+    return std::array<double, 4>{std::max(0.0, 300.0 * s + 50.0 + sway), std::max(0.0, 300.0 * s + 50.0 - sway),
+                                 std::max(0.0, 300.0 * (1.0 - s) + 50.0 + sway),
+                                 std::max(0.0, 300.0 * (1.0 - s) + 50.0 - sway)};
   };
   const Flagged f = walking_gain(4800, 1.6, 6300, false, 40.0, swaying);
   std::printf("x1.6 from tick 4800 on a swaying sole: flagged at tick %d; at tick 6300 %s, k %.3f\n", f.first,
               std::string(to_string(f.type)).c_str(), f.k);
-  EXPECT_GT(f.first, 5000 + 50);  // the window holds clear_s of ticks first
-  EXPECT_LT(f.first, 5700);       // within the landing's stance
+  EXPECT_GE(f.first, 5000);  // not before its pad carries load
+  EXPECT_LT(f.first, 5700);  // within the landing's stance
   EXPECT_EQ(f.type, FaultType::gain);
   EXPECT_NEAR(f.k, 1.6, 0.02);
 }

@@ -825,8 +825,10 @@ class ContactForceFdi {
     bool all_finite_readings = true;  // every channel has a value
     bool divisor_changed = false;     // a gain's correction changed on a loaded pad
   };
-  // The evidence, channel by channel: the feet's touchdowns and summed readings, then each
-  // channel's jump, repeat, spike, noise, air and sign evidence (the decisions come later).
+  // The evidence, channel by channel (contact_force_fdi_evidence.cpp): the feet's touchdowns and
+  // summed readings, then each channel's jump, repeat, spike, noise, air and sign evidence. Most
+  // decisions come later; a missing value (invalid), a one-tick spike leaving its group and a
+  // fault's step back (its end's judgment opened) are settled here.
   TickEvidence observe_evidence(std::span<const double> measured, std::span<const double> height, bool fz_ok,
                                 int ticks_since_start, double t) noexcept;
   // The jump groups' verdicts of this tick: the first group's and the late one's, each decided
@@ -834,7 +836,8 @@ class ContactForceFdi {
   struct GroupDecisions {
     bool decided = false, confirmed = false, late_decided = false, late_confirmed = false;
     // A loaded channel is flagged as anything but a corrected fault: its reading is not its load,
-    // so the gain tests take no evidence from this tick.
+    // so the gain tests take no evidence from this tick. Judged on the flags as they stood before
+    // this tick's decisions (decide_channels), read after them.
     bool uncorrected_loaded = false;
   };
   // The jump test's groups (contact_force_fdi_jump_groups.cpp): the sum residual's history, a
@@ -843,7 +846,8 @@ class ContactForceFdi {
   // feet's plane verdicts.
   GroupDecisions judge_jump_groups(std::span<const double> measured, std::span<const double> height, double fz,
                                    const TickEvidence& ev, double t) noexcept;
-  // The tick's decisions, channel by channel (contact_force_fdi_channel_decisions.cpp).
+  // The evidence loop's tests decided, channel by channel (contact_force_fdi_channel_decisions.cpp);
+  // the tests that need this tick's corrected sum residual run later in `step`.
   void decide_channels(std::span<const double> measured, std::span<const double> height,
                        const GroupDecisions& groups, bool touching_down, double t) noexcept;
   // Each channel's recovered value before the virtual sensor (contact_force_fdi_recovery.cpp):
