@@ -1193,15 +1193,18 @@ void walk_tick(Feet& feet, int k, const LeftLoads& left_loads, int gain_from, do
   feet.step(truth);
 }
 
-// The left pads rolling from heel to toe and swaying from side to side, each with a load of its
-// own shape (s the stance's phase):
-//   rear  (p3, p4): 300 (1 - s) + 50 +- 60 sin(2 pi s),  front (p1, p2): 300 s + 50 +- 60 sin(2 pi s),
+// The left pads rolling from heel to toe and swaying from side to side by sway_N, each with a load
+// of its own shape (s the stance's phase), at least 0 (a pad only pushes):
+//   rear  (p3, p4): 300 (1 - s) + 50 +- sway_N sin(2 pi s),  front (p1, p2): 300 s + 50 +- sway_N sin(2 pi s),
 // + on the left side (p1, p3), - on the right (p2, p4).
-std::array<double, 4> rolling_sole(double s) {
-  const double sway = 60.0 * std::sin(2.0 * std::numbers::pi * s);
-  return {300.0 * s + 50.0 + sway, 300.0 * s + 50.0 - sway, 300.0 * (1.0 - s) + 50.0 + sway,
-          300.0 * (1.0 - s) + 50.0 - sway};
+std::array<double, 4> swaying_sole(double s, double sway_N) {
+  const double sway = sway_N * std::sin(2.0 * std::numbers::pi * s);
+  return {std::max(0.0, 300.0 * s + 50.0 + sway), std::max(0.0, 300.0 * s + 50.0 - sway),
+          std::max(0.0, 300.0 * (1.0 - s) + 50.0 + sway), std::max(0.0, 300.0 * (1.0 - s) + 50.0 - sway)};
 }
+
+// The walks' usual sole: a sway of +-60 N (every load at least 50 N).
+std::array<double, 4> rolling_sole(double s) { return swaying_sole(s, 60.0); }
 
 // That walk on the rolling sole (or `left_loads`). Returns the first tick l_foot/p4 is flagged (-1:
 // never, by tick `ticks`), and its type and gain (reading / recovered value) on tick `check` (in a
@@ -1312,12 +1315,7 @@ TEST(ContactForceFdi, AStrongGainBegunInTheAirIsNamedWithinItsLandingsStance) {
   // switched off, on the same tick: a probe of 2026-12-06). (On a sole swaying +-100 N, a x2
   // gain was named on tick 5654, but its healthy twin p3 was held frozen for a while from tick
   // 5184: still at its load's turning point while the residual moved; docs/results.md.)
-  const auto swaying = [](double s) {
-    const double sway = 200.0 * std::sin(2.0 * std::numbers::pi * s);
-    return std::array<double, 4>{std::max(0.0, 300.0 * s + 50.0 + sway), std::max(0.0, 300.0 * s + 50.0 - sway),
-                                 std::max(0.0, 300.0 * (1.0 - s) + 50.0 + sway),
-                                 std::max(0.0, 300.0 * (1.0 - s) + 50.0 - sway)};
-  };
+  const auto swaying = [](double s) { return swaying_sole(s, 200.0); };
   const Flagged f = walking_gain(4800, 1.6, 6300, false, 40.0, swaying);
   std::printf("x1.6 from tick 4800 on a swaying sole: flagged at tick %d; at tick 6300 %s, k %.3f\n", f.first,
               std::string(to_string(f.type)).c_str(), f.k);
