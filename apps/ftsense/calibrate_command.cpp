@@ -10,6 +10,7 @@
 #include "ftsense/generic/noise_density.hpp"
 #include "ftsense/generic/residual_statistics.hpp"
 #include "ftsense/generic/tick_noise.hpp"
+#include "ftsense/generic/window_step_noise.hpp"
 #include "ftsense/io/output_file.hpp"
 #include "log_runner.hpp"
 
@@ -121,6 +122,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     std::vector<generic::ResidualStatistics> statistics;  // per channel
     std::vector<generic::NoiseDensity> density;           // per channel (noise_density only)
     std::vector<generic::TickNoise> tick_noise;           // per channel (tick_noise and resolution only)
+    std::vector<generic::WindowStepNoise> window_step;    // per channel (window_step only)
     bool one_number = false;  // the plugin takes one number for all channels: the largest is written
   };
   std::vector<Measured> measured;
@@ -150,7 +152,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       const auto in = ports.find_input(spec.input);
       const auto minus = spec.minus_input.empty() ? std::nullopt : ports.find_input(spec.minus_input);
       if (!in || (!spec.minus_input.empty() && !minus)) continue;  // the contract test rules this out
-      Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}, {},
+      Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}, {}, {},
                  takes_one_number(*info, spec.param)};
       if (minus) m.minus = pipeline.stage_input(i, *minus);
       // Only a correlation time needs the lags beyond one (and their ring of past samples).
@@ -162,6 +164,9 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       }
       if (spec.statistic == FaultFreeStatistic::tick_noise || spec.statistic == FaultFreeStatistic::resolution) {
         m.tick_noise.resize(m.input.dim);
+      }
+      if (spec.statistic == FaultFreeStatistic::window_step) {
+        m.window_step.assign(m.input.dim, generic::WindowStepNoise(pipeline.sample_period_s()));
       }
       measured.push_back(std::move(m));
     }
@@ -208,6 +213,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
             for (auto& s : m.statistics) s.break_sequence();
             for (auto& d : m.density) d.break_sequence();
             for (auto& q : m.tick_noise) q.break_sequence();
+            for (auto& w : m.window_step) w.break_sequence();
           }
         }
         last = t;
@@ -219,6 +225,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
               m.statistics[j].add(r);
               if (!m.density.empty()) m.density[j].add(r);
               if (!m.tick_noise.empty()) m.tick_noise[j].add(r);
+              if (!m.window_step.empty()) m.window_step[j].add(r);
             }
           }
         }
@@ -303,11 +310,13 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
         case FaultFreeStatistic::noise_density: value = m.density[j].density(); break;
         case FaultFreeStatistic::tick_noise: value = m.tick_noise[j].standard_deviation(); break;
         case FaultFreeStatistic::resolution: value = m.tick_noise[j].resolution(); break;
+        case FaultFreeStatistic::window_step: value = m.window_step[j].standard_deviation(); break;
       }
       const bool spread = m.spec.statistic == FaultFreeStatistic::standard_deviation ||
                           m.spec.statistic == FaultFreeStatistic::rms ||
                           m.spec.statistic == FaultFreeStatistic::noise_density ||
-                          m.spec.statistic == FaultFreeStatistic::tick_noise;
+                          m.spec.statistic == FaultFreeStatistic::tick_noise ||
+                          m.spec.statistic == FaultFreeStatistic::window_step;
       if (m.spec.statistic == FaultFreeStatistic::noise_density && m.density[j].windows() < kMinNoiseDensityWindows) {
         refusals.push_back(what + std::to_string(m.density[j].windows()) + " whole windows of " +
                            format_number(kNoiseDensityWindowS) + " s after the warm-up, fewer than " +
@@ -317,6 +326,11 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
       } else if (m.spec.statistic == FaultFreeStatistic::tick_noise && m.tick_noise[j].count() == 0) {
         refusals.push_back(what + "no three consecutive finite readings that are not all equal: the reading "
                            "never changes (held?) or is never finite; give its noise in the config");
+      } else if (m.spec.statistic == FaultFreeStatistic::window_step && m.window_step[j].count() == 0) {
+        refusals.push_back(what + "no " + std::to_string(2 * m.window_step[j].window_ticks()) +
+                           " consecutive finite samples after the warm-up (two windows of " +
+                           format_number(generic::kStepWindowS) + " s); calibrate on a log where they are, or give "
+                           "it in the config");
       } else if (!std::isfinite(value)) {
         refusals.push_back(what + "is not a finite number (" + format_number(value) +
                            "): the log holds absurd values; calibrate on a fault-free log");

@@ -367,9 +367,9 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   std::ostringstream quadruped;
   std::ostringstream quadruped_generic;
   quadruped_generic << "\nThe same quadruped logs through the generic FDI parts alone (configs/quadruped_generic.json:\n"
-                       "sum_constraint_residual -> cusum_detector -> signature_isolator -> fault_classifier, and\n"
-                       "signal_validator, merged by fault_merge -> fault_recovery; calibrated on quadruped_clean by\n"
-                       "ftsense calibrate):\n";
+                       "sum_constraint_residual -> cusum_detector -> signature_isolator and step_isolator ->\n"
+                       "fault_classifier, and signal_validator, merged by fault_merge -> fault_recovery; calibrated on\n"
+                       "quadruped_clean by ftsense calibrate):\n";
   quadruped << "\nA quadruped by JSON alone (configs/quadruped.json: URDF kinematics, m R f_imu spread over the feet in\n"
                "contact about the inverted pendulum's ZMP, contact_force_fdi on four point feet):\n";
   std::string quadruped_fault_table;
@@ -619,12 +619,14 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   doc.table(std::move(quadruped_virtual));
   doc.table(std::move(quadruped_faults));
   doc.paragraph("The same logs through the generic FDI parts alone (`configs/quadruped_generic.json`: "
-                "`sum_constraint_residual` -> `cusum_detector` -> `signature_isolator` -> `fault_classifier`, and "
-                "`signal_validator`, merged by `fault_merge` -> `fault_recovery`; calibrated on the clean crawl by "
-                "`ftsense calibrate`; per scenario, "
-                "`quadruped_generic_<scenario>/report.md`). They isolate a fault on a loaded foot only once a swing "
-                "tells it from its loaded neighbours, and a further faulty foot only where what the first leaves "
-                "shows on its own row, in its swing: see docs/architecture.md.");
+                "`sum_constraint_residual` -> `cusum_detector` -> `signature_isolator` and `step_isolator` -> "
+                "`fault_classifier`, and `signal_validator`, merged by `fault_merge` -> `fault_recovery`; calibrated "
+                "on the clean crawl by `ftsense calibrate`; per scenario, "
+                "`quadruped_generic_<scenario>/report.md`). A fault that begins as a step is isolated on that step "
+                "(the one foot whose reading and residual stepped while its virtual sensor did not); any other "
+                "fault on a loaded foot only once a swing tells it from its loaded neighbours, and a further faulty "
+                "foot only where what the first leaves shows on its own row, in its swing: see "
+                "docs/architecture.md.");
   doc.table(std::move(generic_faults));
   doc.heading("Fault-free endurance");
   doc.paragraph("Fault-free walks of " + endurance_s + " s at both gaits and three seeds: false alarms after the 2 s warm-up.");

@@ -25,6 +25,9 @@
 //                       above (generic/tick_noise.hpp)
 //   resolution          the quantisation step q of a reading: the lattice its changes lie on, 0
 //                       when continuous (generic/tick_noise.hpp)
+//   window_step         how much r steps between two consecutive windows of W = round(10 ms / T)
+//                       ticks: median(|mean after - mean before|) / 0.67449
+//                       (generic/window_step_noise.hpp)
 //
 // A parameter is written as its plugin's schema takes it: a list of one value per channel, or,
 // for a parameter of one number (a correlation time, a noise level every channel shares), the
@@ -37,7 +40,7 @@
 namespace ftsense {
 
 enum class FaultFreeStatistic { centre, standard_deviation, rms, correlation_time, noise_density, tick_noise,
-                                resolution };
+                                resolution, window_step };
 
 // The window of the noise-density statistic: long against a stride or a gait cycle (whose
 // periodic error averages out over it), short against the minutes of a calibration log.

@@ -13,6 +13,7 @@
 #include "ftsense/generic/random_walk_fault_filter.hpp"
 #include "ftsense/generic/signal_validator.hpp"
 #include "ftsense/generic/signature_isolator.hpp"
+#include "ftsense/generic/step_isolator.hpp"
 #include "ftsense/generic/sum_constraint_residual.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
 #include "ftsense/generic/unloaded_reading_residual.hpp"
@@ -23,6 +24,6 @@ namespace ftsense::generic {
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
                                   UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge,
-                                  ChangeGuard>;
+                                  ChangeGuard, StepIsolator>;
 
 }  // namespace ftsense::generic

@@ -1,0 +1,121 @@
+#pragma once
+// Isolation of a sensor fault that begins (or ends) as a step, by the one channel whose reading
+// and own residual row stepped together while what the relation says it should read did not
+// (analytical redundancy in time: a step, not a level, tells loaded channels apart).
+//
+// Model. Channel j reads x_j and has one residual row r_j that its reading enters one for one
+// (d r_j / d x_j = 1: sum_constraint_residual's rows, whose loaded rows are all the group's sum
+// residual; a leave-one-out fit's residual). v_j = x_j - r_j is then what the relation says x_j
+// should read (its virtual sensor). A fault that starts as a step b at tick t (an offset, a gain
+// or a sign flip on a loaded channel, a spike's edge) moves x_j within one tick and r_j with it,
+// and leaves v_j; a load that moves between channels moves each x_i with its v_i and leaves the
+// sum; a reference that steps moves every r_i and v_i of its rows, no reading. So, with
+// W = step_window_ticks(T) = round(10 ms / T) and the window step of a signal s at tick n
+//
+//   D s(n) = mean(s[n-W+1 .. n]) - mean(s[n-2W+1 .. n-W]),     t = n - W + 1 the step's tick,
+//
+//   jumped     |x_j(t) - 2 x_j(t-1) + x_j(t-2)| > z sqrt(6 sigma_j^2 + q_j^2 / 2)
+//              (its second difference beyond white noise sigma_j and quantisation q_j)
+//   stepped    |D r_i(n)| > z s_r,i                     (row i moved: R, the rows that did)
+//   cost       c_i = (D v_i(n) / s_v,i)^2               (how far i's virtual sensor moved)
+//
+// channel j is named, with step b = D r_j(n), when j is in R, jumped, costs the least of R with
+// c_j <= z^2, and every other row of R costs at least c_j + z^2 (told apart as surely as the
+// false-alarm target asks: the margin chi^2_1(1 - alpha) = z^2 of signature_isolator.hpp).
+// z = Phi^-1(1 - alpha / 2), alpha = T / false_alarm_interval_s; s_r and s_v are the fault-free
+// window steps of r and of x - r (window_step_noise.hpp, measured by `ftsense calibrate`). A row
+// is judged only on ticks whose last max(2W, W + 2) samples of x and r are finite and unguarded
+// (input `guard` nonzero: a landing's transient, which moves readings and the reference within
+// a tick as no model of them says), and a channel named within the last W ticks is not named
+// again (the jump's second difference returns -b one tick later).
+//
+// Verdict. A named channel is blamed when its step takes its row away from zero (|mean r after| >
+// |mean r before|: a step towards zero ends a fault nobody named, or another channel's, and
+// begins none; a new fault against a larger unnamed one is missed rather than a healthy channel
+// blamed); the steps named on it add up to its size b_j (output fault_estimate). It is re-admitted when
+//   - a step named on it brings b_j back within z sqrt(2) s_r,j (the fault ended as it began);
+//   - the detector on its row (input `alarm`, e.g. a cusum_detector on r) falls after it rose:
+//     the residual no longer holds a fault;
+//   - that detector has not risen within confirm_s of the naming: no lasting change followed
+//     the step (a transient), so nothing is held on one step's word.
+// Known limits: two channels that step on one tick leave each other's virtual sensors moving
+// (neither is named; the isolator and validators judge them); a step inside a guard is not seen;
+// a fault without a step (a drift, a frozen output, a gain begun in the air) is left to the
+// signature isolator and the classifier. Units: any; a channel's reading and residual share one.
+// Allocation-free: the rings are sized at construction; a tick costs O(n W).
+
+#include <array>
+#include <string_view>
+#include <vector>
+
+#include "ftsense/calibration.hpp"
+#include "ftsense/plugin.hpp"
+
+namespace ftsense::generic {
+
+class StepIsolator {
+ public:
+  static constexpr std::string_view name = "step_isolator";
+  static constexpr std::string_view summary =
+      "blames the channel whose reading and own residual stepped while its virtual sensor did not";
+  // For the config reference's port table and the schema (plugin.hpp): input guard is optional.
+  static constexpr std::string_view example_params = R"([{}, {"guard": true}])";
+
+  // `ftsense calibrate` measures each reading's white noise and quantisation step, and the
+  // fault-free window steps of each residual row and of each virtual sensor x - r.
+  static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
+      {"noise_std", "signal", FaultFreeStatistic::tick_noise},
+      {"resolution", "signal", FaultFreeStatistic::resolution},
+      {"residual_step_std", "residual", FaultFreeStatistic::window_step},
+      {"virtual_step_std", "signal", FaultFreeStatistic::window_step, "residual"},
+  });
+
+  struct Params {
+    std::vector<double> noise_std{1.0};
+    std::vector<double> resolution{0.0};
+    std::vector<double> residual_step_std{1.0};
+    std::vector<double> virtual_step_std{1.0};
+    double false_alarm_interval_s = 86400.0;
+    double confirm_s = 0.5;
+    bool guard = false;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kSignal, kResidual, kAlarm, kGuard };
+  enum Output : std::size_t { kFault, kFaultType, kFaultEstimate };
+
+  StepIsolator(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept;
+  void step(const StepIO& io) noexcept;
+
+  [[nodiscard]] std::size_t window_ticks() const noexcept { return window_; }
+  // z of the header.
+  [[nodiscard]] double z() const noexcept { return z_; }
+
+ private:
+  void release(std::size_t j) noexcept;
+
+  Ports ports_;
+  bool guard_wired_;
+  std::size_t window_;       // W
+  std::size_t span_;         // max(2W, W + 2): the samples a judgement rests on
+  std::size_t confirm_ticks_;
+  double z_;
+  std::vector<double> jump_bound_;      // z sqrt(6 sigma^2 + q^2 / 2), per channel
+  std::vector<double> residual_bound_;  // z s_r
+  std::vector<double> release_bound_;   // z sqrt(2) s_r
+  std::vector<double> inv_virtual_step_;
+  // Rings of span_ ticks, channel-major: reading and residual.
+  std::vector<double> x_ring_, r_ring_;
+  std::size_t next_ = 0;                  // the ring slot this tick writes
+  std::vector<std::size_t> usable_run_;   // ticks in a row with x, r finite and unguarded, up to span_
+  std::vector<std::size_t> since_named_;  // ticks since the channel was last named, up to window_
+  std::vector<char> blamed_, alarm_seen_;
+  std::vector<double> size_;
+  std::vector<std::size_t> age_;
+  std::vector<double> step_, cost_;  // work: this tick's D r and c per channel (NaN: not judged)
+  std::vector<double> level_;        // work: mean(r[n-W+1 .. n])
+};
+
+}  // namespace ftsense::generic

@@ -1,0 +1,227 @@
+#include "ftsense/generic/step_isolator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "ftsense/channel_values.hpp"
+#include "ftsense/fault_type.hpp"
+#include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/window_step_noise.hpp"
+
+namespace ftsense::generic {
+
+void StepIsolator::Params::describe(ParamSchema<Params>& schema) {
+  schema
+      .add("noise_std", &Params::noise_std,
+           "white noise sigma of each reading, in its unit (its second difference has variance 6 sigma^2); one "
+           "value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+  schema
+      .add("resolution", &Params::resolution,
+           "quantisation step q of each reading, in its unit (0: continuous; adds q^2 / 2 to the second "
+           "difference's variance); one value applies to all")
+      .at_least(0.0)
+      .count_at_least(1);
+  schema
+      .add("residual_step_std", &Params::residual_step_std,
+           "s_r: how much each fault-free residual row steps between two consecutive 10 ms windows (standard "
+           "deviation, in its unit); one value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+  schema
+      .add("virtual_step_std", &Params::virtual_step_std,
+           "s_v: the same for each virtual sensor x - r (what the relation says the reading should be); one "
+           "value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+  schema.add("false_alarm_interval_s", &Params::false_alarm_interval_s,
+             "mean time between wrong namings the tests' z = Phi^-1(1 - T / (2 interval)) aims at")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(1.0, 1e9, "from a second (tests) to decades");
+  schema.add("confirm_s", &Params::confirm_s,
+             "how long a named step waits for the detector on its row (input alarm) to rise before it is "
+             "dropped as a transient")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(0.01, 10.0, "a detector confirms a lasting change within tenths of a second");
+  schema.add("guard", &Params::guard,
+             "adds input guard (nonzero: the tick is not judged, e.g. change_guard over a landing's transient)");
+}
+
+StepIsolator::StepIsolator(const Params& params, const StageContext& context) : guard_wired_(params.guard) {
+  const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
+  const double period = context.sample_period_s();
+  window_ = step_window_ticks(period);
+  span_ = std::max(2 * window_, window_ + 2);
+  const double alpha = period / params.false_alarm_interval_s;
+  if (!(alpha > 0.0 && alpha < 1.0)) {
+    throw ConfigError("/params/false_alarm_interval_s", " = " + format_number(params.false_alarm_interval_s) +
+                                                            " s must be longer than the sample period");
+  }
+  z_ = normal_quantile(1.0 - 0.5 * alpha);
+  const double confirm_ticks = std::round(params.confirm_s / period);
+  if (!(confirm_ticks >= 1.0 && confirm_ticks <= 1e9)) {
+    throw ConfigError("/params/confirm_s", " = " + format_number(params.confirm_s) + " s is " +
+                                               format_number(confirm_ticks) + " ticks of " + format_number(period) +
+                                               " s; it needs at least one tick");
+  }
+  confirm_ticks_ = static_cast<std::size_t>(confirm_ticks);
+  const auto noise = channel_values(params.noise_std, dim, "noise_std");
+  const auto resolution = channel_values(params.resolution, dim, "resolution");
+  const auto residual_step = channel_values(params.residual_step_std, dim, "residual_step_std");
+  const auto virtual_step = channel_values(params.virtual_step_std, dim, "virtual_step_std");
+  jump_bound_.resize(dim);
+  residual_bound_.resize(dim);
+  release_bound_.resize(dim);
+  inv_virtual_step_.resize(dim);
+  for (std::size_t j = 0; j < dim; ++j) {
+    jump_bound_[j] = z_ * std::sqrt(6.0 * noise[j] * noise[j] + 0.5 * resolution[j] * resolution[j]);
+    residual_bound_[j] = z_ * residual_step[j];
+    release_bound_[j] = z_ * std::sqrt(2.0) * residual_step[j];
+    inv_virtual_step_[j] = 1.0 / virtual_step[j];
+  }
+  ports_.add_input(PortSpec{"signal", dim, std::string(kAnyUnit), "the readings x_j"}.sized_by("as wired"));
+  ports_.add_input(PortSpec{"residual", dim, std::string(kAnyUnit),
+                            "one residual row per channel that its reading enters one for one (d r_j / d x_j = 1), "
+                            "in the readings' unit"}
+                       .sized_by("as `signal`"));
+  ports_.add_input(PortSpec{"alarm", dim, std::string(kDimensionless),
+                            "1 while a detector raises residual row j (nonzero: raised; 0 or NaN: not)"}
+                       .sized_by("as `signal`"));
+  if (guard_wired_) {
+    ports_.add_input(PortSpec{"guard", dim, std::string(kDimensionless),
+                              "nonzero on ticks not judged (a landing's transient)"}
+                         .sized_by("as `signal`"));
+  }
+  ports_.add_output(PortSpec{"fault", dim, std::string(kDimensionless), "1 while the channel is blamed, else 0"}
+                        .sized_by("as `signal`"));
+  ports_.add_output(PortSpec{"fault_type", dim, std::string(kDimensionless),
+                             "fault type code (fault_type.hpp): unclassified when blamed, else none"}
+                        .sized_by("as `signal`"));
+  ports_.add_output(PortSpec{"fault_estimate", dim, std::string(kAnyUnit),
+                             "b_j, the sum of the steps named on a blamed channel, in the readings' unit; 0 "
+                             "otherwise"}
+                        .sized_by("as `signal`"));
+  x_ring_.assign(dim * span_, 0.0);
+  r_ring_.assign(dim * span_, 0.0);
+  usable_run_.assign(dim, 0);
+  since_named_.assign(dim, window_);
+  blamed_.assign(dim, 0);
+  alarm_seen_.assign(dim, 0);
+  size_.assign(dim, 0.0);
+  age_.assign(dim, 0);
+  step_.assign(dim, 0.0);
+  level_.assign(dim, 0.0);
+  cost_.assign(dim, 0.0);
+}
+
+void StepIsolator::reset() noexcept {
+  std::fill(x_ring_.begin(), x_ring_.end(), 0.0);
+  std::fill(r_ring_.begin(), r_ring_.end(), 0.0);
+  next_ = 0;
+  std::fill(usable_run_.begin(), usable_run_.end(), 0);
+  std::fill(since_named_.begin(), since_named_.end(), window_);
+  for (std::size_t j = 0; j < blamed_.size(); ++j) release(j);
+}
+
+void StepIsolator::release(std::size_t j) noexcept {
+  blamed_[j] = 0;
+  alarm_seen_[j] = 0;
+  size_[j] = 0.0;
+  age_[j] = 0;
+}
+
+void StepIsolator::step(const StepIO& io) noexcept {
+  const auto x = io.in(kSignal);
+  const auto r = io.in(kResidual);
+  const auto alarm = io.in(kAlarm);
+  const std::size_t n = blamed_.size();
+  const std::size_t w = window_;
+  const double inv_w = 1.0 / static_cast<double>(w);
+  // Slot of the sample `back` ticks before this one (0: this tick).
+  const auto slot = [&](std::size_t back) { return (next_ + span_ - back) % span_; };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t j = 0; j < n; ++j) {
+    const bool guarded = guard_wired_ && io.in(kGuard)[j] != 0.0;  // NaN is nonzero: unknown is guarded
+    const bool usable = std::isfinite(x[j]) && std::isfinite(r[j]) && !guarded;
+    x_ring_[j * span_ + next_] = x[j];
+    r_ring_[j * span_ + next_] = r[j];
+    usable_run_[j] = usable ? std::min(usable_run_[j] + 1, span_) : 0;
+    since_named_[j] = std::min(since_named_[j] + 1, w);
+    step_[j] = nan;
+    cost_[j] = nan;
+    if (usable_run_[j] < span_) continue;
+    const double* xs = &x_ring_[j * span_];
+    const double* rs = &r_ring_[j * span_];
+    double r_after = 0.0, r_before = 0.0, x_after = 0.0, x_before = 0.0;
+    for (std::size_t k = 0; k < w; ++k) {
+      r_after += rs[slot(k)];
+      x_after += xs[slot(k)];
+      r_before += rs[slot(w + k)];
+      x_before += xs[slot(w + k)];
+    }
+    const double dr = (r_after - r_before) * inv_w;
+    const double dv = ((x_after - r_after) - (x_before - r_before)) * inv_w;
+    step_[j] = dr;
+    level_[j] = r_after * inv_w;
+    cost_[j] = std::abs(dr) > residual_bound_[j] ? (dv * inv_virtual_step_[j]) * (dv * inv_virtual_step_[j]) : nan;
+  }
+  // The rows that stepped (cost_ finite): the least costly is named when it stands apart.
+  std::size_t best = n;
+  double best_cost = std::numeric_limits<double>::infinity();
+  double runner_up = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!std::isfinite(cost_[j])) continue;
+    if (cost_[j] < best_cost) {
+      runner_up = best_cost;
+      best_cost = cost_[j];
+      best = j;
+    } else {
+      runner_up = std::min(runner_up, cost_[j]);
+    }
+  }
+  const double margin = z_ * z_;
+  if (best < n && best_cost <= margin && runner_up - best_cost >= margin && since_named_[best] >= w) {
+    const double* xs = &x_ring_[best * span_];
+    const std::size_t t = w - 1;  // the step's tick, W - 1 ticks back
+    const double second_difference = xs[slot(t)] - 2.0 * xs[slot(t + 1)] + xs[slot(t + 2)];
+    if (std::abs(second_difference) > jump_bound_[best]) {
+      since_named_[best] = 0;
+      if (blamed_[best] != 0) {
+        size_[best] += step_[best];
+        if (std::abs(size_[best]) <= release_bound_[best]) release(best);
+      } else if (std::abs(level_[best]) > std::abs(level_[best] - step_[best])) {
+        // A step that takes the row towards its fault-free level ends a fault nobody named (or
+        // another channel's): it begins none.
+        blamed_[best] = 1;
+        size_[best] = step_[best];
+        age_[best] = 0;
+        alarm_seen_[best] = 0;
+      }
+    }
+  }
+  const auto fault = io.out(kFault);
+  const auto type = io.out(kFaultType);
+  const auto estimate = io.out(kFaultEstimate);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (blamed_[j] != 0) {
+      const bool raised = std::isfinite(alarm[j]) && alarm[j] != 0.0;
+      age_[j] = std::min(age_[j] + 1, confirm_ticks_ + 1);
+      if (raised) {
+        alarm_seen_[j] = 1;
+      } else if (alarm_seen_[j] != 0 || age_[j] > confirm_ticks_) {
+        release(j);
+      }
+    }
+    fault[j] = blamed_[j] != 0 ? 1.0 : 0.0;
+    type[j] = fault_code(blamed_[j] != 0 ? FaultType::unclassified : FaultType::none);
+    estimate[j] = blamed_[j] != 0 ? size_[j] : 0.0;
+  }
+  next_ = (next_ + 1) % span_;
+}
+
+}  // namespace ftsense::generic

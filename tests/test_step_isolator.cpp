@@ -1,0 +1,280 @@
+// step_isolator: on three channels that sum to a reference while their loads move, a step on one
+// is named on the tick its window completes, with its exact size, and no neighbour is; its end
+// re-admits it on the tick that window completes. A reference step, a load moved between
+// channels within a tick, a step towards zero and a step inside a guard name nobody; a step no
+// detector confirms is dropped after confirm_s, and a blamed channel is re-admitted on the tick
+// its detector falls. window_step_noise: exact steps of small sequences, and sigma sqrt(2 / W)
+// for white noise (seed printed).
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "ftsense/fault_type.hpp"
+#include "ftsense/generic/step_isolator.hpp"
+#include "ftsense/generic/window_step_noise.hpp"
+#include "ftsense/testing/plugin_contract.hpp"
+
+namespace ftsense::testing {
+template <>
+struct ContractSetup<generic::StepIsolator> {
+  static Json params() { return Json{{"guard", true}}; }
+  static std::size_t input_dim(std::string_view) { return 3; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      v[i] = port == "alarm" ? 1.0 : port == "guard" ? 0.0 : 1.0 + 0.25 * static_cast<double>(i);
+    }
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+INSTANTIATE_TYPED_TEST_SUITE_P(StepIsolation, PluginContract, ::testing::Types<generic::StepIsolator>);
+}  // namespace ftsense::testing
+
+namespace ftsense {
+namespace {
+
+using generic::StepIsolator;
+
+constexpr double kStepPeriod = 1e-3;  // W = 10 ticks
+constexpr double kSharedLoad = 300.0;
+
+// Three loaded channels that share kSharedLoad, the load swaying between them at 1 Hz (300 N/s at
+// most: a window step of up to 3 N in each virtual sensor).
+double swaying_load(std::size_t j, int k) {
+  const double phase = 2.0 * M_PI * 1.0 * k * kStepPeriod + 2.0 * M_PI * static_cast<double>(j) / 3.0;
+  return kSharedLoad / 3.0 + 50.0 * std::sin(phase);
+}
+
+struct StepTrace {
+  std::vector<double> fault_on_channel;  // added to channel j's reading from onset to end
+  std::size_t channel = 1;
+  int onset = 500;
+  int end = 800;
+  double size = 30.0;
+  double reference_step = 0.0;  // added to the reference from reference_onset
+  int reference_onset = 500;
+  int guard_from = -1, guard_to = -1;
+  int alarm_from = 0, alarm_to = 100000;  // the detector on every row raised on [from, to)
+};
+
+struct StepVerdicts {
+  std::vector<std::vector<double>> fault, estimate;  // [tick][channel]
+};
+
+StepVerdicts run_isolator(const StepTrace& trace, StepIsolator::Params p = {}) {
+  p.noise_std = {0.1};
+  p.residual_step_std = {0.1};
+  p.virtual_step_std = {2.0};
+  p.guard = true;
+  StepIsolator iso(p, StageContext(kStepPeriod, "step", {{"signal", 3}}));
+  iso.reset();
+  std::vector<double> x(3), r(3), alarm(3), guard(3), fault(3), type(3), estimate(3);
+  const std::span<const double> ins[] = {x, r, alarm, guard};
+  const std::span<double> outs[] = {fault, type, estimate};
+  StepVerdicts out;
+  for (int k = 0; k < 1200; ++k) {
+    double sum = 0.0;
+    for (std::size_t j = 0; j < 3; ++j) {
+      x[j] = swaying_load(j, k) + (j == trace.channel && k >= trace.onset && k < trace.end ? trace.size : 0.0);
+      sum += x[j];
+    }
+    const double reference = kSharedLoad + (k >= trace.reference_onset ? trace.reference_step : 0.0);
+    for (std::size_t j = 0; j < 3; ++j) {
+      r[j] = sum - reference;  // every channel loaded: each row is the sum residual
+      alarm[j] = k >= trace.alarm_from && k < trace.alarm_to ? 1.0 : 0.0;
+      guard[j] = k >= trace.guard_from && k < trace.guard_to ? 1.0 : 0.0;
+    }
+    iso.step(StepIO{k * kStepPeriod, ins, outs});
+    out.fault.push_back(fault);
+    out.estimate.push_back(estimate);
+    for (std::size_t j = 0; j < 3; ++j) {
+      EXPECT_EQ(type[j], fault_code(fault[j] != 0.0 ? FaultType::unclassified : FaultType::none)) << k;
+    }
+  }
+  return out;
+}
+
+int flagged_ticks(const StepVerdicts& r, std::size_t j) {
+  int n = 0;
+  for (const auto& f : r.fault) n += f[j] != 0.0 ? 1 : 0;
+  return n;
+}
+
+TEST(StepIsolator, WindowIsTenMillisecondsInTicks) {
+  EXPECT_EQ(generic::step_window_ticks(0.001), 10u);
+  EXPECT_EQ(generic::step_window_ticks(0.002), 5u);
+  EXPECT_EQ(generic::step_window_ticks(0.005), 2u);
+  EXPECT_EQ(generic::step_window_ticks(0.02), 1u);  // round(0.5) = 1
+  EXPECT_EQ(generic::step_window_ticks(0.1), 1u);
+  EXPECT_EQ(generic::step_window_ticks(0.0), 1u);
+}
+
+TEST(StepIsolator, ALoadedChannelsStepIsNamedWhenItsWindowCompletesAndNoNeighbourIs) {
+  // Onset at tick 500: the window after it completes on tick 509, where the sum residual's window
+  // step is exactly 30 (0 before, 30 after). The end's step back completes on tick 809.
+  const StepVerdicts r = run_isolator(StepTrace{});
+  for (int k = 0; k < 1200; ++k) {
+    const bool blamed = k >= 509 && k < 809;
+    EXPECT_EQ(r.fault[k][1], blamed ? 1.0 : 0.0) << "tick " << k;
+    EXPECT_EQ(r.fault[k][0], 0.0) << "tick " << k;
+    EXPECT_EQ(r.fault[k][2], 0.0) << "tick " << k;
+    if (blamed) {
+      EXPECT_NEAR(r.estimate[k][1], 30.0, 1e-9) << "tick " << k;
+    }
+  }
+}
+
+TEST(StepIsolator, ANegativeStepOnAnotherChannelIsNamedAlike) {
+  StepTrace t;
+  t.channel = 2;
+  t.size = -25.0;
+  const StepVerdicts r = run_isolator(t);
+  EXPECT_EQ(flagged_ticks(r, 2), 300);
+  EXPECT_EQ(r.fault[508][2], 0.0);
+  EXPECT_EQ(r.fault[509][2], 1.0);
+  EXPECT_NEAR(r.estimate[509][2], -25.0, 1e-9);
+  EXPECT_EQ(flagged_ticks(r, 0) + flagged_ticks(r, 1), 0);
+}
+
+TEST(StepIsolator, AReferenceThatStepsBlamesNoChannel) {
+  // Every row's residual and virtual sensor step by the reference's 30 N; no reading does.
+  StepTrace t;
+  t.size = 0.0;
+  t.reference_step = -30.0;
+  const StepVerdicts r = run_isolator(t);
+  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+}
+
+TEST(StepIsolator, AStepTowardsZeroBeginsNoFault) {
+  // The reference is 30 N low from the start (a fault nobody named holds the rows at +30); channel
+  // 1 then steps by -30 N: the rows return to zero, which begins no fault.
+  StepTrace t;
+  t.size = -30.0;
+  t.reference_step = -30.0;
+  t.reference_onset = 0;
+  t.end = 100000;
+  const StepVerdicts r = run_isolator(t);
+  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+}
+
+TEST(StepIsolator, AStepInsideAGuardIsNotJudged) {
+  // Guarded over ticks 495-515: no judgement rests on them (the isolator needs 20 unguarded ticks),
+  // so the onset is not named; the end at 800 is a step towards zero and begins nothing.
+  StepTrace t;
+  t.guard_from = 495;
+  t.guard_to = 515;
+  const StepVerdicts r = run_isolator(t);
+  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+}
+
+TEST(StepIsolator, AStepNoDetectorConfirmsIsDroppedAfterConfirmS) {
+  // No alarm ever: blamed on tick 509 for confirm_s = 50 ms, 50 ticks (509-558).
+  StepTrace t;
+  t.alarm_from = 100000;
+  StepIsolator::Params p;
+  p.confirm_s = 0.05;
+  const StepVerdicts r = run_isolator(t, p);
+  for (int k = 0; k < 1200; ++k) {
+    EXPECT_EQ(r.fault[k][1], k >= 509 && k < 559 ? 1.0 : 0.0) << "tick " << k;
+  }
+}
+
+TEST(StepIsolator, ABlamedChannelIsReadmittedOnTheTickItsDetectorFalls) {
+  // The detector rises on tick 520 and falls on tick 700: blamed 509-699.
+  StepTrace t;
+  t.alarm_from = 520;
+  t.alarm_to = 700;
+  const StepVerdicts r = run_isolator(t);
+  for (int k = 0; k < 1200; ++k) {
+    EXPECT_EQ(r.fault[k][1], k >= 509 && k < 700 ? 1.0 : 0.0) << "tick " << k;
+  }
+}
+
+TEST(StepIsolator, ALoadMovedBetweenChannelsWithinATickIsNoFault) {
+  // Channel 1 gains 30 N and channel 0 loses them on tick 500 (the sum holds): no row stepped.
+  StepIsolator::Params p;
+  p.noise_std = {0.1};
+  p.residual_step_std = {0.1};
+  p.virtual_step_std = {2.0};
+  StepIsolator iso(p, StageContext(kStepPeriod, "step", {{"signal", 3}}));
+  iso.reset();
+  std::vector<double> x(3), r(3), alarm(3, 1.0), fault(3), type(3), estimate(3);
+  const std::span<const double> ins[] = {x, r, alarm};
+  const std::span<double> outs[] = {fault, type, estimate};
+  for (int k = 0; k < 1000; ++k) {
+    double sum = 0.0;
+    for (std::size_t j = 0; j < 3; ++j) {
+      x[j] = swaying_load(j, k) + (k >= 500 ? (j == 1 ? 30.0 : j == 0 ? -30.0 : 0.0) : 0.0);
+      sum += x[j];
+    }
+    for (std::size_t j = 0; j < 3; ++j) r[j] = sum - kSharedLoad;
+    iso.step(StepIO{k * kStepPeriod, ins, outs});
+    for (std::size_t j = 0; j < 3; ++j) ASSERT_EQ(fault[j], 0.0) << "tick " << k << " channel " << j;
+  }
+}
+
+TEST(StepIsolator, AChannelOffTheGroundIsNamedOnItsOwnRow) {
+  // Channel 2 in the air (reads 0, its row its own reading): a 20 N step on it is named on tick
+  // 509; the loaded rows (channels 0 and 1 share the 300 N) do not move.
+  StepIsolator::Params p;
+  p.noise_std = {0.1};
+  p.residual_step_std = {0.1};
+  p.virtual_step_std = {2.0};
+  StepIsolator iso(p, StageContext(kStepPeriod, "step", {{"signal", 3}}));
+  iso.reset();
+  std::vector<double> x(3), r(3), alarm(3, 1.0), fault(3), type(3), estimate(3);
+  const std::span<const double> ins[] = {x, r, alarm};
+  const std::span<double> outs[] = {fault, type, estimate};
+  for (int k = 0; k < 700; ++k) {
+    const double sway = 50.0 * std::sin(2.0 * M_PI * k * kStepPeriod);
+    x[0] = 150.0 + sway;
+    x[1] = 150.0 - sway;
+    x[2] = k >= 500 ? 20.0 : 0.0;
+    r[0] = r[1] = x[0] + x[1] - kSharedLoad;
+    r[2] = x[2];
+    iso.step(StepIO{k * kStepPeriod, ins, outs});
+    EXPECT_EQ(fault[2], k >= 509 ? 1.0 : 0.0) << "tick " << k;
+    EXPECT_EQ(fault[0] + fault[1], 0.0) << "tick " << k;
+  }
+  EXPECT_NEAR(estimate[2], 20.0, 1e-12);
+}
+
+TEST(WindowStepNoise, StepsOfASmallSequenceAreExact) {
+  // T = 5 ms: W = 2, so each step compares the mean of the last two samples with the two before.
+  generic::WindowStepNoise w(0.005);
+  EXPECT_EQ(w.window_ticks(), 2u);
+  for (const double s : {0.0, 0.0, 1.0, 1.0}) w.add(s);
+  EXPECT_EQ(w.count(), 1u);  // (1 + 1) / 2 - (0 + 0) / 2 = 1
+  EXPECT_DOUBLE_EQ(w.standard_deviation(), 1.0 / 0.6744897501960817);
+  w.add(3.0);  // (1 + 3) / 2 - (0 + 1) / 2 = 1.5
+  w.add(std::nan(""));  // breaks the sequence: no window spans it
+  for (const double s : {5.0, 5.0, 5.0}) w.add(s);
+  EXPECT_EQ(w.count(), 2u);
+  w.add(5.0);  // (5 + 5) / 2 - (5 + 5) / 2 = 0
+  EXPECT_EQ(w.count(), 3u);
+  // Steps 1, 1.5, 0: median 1.
+  EXPECT_DOUBLE_EQ(w.standard_deviation(), 1.0 / 0.6744897501960817);
+  generic::WindowStepNoise empty(0.001);
+  EXPECT_TRUE(std::isnan(empty.standard_deviation()));
+}
+
+TEST(WindowStepNoise, WhiteNoiseStepsBySigmaTimesRootTwoOverW) {
+  const unsigned seed = 20261206;
+  std::printf("seed %u\n", seed);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  for (const double period : {0.001, 0.005}) {
+    generic::WindowStepNoise w(period);
+    for (int k = 0; k < 200000; ++k) w.add(noise(rng));
+    const double expected = 2.0 * std::sqrt(2.0 / static_cast<double>(w.window_ticks()));
+    std::printf("T = %g s: W = %zu, sigma %.4f against %.4f\n", period, w.window_ticks(), w.standard_deviation(),
+                expected);
+    EXPECT_NEAR(w.standard_deviation() / expected, 1.0, 0.02);
+  }
+}
+
+}  // namespace
+}  // namespace ftsense
