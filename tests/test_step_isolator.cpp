@@ -1,7 +1,8 @@
 // step_isolator: on three channels that sum to a reference while their loads move, a step on one
 // is named on the tick its window completes, with its exact size, and no neighbour is; its end
 // re-admits it on the tick that window completes. A reference step, a load moved between
-// channels within a tick, a step towards zero and a step inside a guard name nobody; a step no
+// channels within a tick, a spike of three ticks, a step towards zero and a step inside a guard
+// name nobody; a step no
 // detector confirms is dropped after confirm_s, and a blamed channel is re-admitted on the tick
 // its detector falls. window_step_noise: exact steps of small sequences, and sigma sqrt(2 / W)
 // for white noise (seed printed).
@@ -137,6 +138,16 @@ TEST(StepIsolator, ANegativeStepOnAnotherChannelIsNamedAlike) {
   EXPECT_EQ(r.fault[509][2], 1.0);
   EXPECT_NEAR(r.estimate[509][2], -25.0, 1e-9);
   EXPECT_EQ(flagged_ticks(r, 0) + flagged_ticks(r, 1), 0);
+}
+
+TEST(StepIsolator, ASpikeOfAFewTicksIsNoStep) {
+  // Channel 1 reads 100 N high on ticks 500-502 only: the window after it moves by 30 N, as a
+  // 30 N step's would, but the reading jumped by 100 N, not by what its row stepped.
+  StepTrace t;
+  t.size = 100.0;
+  t.end = 503;
+  const StepVerdicts r = run_isolator(t);
+  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
 }
 
 TEST(StepIsolator, AReferenceThatStepsBlamesNoChannel) {

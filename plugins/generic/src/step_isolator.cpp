@@ -75,11 +75,14 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context) : 
   const auto residual_step = channel_values(params.residual_step_std, dim, "residual_step_std");
   const auto virtual_step = channel_values(params.virtual_step_std, dim, "virtual_step_std");
   jump_bound_.resize(dim);
+  jump_match_bound_.resize(dim);
   residual_bound_.resize(dim);
   release_bound_.resize(dim);
   inv_virtual_step_.resize(dim);
   for (std::size_t j = 0; j < dim; ++j) {
-    jump_bound_[j] = z_ * std::sqrt(6.0 * noise[j] * noise[j] + 0.5 * resolution[j] * resolution[j]);
+    const double jump_variance = 6.0 * noise[j] * noise[j] + 0.5 * resolution[j] * resolution[j];
+    jump_bound_[j] = z_ * std::sqrt(jump_variance);
+    jump_match_bound_[j] = z_ * std::sqrt(jump_variance + residual_step[j] * residual_step[j]);
     residual_bound_[j] = z_ * residual_step[j];
     release_bound_[j] = z_ * std::sqrt(2.0) * residual_step[j];
     inv_virtual_step_[j] = 1.0 / virtual_step[j];
@@ -189,7 +192,10 @@ void StepIsolator::step(const StepIO& io) noexcept {
     const double* xs = &x_ring_[best * span_];
     const std::size_t t = w - 1;  // the step's tick, W - 1 ticks back
     const double second_difference = xs[slot(t)] - 2.0 * xs[slot(t + 1)] + xs[slot(t + 2)];
-    if (std::abs(second_difference) > jump_bound_[best]) {
+    // The reading jumped, and by what its row stepped: a spike of a few ticks jumps by far more
+    // than the window's mean moves.
+    if (std::abs(second_difference) > jump_bound_[best] &&
+        std::abs(second_difference - step_[best]) <= jump_match_bound_[best]) {
       since_named_[best] = 0;
       if (blamed_[best] != 0) {
         size_[best] += step_[best];

@@ -14,8 +14,10 @@
 //
 //   D s(n) = mean(s[n-W+1 .. n]) - mean(s[n-2W+1 .. n-W]),     t = n - W + 1 the step's tick,
 //
-//   jumped     |x_j(t) - 2 x_j(t-1) + x_j(t-2)| > z sqrt(6 sigma_j^2 + q_j^2 / 2)
-//              (its second difference beyond white noise sigma_j and quantisation q_j)
+//   jumped     e_j = x_j(t) - 2 x_j(t-1) + x_j(t-2),  |e_j| > z sqrt(6 sigma_j^2 + q_j^2 / 2)
+//              (its second difference beyond white noise sigma_j and quantisation q_j), and by
+//              what its row stepped: |e_j - D r_j(n)| <= z sqrt(6 sigma_j^2 + q_j^2 / 2 + s_r,j^2)
+//              (a spike of a few ticks jumps by W / width times what the window's mean moves)
 //   stepped    |D r_i(n)| > z s_r,i                     (row i moved: R, the rows that did)
 //   cost       c_i = (D v_i(n) / s_v,i)^2               (how far i's virtual sensor moved)
 //
@@ -103,6 +105,7 @@ class StepIsolator {
   std::size_t confirm_ticks_;
   double z_;
   std::vector<double> jump_bound_;      // z sqrt(6 sigma^2 + q^2 / 2), per channel
+  std::vector<double> jump_match_bound_;  // z sqrt(6 sigma^2 + q^2 / 2 + s_r^2)
   std::vector<double> residual_bound_;  // z s_r
   std::vector<double> release_bound_;   // z sqrt(2) s_r
   std::vector<double> inv_virtual_step_;
