@@ -1,8 +1,8 @@
 // step_isolator: on three channels that sum to a reference while their loads move, a step on one
 // is named on the tick its window completes, with its exact size, and no neighbour is; its end
 // re-admits it on the tick that window completes. A reference step, a load moved between
-// channels within a tick, a spike of three ticks, a step towards zero and a step inside a guard
-// name nobody; a step no
+// channels within a tick, a spike of three ticks, a step towards zero, a step on a row raised
+// with no named cause and a step inside a guard name nobody; a step no
 // detector confirms is dropped after confirm_s, and a blamed channel is re-admitted on the tick
 // its detector falls. window_step_noise: exact steps of small sequences, and sigma sqrt(2 / W)
 // for white noise (seed printed).
@@ -58,7 +58,7 @@ struct StepTrace {
   double reference_step = 0.0;  // added to the reference from reference_onset
   int reference_onset = 500;
   int guard_from = -1, guard_to = -1;
-  int alarm_from = 0, alarm_to = 100000;  // the detector on every row raised on [from, to)
+  int alarm_from = 505, alarm_to = 100000;  // the detector on every row raised on [from, to)
 };
 
 struct StepVerdicts {
@@ -171,6 +171,15 @@ TEST(StepIsolator, AStepTowardsZeroBeginsNoFault) {
   for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
 }
 
+TEST(StepIsolator, AStepOnARowRaisedWithNoNamedCauseNamesNobody) {
+  // The detector is up from the start (a fault nobody named holds the rows): channel 1's step at
+  // tick 500 may begin a second fault or end that one, and names nobody.
+  StepTrace t;
+  t.alarm_from = 0;
+  const StepVerdicts r = run_isolator(t);
+  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+}
+
 TEST(StepIsolator, AStepInsideAGuardIsNotJudged) {
   // Guarded over ticks 495-515: no judgement rests on them (the isolator needs 20 unguarded ticks),
   // so the onset is not named; the end at 800 is a step towards zero and begins nothing.
@@ -236,10 +245,11 @@ TEST(StepIsolator, AChannelOffTheGroundIsNamedOnItsOwnRow) {
   p.virtual_step_std = {2.0};
   StepIsolator iso(p, StageContext(kStepPeriod, "step", {{"signal", 3}}));
   iso.reset();
-  std::vector<double> x(3), r(3), alarm(3, 1.0), fault(3), type(3), estimate(3);
+  std::vector<double> x(3), r(3), alarm(3, 0.0), fault(3), type(3), estimate(3);
   const std::span<const double> ins[] = {x, r, alarm};
   const std::span<double> outs[] = {fault, type, estimate};
   for (int k = 0; k < 700; ++k) {
+    alarm[2] = k >= 505 ? 1.0 : 0.0;  // the detector on channel 2's own row rises after its step
     const double sway = 50.0 * std::sin(2.0 * M_PI * k * kStepPeriod);
     x[0] = 150.0 + sway;
     x[1] = 150.0 - sway;

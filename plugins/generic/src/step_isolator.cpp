@@ -111,6 +111,7 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context) : 
                         .sized_by("as `signal`"));
   x_ring_.assign(dim * span_, 0.0);
   r_ring_.assign(dim * span_, 0.0);
+  raised_ring_.assign(dim * span_, 0);
   usable_run_.assign(dim, 0);
   since_named_.assign(dim, window_);
   blamed_.assign(dim, 0);
@@ -125,6 +126,7 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context) : 
 void StepIsolator::reset() noexcept {
   std::fill(x_ring_.begin(), x_ring_.end(), 0.0);
   std::fill(r_ring_.begin(), r_ring_.end(), 0.0);
+  std::fill(raised_ring_.begin(), raised_ring_.end(), 0);
   next_ = 0;
   std::fill(usable_run_.begin(), usable_run_.end(), 0);
   std::fill(since_named_.begin(), since_named_.end(), window_);
@@ -153,6 +155,7 @@ void StepIsolator::step(const StepIO& io) noexcept {
     const bool usable = std::isfinite(x[j]) && std::isfinite(r[j]) && !guarded;
     x_ring_[j * span_ + next_] = x[j];
     r_ring_[j * span_ + next_] = r[j];
+    raised_ring_[j * span_ + next_] = std::isfinite(alarm[j]) && alarm[j] != 0.0 ? 1 : 0;
     usable_run_[j] = usable ? std::min(usable_run_[j] + 1, span_) : 0;
     since_named_[j] = std::min(since_named_[j] + 1, w);
     step_[j] = nan;
@@ -194,15 +197,18 @@ void StepIsolator::step(const StepIO& io) noexcept {
     const double second_difference = xs[slot(t)] - 2.0 * xs[slot(t + 1)] + xs[slot(t + 2)];
     // The reading jumped, and by what its row stepped: a spike of a few ticks jumps by far more
     // than the window's mean moves.
+    const bool blamed_any = std::any_of(blamed_.begin(), blamed_.end(), [](char b) { return b != 0; });
     if (std::abs(second_difference) > jump_bound_[best] &&
         std::abs(second_difference - step_[best]) <= jump_match_bound_[best]) {
       since_named_[best] = 0;
       if (blamed_[best] != 0) {
         size_[best] += step_[best];
         if (std::abs(size_[best]) <= release_bound_[best]) release(best);
-      } else if (std::abs(level_[best]) > std::abs(level_[best] - step_[best])) {
+      } else if (std::abs(level_[best]) > std::abs(level_[best] - step_[best]) &&
+                 (raised_ring_[best * span_ + slot(t + 1)] == 0 || blamed_any)) {
         // A step that takes the row towards its fault-free level ends a fault nobody named (or
-        // another channel's): it begins none.
+        // another channel's): it begins none. And on a row already raised before the step with
+        // nothing named here, it may begin a fault or end the unnamed one: it names nobody.
         blamed_[best] = 1;
         size_[best] = step_[best];
         age_[best] = 0;

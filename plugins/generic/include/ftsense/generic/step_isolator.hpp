@@ -34,7 +34,10 @@
 // Verdict. A named channel is blamed when its step takes its row away from zero (|mean r after| >
 // |mean r before|: a step towards zero ends a fault nobody named, or another channel's, and
 // begins none; a new fault against a larger unnamed one is missed rather than a healthy channel
-// blamed); the steps named on it add up to its size b_j (output fault_estimate). It is re-admitted when
+// blamed), and when its row's detector was down on the tick before the step or some channel is
+// blamed here (a row raised with no named cause holds a fault nobody can place: a step may begin
+// a second fault or end that one, and the signature isolator judges it); the steps named on it
+// add up to its size b_j (output fault_estimate). It is re-admitted when
 //   - a step named on it brings b_j back within z sqrt(2) s_r,j (the fault ended as it began);
 //   - the detector on its row (input `alarm`, e.g. a cusum_detector on r) falls after it rose:
 //     the residual no longer holds a fault;
@@ -111,6 +114,7 @@ class StepIsolator {
   std::vector<double> inv_virtual_step_;
   // Rings of span_ ticks, channel-major: reading and residual.
   std::vector<double> x_ring_, r_ring_;
+  std::vector<char> raised_ring_;  // the alarm on each row, 1 raised
   std::size_t next_ = 0;                  // the ring slot this tick writes
   std::vector<std::size_t> usable_run_;   // ticks in a row with x, r finite and unguarded, up to span_
   std::vector<std::size_t> since_named_;  // ticks since the channel was last named, up to window_
