@@ -309,8 +309,11 @@ def trial(bin_dir, work, config, scenario, calibrate=False):
         if done.returncode != 0:
             return scenario, None, f"{os.path.basename(command[0])} failed: {done.stderr.strip()[:300]}"
     if calibrate:
-        params = [stage["params"] for stage in json.load(open(paths["calibration"]))["stages"].values()
-                  if "noise_std_N" in stage.get("params", {})]
+        stages = json.load(open(paths["calibration"]))["stages"].values()
+        params = [stage["params"] for stage in stages if "noise_std_N" in stage.get("params", {})]
+        # A config of generic parts: its validator's per-channel noise and resolution, the largest.
+        params += [{"noise_std_N": max(p["noise_std"]), "resolution_N": max(p["resolution"])}
+                   for p in (stage.get("params", {}) for stage in stages) if "noise_std" in p and "resolution" in p]
         scenario = dict(scenario, calibrated=params[0] if params else {})
     metrics = json.load(open(os.path.join(d, "report", "metrics.json")))
     return scenario, metrics, None
