@@ -364,6 +364,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
               {"input", options.at("input")},
               {"margin", margin},
               {"band", band},
+              {"sample_period_s", pipeline.sample_period_s()},
               {"ticks", ticks},
               {"stages", Json::object()}};
   for (const auto& d : detectors) {

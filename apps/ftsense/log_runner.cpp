@@ -296,6 +296,19 @@ std::vector<std::string> apply_thresholds(Json& config, const Json& thresholds, 
     throw ConfigError(thresholds_path + ":/stages", "missing; a thresholds file (from ftsense calibrate) has "
                                                      "\"stages\": {\"<stage>\": {\"thresholds\": [...]}}");
   }
+  // Statistics measured at one rate do not hold at another (a window step spans fewer ticks, a
+  // filtered residual's peak is another): a file that states its rate must match the config's.
+  if (const auto period = thresholds.find("sample_period_s"); period != thresholds.end()) {
+    const double config_period = config.is_object() ? config.value("sample_period_s", 0.0) : 0.0;
+    if (!period->is_number() || !(period->get<double>() > 0.0)) {
+      diag.error(thresholds_path + ":/sample_period_s", "is not a positive number of seconds");
+    } else if (config_period > 0.0 && std::abs(period->get<double>() - config_period) > 1e-9 * config_period) {
+      diag.error(thresholds_path + ":/sample_period_s",
+                 "= " + format_number(period->get<double>()) + " s, but the config runs at " +
+                     format_number(config_period) + " s: statistics measured at one rate do not hold at another; "
+                     "calibrate on a fault-free log at " + format_number(config_period) + " s");
+    }
+  }
   for (const auto& [name, entry] : stages->items()) {
     const std::string stage_path = thresholds_path + ":" + json_pointer_append("/stages", name);
     const bool has_thresholds = entry.is_object() && entry.contains("thresholds");

@@ -179,6 +179,11 @@ status=$?; grep -q "fault first flagged" "$work/out" && status=99  # 99: a chann
 check plain_threshold_hides_the_negative_fault 0 $status "3000 ticks, 3 channels" "$work/out" "^  no channel flagged$" "$work/out"
 "$ftsense" run --config "$good" --input "$work/faulty.csv" --output "$work/o.csv" --thresholds "$work/band.json" > "$work/out" 2> "$work/err"
 check band_shows_the_negative_fault 0 $? "c1: fault first flagged at t = 1\.[0-9]* s" "$work/out"
+# A calibration states the rate it was measured at; a config at another rate refuses it (a
+# filtered residual's peak and a window's step are other numbers there).
+grep -q '"sample_period_s": 0.001' "$work/plain.json" && sed 's/"sample_period_s": 0.001/"sample_period_s": 0.005/' "$good" > "$work/good_200hz.json"
+"$ftsense" run --config "$work/good_200hz.json" --input "$work/faulty.csv" --output "$work/o.csv" --thresholds "$work/plain.json" > "$work/out" 2> "$work/err"
+check calibration_at_another_rate 2 $? "plain.json:/sample_period_s: = 0.001 s, but the config runs at 0.005 s: .*calibrate on a fault-free log at 0.005 s" "$work/err"
 "$ftsense" calibrate --config "$good" --input "$work/clean_a.csv," --output "$work/x.json" > "$work/out" 2> "$work/err"
 check calibrate_empty_log_path 2 $? "has an empty log path" "$work/err"
 

@@ -62,7 +62,7 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context) : 
     throw ConfigError("/params/false_alarm_interval_s", " = " + format_number(params.false_alarm_interval_s) +
                                                             " s must be longer than the sample period");
   }
-  z_ = normal_quantile(1.0 - 0.5 * alpha);
+  z_ = -normal_quantile(0.5 * alpha);  // the lower tail keeps its precision for a tiny alpha
   const double confirm_ticks = std::round(params.confirm_s / period);
   if (!(confirm_ticks >= 1.0 && confirm_ticks <= 1e9)) {
     throw ConfigError("/params/confirm_s", " = " + format_number(params.confirm_s) + " s is " +
@@ -131,6 +131,9 @@ void StepIsolator::reset() noexcept {
   std::fill(usable_run_.begin(), usable_run_.end(), 0);
   std::fill(since_named_.begin(), since_named_.end(), window_);
   for (std::size_t j = 0; j < blamed_.size(); ++j) release(j);
+  std::fill(step_.begin(), step_.end(), 0.0);
+  std::fill(cost_.begin(), cost_.end(), 0.0);
+  std::fill(level_.begin(), level_.end(), 0.0);
 }
 
 void StepIsolator::release(std::size_t j) noexcept {

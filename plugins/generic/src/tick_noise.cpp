@@ -5,11 +5,11 @@
 #include <limits>
 #include <numbers>
 
+#include "ftsense/generic/sample_median.hpp"
+
 namespace ftsense::generic {
 
 namespace {
-// median(|Z|) for a standard normal Z: the 75 % quantile.
-constexpr double kMedianAbsNormal = 0.6744897501960817;
 // Below this estimate of r the share of changes judges the noise; at or above it, the second
 // differences (header).
 constexpr double kSecondDifferencesFrom = 0.5;
@@ -27,13 +27,6 @@ double binned_median(std::vector<long long> k) {
   return low + (half - below) / in_bin * width;
 }
 
-double plain_median(std::vector<double> v) {
-  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), middle, v.end());
-  double median = *middle;
-  if (v.size() % 2 == 0) median = 0.5 * (median + *std::max_element(v.begin(), middle));
-  return median;
-}
 }  // namespace
 
 void TickNoise::add(double x) {
@@ -120,7 +113,7 @@ TickNoise::Analysis TickNoise::analyse() const {
     }
     a.count = abs_d2.size();
     a.sigma = abs_d2.empty() ? std::numeric_limits<double>::quiet_NaN()
-                             : plain_median(abs_d2) / (kMedianAbsNormal * std::sqrt(6.0));
+                             : sample_median(abs_d2) / (kMedianAbsStandardNormal * std::sqrt(6.0));
     return a;
   }
   const double q = a.resolution;
@@ -184,7 +177,7 @@ TickNoise::Analysis TickNoise::analyse() const {
     a.sigma = r * q;
     return a;
   }
-  const double sigma_d2 = binned_median(std::move(s.d2_bins)) * q / (kMedianAbsNormal * std::sqrt(6.0));
+  const double sigma_d2 = binned_median(std::move(s.d2_bins)) * q / (kMedianAbsStandardNormal * std::sqrt(6.0));
   a.sigma = std::sqrt(std::max(sigma_d2 * sigma_d2 - q * q / 12.0, 0.0));
   return a;
 }

@@ -3,12 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ftsense::generic {
+#include "ftsense/generic/sample_median.hpp"
 
-namespace {
-// The median of |N(0, 1)|: Phi^-1(3/4).
-constexpr double kMedianOfAbsNormal = 0.6744897501960817;
-}  // namespace
+namespace ftsense::generic {
 
 std::size_t step_window_ticks(double sample_period_s) noexcept {
   if (!(sample_period_s > 0.0)) return 1;
@@ -45,14 +42,7 @@ void WindowStepNoise::break_sequence() noexcept {
 
 double WindowStepNoise::standard_deviation() const {
   if (steps_.empty()) return std::nan("");
-  std::vector<double> sorted = steps_;
-  const std::size_t half = sorted.size() / 2;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(half), sorted.end());
-  double median = sorted[half];
-  if (sorted.size() % 2 == 0) {
-    median = 0.5 * (median + *std::max_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(half)));
-  }
-  return median / kMedianOfAbsNormal;
+  return sample_median(steps_) / kMedianAbsStandardNormal;
 }
 
 }  // namespace ftsense::generic

@@ -17,7 +17,10 @@
 //   jumped     e_j = x_j(t) - 2 x_j(t-1) + x_j(t-2),  |e_j| > z sqrt(6 sigma_j^2 + q_j^2 / 2)
 //              (its second difference beyond white noise sigma_j and quantisation q_j), and by
 //              what its row stepped: |e_j - D r_j(n)| <= z sqrt(6 sigma_j^2 + q_j^2 / 2 + s_r,j^2)
-//              (a spike of a few ticks jumps by W / width times what the window's mean moves)
+//              (a spike of a few ticks jumps by W / width times what the window's mean moves;
+//              the bound adds the two variances as if independent, though e_j and D r_j share
+//              the step's tick: at W <= 2 the bound is a little loose, which only lets a short
+//              spike pass more easily to the other rules)
 //   stepped    |D r_i(n)| > z s_r,i                     (row i moved: R, the rows that did)
 //   cost       c_i = (D v_i(n) / s_v,i)^2               (how far i's virtual sensor moved)
 //
@@ -34,7 +37,10 @@
 // Verdict. A named channel is blamed when its step takes its row away from zero (|mean r after| >
 // |mean r before|: a step towards zero ends a fault nobody named, or another channel's, and
 // begins none; a new fault against a larger unnamed one is missed rather than a healthy channel
-// blamed), and when its row's detector was down on the tick before the step or some channel is
+// blamed; zero is taken as the row's fault-free level, so a row with a calibrated centre c misses
+// a step towards zero smaller than 2 |c|, and a step against a fault already named on the same
+// row, which also takes it towards zero, is missed too), and when its row's detector was down
+// on the tick before the step or some channel is
 // blamed here (a row raised with no named cause holds a fault nobody can place: a step may begin
 // a second fault or end that one, and the signature isolator judges it); the steps named on it
 // add up to its size b_j (output fault_estimate). It is re-admitted when

@@ -23,7 +23,7 @@ namespace ftsense::generic {
 // down, short against a load's motion (a foot's load moves little in 10 ms outside a landing).
 inline constexpr double kStepWindowS = 0.01;
 
-// W for a sample period T > 0: max(1, round(kStepWindowS / T)).
+// W for a sample period T > 0: max(1, round(kStepWindowS / T)), at most 10^6 (1 for T <= 0).
 [[nodiscard]] std::size_t step_window_ticks(double sample_period_s) noexcept;
 
 class WindowStepNoise {
