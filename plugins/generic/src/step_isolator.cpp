@@ -209,9 +209,9 @@ void StepIsolator::step(const StepIO& io) noexcept {
         if (std::abs(size_[best]) <= release_bound_[best]) release(best);
       } else if (std::abs(level_[best]) > std::abs(level_[best] - step_[best]) &&
                  (raised_ring_[best * span_ + slot(t + 1)] == 0 || blamed_any)) {
-        // A step that takes the row towards its fault-free level ends a fault nobody named (or
-        // another channel's): it begins none. And on a row already raised before the step with
-        // nothing named here, it may begin a fault or end the unnamed one: it names nobody.
+        // Blamed only for a step away from the row's fault-free level (one towards it ends a
+        // fault nobody named, or another channel's), and not on a row raised before the step
+        // with nothing named here (the step may begin a second fault or end that one).
         blamed_[best] = 1;
         size_[best] = step_[best];
         age_[best] = 0;
