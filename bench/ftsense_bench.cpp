@@ -30,6 +30,7 @@
 #include <benchmark/benchmark.h>
 
 #include "ftsense/generic/fault_classifier.hpp"
+#include "ftsense/generic/step_isolator.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/pipeline.hpp"
 #include "ftsense/reference_plugins.hpp"
@@ -214,6 +215,47 @@ void bench_classifier_all_flagged(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// step_isolator on 8 loaded channels at 1 kHz (W = 10): every row judged every tick, the 2 x 10
+// window sums per channel its whole cost. Inputs: loads swaying about 140 N (+-100 N, 1 Hz, each
+// channel's phase its own) plus white noise of 2 N (seed 1), the rows their sum residual against
+// the true total, no alarm; precomputed.
+void bench_step_isolator(benchmark::State& state) {
+  constexpr std::size_t kChannels = 8;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 20000;
+  ftsense::generic::StepIsolator::Params params;
+  params.noise_std = {2.0};
+  params.residual_step_std = {2.5};
+  params.virtual_step_std = {4.5};
+  ftsense::generic::StepIsolator isolator(params, ftsense::StageContext(kPeriod, "step", {{"signal", kChannels}}));
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  std::vector<double> x(kTicks * kChannels), r(kTicks * kChannels);
+  for (std::size_t k = 0; k < kTicks; ++k) {
+    double measured_sum = 0.0, true_sum = 0.0;
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      const double load = 140.0 + 100.0 * std::sin(2.0 * M_PI * (static_cast<double>(k) * kPeriod + 0.125 * c));
+      x[k * kChannels + c] = load + noise(rng);
+      measured_sum += x[k * kChannels + c];
+      true_sum += load;
+    }
+    for (std::size_t c = 0; c < kChannels; ++c) r[k * kChannels + c] = measured_sum - true_sum;
+  }
+  const std::vector<double> alarm(kChannels, 0.0);
+  std::vector<double> fault(kChannels), type(kChannels), estimate(kChannels);
+  isolator.reset();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {std::span<const double>(x).subspan(k * kChannels, kChannels),
+                                           std::span<const double>(r).subspan(k * kChannels, kChannels), alarm};
+    const std::span<double> outs[] = {fault, type, estimate};
+    isolator.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    if (++k == kTicks) k = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void register_benchmarks() {
   const std::pair<const char*, const char*> stages[] = {
       {"com", "lipm_com_estimator"},        {"split", "leg_force_split"},
@@ -236,6 +278,8 @@ void register_benchmarks() {
   });
   benchmark::RegisterBenchmark("stage/classify [fault_classifier, 16 channels all flagged, 1 kHz, synthetic]",
                                bench_classifier_all_flagged);
+  benchmark::RegisterBenchmark("stage/step [step_isolator, 8 loaded channels, 1 kHz, synthetic]",
+                               bench_step_isolator);
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",
                                [](benchmark::State& s) { bench_tick_config(s, suralp_config("active_set")); });
   benchmark::RegisterBenchmark("tick/suralp.json [ceres solver]",

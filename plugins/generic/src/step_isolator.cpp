@@ -166,12 +166,16 @@ void StepIsolator::step(const StepIO& io) noexcept {
     if (usable_run_[j] < span_) continue;
     const double* xs = &x_ring_[j * span_];
     const double* rs = &r_ring_[j * span_];
+    // The 2W samples oldest first, wrapping once at the ring's end (no modulo per sample).
     double r_after = 0.0, r_before = 0.0, x_after = 0.0, x_before = 0.0;
-    for (std::size_t k = 0; k < w; ++k) {
-      r_after += rs[slot(k)];
-      x_after += xs[slot(k)];
-      r_before += rs[slot(w + k)];
-      x_before += xs[slot(w + k)];
+    std::size_t at = slot(2 * w - 1);
+    for (std::size_t k = 0; k < w; ++k, at = at + 1 == span_ ? 0 : at + 1) {
+      r_before += rs[at];
+      x_before += xs[at];
+    }
+    for (std::size_t k = 0; k < w; ++k, at = at + 1 == span_ ? 0 : at + 1) {
+      r_after += rs[at];
+      x_after += xs[at];
     }
     const double dr = (r_after - r_before) * inv_w;
     const double dv = ((x_after - r_after) - (x_before - r_before)) * inv_w;
