@@ -103,6 +103,10 @@ int flagged_ticks(const StepVerdicts& r, std::size_t j) {
   return n;
 }
 
+void expect_nobody_blamed(const StepVerdicts& r) {
+  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+}
+
 TEST(StepIsolator, WindowIsTenMillisecondsInTicks) {
   EXPECT_EQ(generic::step_window_ticks(0.001), 10u);
   EXPECT_EQ(generic::step_window_ticks(0.002), 5u);
@@ -145,8 +149,7 @@ TEST(StepIsolator, ASpikeOfAFewTicksIsNoStep) {
   StepTrace t;
   t.size = 100.0;
   t.end = 503;
-  const StepVerdicts r = run_isolator(t);
-  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+  expect_nobody_blamed(run_isolator(t));
 }
 
 TEST(StepIsolator, AReferenceThatStepsBlamesNoChannel) {
@@ -154,8 +157,7 @@ TEST(StepIsolator, AReferenceThatStepsBlamesNoChannel) {
   StepTrace t;
   t.size = 0.0;
   t.reference_step = -30.0;
-  const StepVerdicts r = run_isolator(t);
-  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+  expect_nobody_blamed(run_isolator(t));
 }
 
 TEST(StepIsolator, AStepTowardsZeroBeginsNoFault) {
@@ -166,8 +168,7 @@ TEST(StepIsolator, AStepTowardsZeroBeginsNoFault) {
   t.reference_step = -30.0;
   t.reference_onset = 0;
   t.end = 100000;
-  const StepVerdicts r = run_isolator(t);
-  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+  expect_nobody_blamed(run_isolator(t));
 }
 
 TEST(StepIsolator, AStepOnARowRaisedWithNoNamedCauseNamesNobody) {
@@ -175,8 +176,7 @@ TEST(StepIsolator, AStepOnARowRaisedWithNoNamedCauseNamesNobody) {
   // tick 500 may begin a second fault or end that one, and names nobody.
   StepTrace t;
   t.alarm_from = 0;
-  const StepVerdicts r = run_isolator(t);
-  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+  expect_nobody_blamed(run_isolator(t));
 }
 
 TEST(StepIsolator, AStepInsideAGuardIsNotJudged) {
@@ -185,8 +185,7 @@ TEST(StepIsolator, AStepInsideAGuardIsNotJudged) {
   StepTrace t;
   t.guard_from = 495;
   t.guard_to = 515;
-  const StepVerdicts r = run_isolator(t);
-  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(flagged_ticks(r, j), 0) << "channel " << j;
+  expect_nobody_blamed(run_isolator(t));
 }
 
 TEST(StepIsolator, AStepNoDetectorConfirmsIsDroppedAfterConfirmS) {

@@ -217,13 +217,7 @@ def told(config, scenario, sensors=True):
     """The config told the walk's log period and (unless sensors is False) its force sensors."""
     config = json.loads(json.dumps(config))
     config.pop("$schema", None)
-    folder = config.pop("_folder", None)
     config["sample_period_s"] = scenario.get("log_period_s", 0.001)
-    # Files the config names relative to itself (a URDF) stay found from the work directory.
-    for stage in config["stages"]:
-        for key, value in stage.get("params", {}).items():
-            if key == "urdf" and isinstance(value, str) and not os.path.isabs(value):
-                stage["params"][key] = os.path.join(folder or os.path.join(ROOT, "configs"), value)
     stages = [s for s in config["stages"] if s["plugin"] == "contact_force_fdi"]
     if not stages and not sensors:
         return config  # a config of generic parts: calibrate measures what they use
@@ -357,7 +351,11 @@ def robot_config(args, work):
         path = args.config if os.path.exists(args.config) else os.path.join(ROOT, "configs", args.config)
         print(f"config: {path}")
     config = json.load(open(path))
-    config["_folder"] = os.path.dirname(os.path.abspath(path))  # a relative URDF is the config's neighbour
+    # Files the config names relative to itself (a URDF) stay found from the work directory.
+    for stage in config["stages"]:
+        urdf = stage.get("params", {}).get("urdf")
+        if isinstance(urdf, str) and not os.path.isabs(urdf):
+            stage["params"]["urdf"] = os.path.join(os.path.dirname(os.path.abspath(path)), urdf)
     if not any(s["plugin"] == "contact_force_fdi" for s in config["stages"]) and not args.calibrate:
         sys.exit(f"{path} has no contact_force_fdi stage to tell the sensors: give --calibrate")
     if "body" in robot:
