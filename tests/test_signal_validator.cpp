@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -215,6 +216,119 @@ TEST(SignalValidator, ASpikeIsFlaggedOneTickLateAndHeldForSpikeHold) {
   }
 }
 
+TEST(SignalValidator, WithAReferenceASpikeOfTheReadingAloneIsFlaggedOnTheSameTicks) {
+  // The ramp of the test above, its reference the ramp with noise of sigma_r = 1: the spike at
+  // tick 50 is in x - r as in x, so it is flagged from tick 51 to 90 as without a reference.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.reference = true;
+  p.reference_noise_std = {1.0};
+  p.window_s = 0.02;
+  p.spike_hold_s = 0.04;
+  OneValidatedChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 61;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (int k = 0; k < 150; ++k) {
+    const double load = 0.5 * k;
+    const FaultType found = c.step(load + noise(rng) + (k == 50 ? 100.0 : 0.0), load + noise(rng));
+    EXPECT_EQ(found, k >= 51 && k < 91 ? FaultType::spikes : FaultType::none) << "tick " << k;
+  }
+}
+
+TEST(SignalValidator, ASpikeOfTheReferenceOrOneItExplainsIsNoSpikeOfTheReading) {
+  // A steady reading (alternating +-1: no spike, no noise, not frozen) and its reference:
+  // (a) the reference alone jumps by 100 for tick 50: x shows nothing, so nothing is flagged;
+  // (b) at tick 50 the reading jumps by 30 and the reference by 80 (the load moved, and the
+  //     reference saw more of it): x - r spikes by -50, beyond its bound but against x's own
+  //     spike, so nothing is flagged; without the sign rule it would be;
+  // (c) the reading jumps by 30 while the reference jumps by 25: x - r spikes by 5, within its
+  //     bound (5.70 x 1.5 x sqrt(1.5 x 2) = 14.8): nothing; (d) the reference stays: a spike.
+  struct Case {
+    double reading_jump, reference_jump;
+    bool flagged;
+  };
+  for (const Case& e : {Case{0.0, 100.0, false}, Case{30.0, 80.0, false}, Case{30.0, 25.0, false},
+                        Case{30.0, 0.0, true}}) {
+    SignalValidator::Params p;
+    p.noise_std = {1.0};
+    p.reference = true;
+    p.reference_noise_std = {1.0};
+    p.window_s = 0.02;
+    p.tests = {"frozen", "spikes", "noise"};  // (a reference's one-tick jump moves its low-pass: no follow test)
+    OneValidatedChannel c(p, 1e-3);
+    int flagged = 0;
+    for (int k = 0; k < 150; ++k) {
+      const double wobble = k % 2 == 0 ? 1.0 : -1.0;
+      const FaultType found = c.step(100.0 + wobble + (k == 50 ? e.reading_jump : 0.0),
+                                     100.0 + (k == 50 ? e.reference_jump : 0.0));
+      flagged += found != FaultType::none;
+      if (found != FaultType::none) {
+        EXPECT_EQ(found, FaultType::spikes) << "tick " << k;
+      }
+    }
+    EXPECT_EQ(flagged > 0, e.flagged) << "reading +" << e.reading_jump << ", reference +" << e.reference_jump;
+  }
+}
+
+TEST(SignalValidator, ALoadThatBouncesFasterThanTheRateIsNoiseOrSpikesUnlessTheReferenceShowsIt) {
+  // A foot that bounces on and off the ground for 0.3 s at 1 kHz: its load (0.5 N sensor noise)
+  // is 0 or 28 N in runs of 1 to 3 ticks; its reference sees 90 % of each move, with noise of
+  // sigma_r = 1 N. Judged on the reading alone the bounce is noise and spikes; with the
+  // reference, the residual x - r moves by a tenth of each step (2.8 N, within its bounds), so
+  // nothing is flagged. And a sensor's own noise burst (20 N, 0.3 s later) is flagged with the
+  // reference: the reference does not show it.
+  for (const bool with_reference : {false, true}) {
+    SignalValidator::Params p;
+    p.noise_std = {0.5};
+    p.reference = with_reference;
+    p.reference_noise_std = {1.0};
+    p.tests = {"frozen", "spikes", "noise"};
+    OneValidatedChannel c(p, 1e-3);
+    constexpr unsigned kSeed = 62;
+    std::printf("seed %u\n", kSeed);
+    std::mt19937_64 rng(kSeed);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    std::uniform_int_distribution<int> run(1, 3);
+    int bounce_flags = 0, burst_flags = 0, burst_noise = 0;
+    double level = 28.0;
+    int left = 0;
+    for (int k = 0; k < 2000; ++k) {
+      double load = 20.0 + 10.0 * std::sin(0.002 * k);
+      if (k >= 500 && k < 800) {
+        if (left == 0) {
+          level = level > 0.0 ? 0.0 : 28.0;
+          left = run(rng);
+        }
+        --left;
+        load = level;
+      }
+      const double burst = k >= 1100 && k < 1400 ? 20.0 * noise(rng) : 0.0;
+      const double reading = load + 0.5 * noise(rng) + burst;
+      const double reference = 0.9 * load + (k >= 500 && k < 800 ? 0.1 * 28.0 : 0.1 * load) + noise(rng);
+      const FaultType found = c.step(reading, reference);
+      if (found == FaultType::none) continue;
+      if (k < 1100) ++bounce_flags;
+      if (k >= 1100 && k < 1400) {
+        // Its first large second differences are spikes until the noise count passes its bound.
+        EXPECT_TRUE(found == FaultType::noise || found == FaultType::spikes) << "tick " << k;
+        ++burst_flags;
+        burst_noise += found == FaultType::noise;
+      }
+    }
+    std::printf("%s: bounce flagged on %d ticks, burst on %d of 300 (noise on %d)\n",
+                with_reference ? "with reference" : "alone", bounce_flags, burst_flags, burst_noise);
+    if (with_reference) {
+      EXPECT_EQ(bounce_flags, 0);
+    } else {
+      EXPECT_GT(bounce_flags, 0);
+    }
+    EXPECT_GT(burst_flags, 250);
+    EXPECT_GT(burst_noise, 200);
+  }
+}
+
 TEST(SignalValidator, ASpikeTrainIsHeldThroughItsGapsAndClearsAfterTheGapItsRateMakesUnlikely) {
   // Spikes of 50 sigma every 50 ticks (20 per second at 1 kHz) from tick 1000 to 2000, on a
   // reading alternating +-1 (d2 = +-4: no spike, no noise, not frozen). Each is seen one tick
@@ -367,15 +481,21 @@ TEST(SignalValidator, OnlyTheChosenTestsRunBesidesInvalidAndSaturation) {
   EXPECT_EQ(last, FaultType::frozen);
 }
 
-TEST(SignalValidator, WithoutTheFrozenTestAStillReadingIsNotFrozen) {
-  // tests = [spikes, noise]: a reading that stops moving (test a) and one that does not follow its
-  // moving reference (test b) raise nothing; with the default tests both are frozen.
-  for (const bool with_frozen : {false, true}) {
+TEST(SignalValidator, WithoutTheFrozenOrFollowTestAStillOrUnfollowingReadingIsNotFrozen) {
+  // A reading that stops moving is frozen by test (a), `frozen`; one that does not follow its
+  // moving reference by the `follow` test. tests = [spikes, noise] raises neither; [frozen,
+  // spikes, noise] the still one only; the default tests both.
+  struct Case {
+    std::vector<std::string> tests;
+    bool still_frozen, unfollowing_frozen;
+  };
+  for (const Case& e : {Case{{"spikes", "noise"}, false, false}, Case{{"frozen", "spikes", "noise"}, true, false},
+                        Case{{}, true, true}}) {
     SignalValidator::Params p;
     p.noise_std = {1.0};
     p.reference = true;
     p.reference_noise_std = {1.0};
-    if (!with_frozen) p.tests = {"spikes", "noise"};
+    if (!e.tests.empty()) p.tests = e.tests;
     OneValidatedChannel still(p, 1e-3), unfollowing(p, 1e-3);
     FaultType last_still = FaultType::none, last_unfollowing = FaultType::none;
     for (int k = 0; k < 500; ++k) {
@@ -384,8 +504,8 @@ TEST(SignalValidator, WithoutTheFrozenTestAStillReadingIsNotFrozen) {
       // Alternating +-1 (d2 = +-4, so not stale by test a; no spike, no noise) while the reference swings.
       last_unfollowing = unfollowing.step(100.0 + (k % 2 ? 1.0 : -1.0), load);
     }
-    EXPECT_EQ(last_still, with_frozen ? FaultType::frozen : FaultType::none);
-    EXPECT_EQ(last_unfollowing, with_frozen ? FaultType::frozen : FaultType::none);
+    EXPECT_EQ(last_still, e.still_frozen ? FaultType::frozen : FaultType::none) << e.tests.size() << " tests";
+    EXPECT_EQ(last_unfollowing, e.unfollowing_frozen ? FaultType::frozen : FaultType::none) << e.tests.size() << " tests";
   }
 }
 

@@ -42,8 +42,8 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
       .greater_than(0.0)
       .plausible(1.0, 1e9, "from a second (tests) to decades");
   schema.add("reference", &Params::reference,
-             "adds input reference (a virtual sensor of the same quantity): the frozen test (b), and the "
-             "spike and noise tests on reading - reference");
+             "adds input reference (a virtual sensor of the same quantity): the follow test, and spike and "
+             "noise evidence only where reading - reference shows it too");
   schema.add("guard", &Params::guard,
              "adds input guard (nonzero on ticks whose own motion the rate does not resolve, such as a "
              "landing: change_guard after the contact flags): there no spike is seen and no second "
@@ -56,12 +56,12 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
       .count_at_least(1);
   schema
       .add("min_reference_change", &Params::min_reference_change,
-           "the low-passed reference must move this much over the window for frozen test (b) (0: "
+           "the low-passed reference must move this much over the window for the follow test (0: "
            "10 sqrt(sigma^2 + sigma_r^2)); one value applies to all")
       .at_least(0.0)
       .count_at_least(1);
   schema.add("follow_ratio", &Params::follow_ratio,
-             "frozen (b) when the reading moved less than this fraction of the reference's move")
+             "follow test: frozen when the reading moved less than this fraction of the reference's move")
       .greater_than(0.0)
       .at_most(1.0);
   schema.add("noise_margin", &Params::noise_margin,
@@ -81,12 +81,13 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
       .greater_than(0.0)
       .less_than(1.0);
   schema.add("tests", &Params::tests,
-             "the tests that run besides invalid and saturation: any of frozen, spikes, noise (without a "
-             "reference, spikes and noise need a signal whose own motion the sample rate resolves)");
+             "the tests that run besides invalid and saturation: any of frozen, follow (the reading follows "
+             "its reference's moves; with a reference), spikes, noise (without a reference, spikes and noise "
+             "need a signal whose own motion the sample rate resolves)");
 }
 
 namespace {
-constexpr std::array<std::string_view, 3> kOptionalTests{"frozen", "spikes", "noise"};
+constexpr std::array<std::string_view, 4> kOptionalTests{"frozen", "follow", "spikes", "noise"};
 }  // namespace
 
 void SignalValidator::Params::validate(Diagnostics& diag, std::string_view path) const {
@@ -112,6 +113,7 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     return std::find(params.tests.begin(), params.tests.end(), test) != params.tests.end();
   };
   frozen_test_ = chosen("frozen");
+  follow_test_ = chosen("follow");
   spike_test_ = chosen("spikes");
   noise_test_ = chosen("noise");
   const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
@@ -161,7 +163,8 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     // Worst case of quantisation: a value on a level boundary reads either level, a fair coin of
     // variance q^2 / 4 (q^2 / 12 is only the average over values).
     const double quantisation2 = q * q / 4.0;
-    const double tested2 = sigma2 + quantisation2 + (reference_ ? reference_noise[j] * reference_noise[j] : 0.0);
+    const double own2 = sigma2 + quantisation2;
+    const double residual2 = own2 + (reference_ ? reference_noise[j] * reference_noise[j] : 0.0);
     const double m = params.noise_margin;
     l.half_step = 0.5 * q;
     if (std::isfinite(upper[j]) && std::isfinite(lower[j]) && !(upper[j] - lower[j] > q)) {
@@ -175,13 +178,15 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     l.has_rest = std::isfinite(rest[j]);
     l.rest = l.has_rest ? rest[j] : 0.0;
     l.stale_below = 6.0 * sigma2 * static_cast<double>(window_) * low_quantile / (m * m);
-    l.noise_level = 2.0 * m * std::sqrt(6.0 * tested2);
-    l.spike_above = spike_z * m * std::sqrt(1.5 * tested2);
+    l.noise_level = 2.0 * m * std::sqrt(6.0 * own2);
+    l.spike_above = spike_z * m * std::sqrt(1.5 * own2);
+    l.residual_noise_level = 2.0 * m * std::sqrt(6.0 * residual2);
+    l.residual_spike_above = spike_z * m * std::sqrt(1.5 * residual2);
     l.min_reference_change =
         min_change[j] > 0.0 ? min_change[j]
                             : 10.0 * std::sqrt(sigma2 + reference_noise[j] * reference_noise[j]);
   }
-  // Low-pass of time constant n T / 8 for frozen test (b): its noise is small against a move.
+  // Low-pass of time constant n T / 8 for the follow test: its noise is small against a move.
   lp_gain_ = -std::expm1(-8.0 / static_cast<double>(window_));
 
   ports_.add_input(PortSpec{"signal", dim, std::string(kAnyUnit), "the readings x to validate"}.sized_by("as wired"));
@@ -282,10 +287,14 @@ void SignalValidator::step(const StepIO& io) noexcept {
     }
     if (x[j] >= l.upper - l.half_step || x[j] <= l.lower + l.half_step) found = FaultType::saturation;
 
-    // Frozen (a): the reading's own second differences.
+    // Frozen (a): the reading's own second differences. (Their noise and spike evidence, the
+    // reading's part of the tests below, is taken here, before the history moves on.)
+    double reading_d2 = 0.0, reading_spike = 0.0, reading_span = 0.0;
     if (s.x_history == 2) {
-      const double d2 = x[j] - 2.0 * s.x1 + s.x2;
-      push(s.reading_d2, sums_storage_, n, d2 * d2);
+      reading_d2 = x[j] - 2.0 * s.x1 + s.x2;
+      reading_spike = s.x1 - 0.5 * (s.x2 + x[j]);
+      reading_span = x[j] - s.x2;
+      push(s.reading_d2, sums_storage_, n, reading_d2 * reading_d2);
     }
     s.x2 = s.x1;
     s.x1 = x[j];
@@ -304,7 +313,7 @@ void SignalValidator::step(const StepIO& io) noexcept {
     s.stuck = stuck;
     if (stuck) found = s.clipped ? FaultType::saturation : FaultType::frozen;
 
-    // Frozen (b): the reading does not follow the reference's move over the window.
+    // Follow (typed frozen): the reading does not follow the reference's move over the window.
     if (reference_ && std::isfinite(r)) {
       if (!s.lp_started) {
         s.lp_x = x[j];
@@ -316,7 +325,7 @@ void SignalValidator::step(const StepIO& io) noexcept {
       }
       push(s.lp_signal, lp_storage_, n + 1, s.lp_x);
       push(s.lp_reference, lp_storage_, n + 1, s.lp_r);
-      if (found == FaultType::none && frozen_test_ && s.lp_reference.filled == n + 1) {
+      if (found == FaultType::none && follow_test_ && s.lp_reference.filled == n + 1) {
         const double reference_move = std::abs(s.lp_r - oldest(s.lp_reference, lp_storage_, n + 1));
         const double reading_move = std::abs(s.lp_x - oldest(s.lp_signal, lp_storage_, n + 1));
         if (reference_move >= l.min_reference_change && reading_move < follow_ratio_ * reference_move) {
@@ -329,17 +338,24 @@ void SignalValidator::step(const StepIO& io) noexcept {
       clear(s.lp_reference);
     }
 
-    // Spikes and noise: on x, or on x - r with a reference; not on a guarded tick (NaN: guarded).
+    // Spikes and noise: on x, and with a reference on x - r too (the same sign); not on a guarded
+    // tick (NaN: guarded). A finite x - r has a finite x, so its history spans the reading's.
     const double y = x[j] - r;
     const bool guarded = guard_ && !(io.in(guard_input_)[j] == 0.0);
     if (std::isfinite(y)) {
       if (s.y_history == 2) {
         const double d2 = y - 2.0 * s.y1 + s.y2;
-        push(s.tested_d2, sums_storage_, n, !guarded && std::abs(d2) > l.noise_level ? 1.0 : 0.0);
+        const bool noisy = std::abs(reading_d2) > l.noise_level &&
+                           (!reference_ || (std::abs(d2) > l.residual_noise_level && d2 * reading_d2 > 0.0));
+        push(s.tested_d2, sums_storage_, n, !guarded && noisy ? 1.0 : 0.0);
         const double off_neighbours = s.y1 - 0.5 * (s.y2 + y);
+        const bool spike =
+            std::abs(reading_spike) > l.spike_above && std::abs(reading_span) < std::abs(reading_spike) &&
+            (!reference_ || (std::abs(off_neighbours) > l.residual_spike_above &&
+                             std::abs(y - s.y2) < std::abs(off_neighbours) && off_neighbours * reading_spike > 0.0));
         if (!guarded) {
           s.spikes.see(1.0);
-          if (std::abs(off_neighbours) > l.spike_above && std::abs(y - s.y2) < std::abs(off_neighbours)) {
+          if (spike) {
             s.spikes.spike(spike_rule_);
             s.spike_idle_ticks = 0;
           }

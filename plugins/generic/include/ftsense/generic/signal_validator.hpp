@@ -35,20 +35,21 @@
 //               Nor while the window holds a reading at the sensor's rest value (`rest_value`,
 //               within q / 2): a driver that clamps an unloaded sensor there (a foot force
 //               sensor reporting exactly 0 N in the air) repeats it exactly while healthy, so a
-//               run on that value is no evidence of its own; frozen test (b) and the constraint
+//               run on that value is no evidence of its own; the follow test and the constraint
 //               residuals judge it against what the sensor should read.
-//               (b) with a reference: over the window, the low-passed reference moved by
-//               |dr| >= `min_reference_change` (default 10 sqrt(sigma^2 + sigma_r^2)) while the
-//               low-passed reading moved by less than `follow_ratio` |dr|: a frozen output that
-//               still carries electrical noise. Low-pass time constant n T / 8.
+//               (b) `follow`, with a reference: over the window, the low-passed reference moved
+//               by |dr| >= `min_reference_change` (default 10 sqrt(sigma^2 + sigma_r^2)) while
+//               the low-passed reading moved by less than `follow_ratio` |dr|: a frozen output
+//               that still carries electrical noise (typed frozen). Low-pass time constant
+//               n T / 8. Leave it out for a reference that carries other sensors' faults (a
+//               leave-one-out force moves by a neighbour's offset, which the healthy reading
+//               rightly does not follow).
 //   noise       more |d2| > 2 sqrt(6 s^2) in the window than healthy noise gives (s^2 = sigma^2 +
-//               q^2 / 4, the worst case: a value on a level boundary reads either level; plus
-//               sigma_r^2 on the residual x - r when a reference is given): healthy, each
-//               is over with p0 = P(|Z| > 2) = 4.55 %; the count's bound is n p0 + 2 z_alpha
+//               q^2 / 4, the worst case: a value on a level boundary reads either level): healthy,
+//               each is over with p0 = P(|Z| > 2) = 4.55 %; the count's bound is n p0 + 2 z_alpha
 //               sqrt(p0 (1 - p0) n / 2) + 3 (overlapping d2 are correlated: n / 2 draws; the 3
-//               let one spike or step pass, which puts up to 3 large d2 in the window). On x - r
-//               with a reference, whose slow motion then cancels; without one, the signal's own
-//               motion at the tick rate must be small against its noise.
+//               let one spike or step pass, which puts up to 3 large d2 in the window). Without a
+//               reference, the signal's own motion at the tick rate must be small against its noise.
 //   spikes      one reading off both neighbours and back: D = x_{t-1} - (x_{t-2} + x_t) / 2 with
 //               |D| > z sqrt(1.5 s^2) (z: the two-sided normal quantile of alpha) and
 //               |x_t - x_{t-2}| < |D|. Seen one tick late. A faulty sensor's spikes come at
@@ -65,8 +66,15 @@
 //               under window_s is taken as window_s (the rule: spike_episode.hpp, shared with
 //               contact_force_fdi). A noise burst ends the
 //               episode (its spikes are the noise's tails; the noise test alone clears it).
-// Invalid and saturation always run; `tests` chooses among frozen, spikes and noise. Without a
-// reference, spikes and noise judge the reading's own second differences, so they hold only for a
+//   with a reference r (noise and spikes): a tick is evidence only when the reading shows it (the
+//               bounds above) and so does the residual y = x - r, with the same sign, against the
+//               same bounds at s^2 + sigma_r^2. A sensor's noise and spikes are its own, in y as in
+//               x; a load that moves faster than the rate resolves (a foot that bounces on and off
+//               the ground, a landing logged at 200 Hz) moves r with x and leaves y alone. A
+//               healthy tick passes both with no more chance than either, so the bounds hold.
+// Invalid and saturation always run; `tests` chooses among frozen, follow (with a reference),
+// spikes and noise. Without a reference, spikes and noise judge the reading's own second
+// differences alone, so they hold only for a
 // signal whose own motion the sample rate resolves: a foot's landing logged at 200 Hz is one
 // sample off its neighbours, as a spike is. For such a signal leave them out, give a reference,
 // or give a `guard` input (change_guard after the contact flags): on a tick it marks, no spike is
@@ -96,10 +104,12 @@ class SignalValidator {
   // For the config reference's port table and the schema (plugin.hpp): inputs reference and guard are optional.
   static constexpr std::string_view example_params = R"([{}, {"reference": true, "guard": true}])";
 
-  // `ftsense calibrate` measures each reading's white noise and quantisation step (tick_noise.hpp).
+  // `ftsense calibrate` measures each reading's white noise and quantisation step, and the
+  // reference's noise where a reference is wired (tick_noise.hpp).
   static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
       {"noise_std", "signal", FaultFreeStatistic::tick_noise},
       {"resolution", "signal", FaultFreeStatistic::resolution},
+      {"reference_noise_std", "reference", FaultFreeStatistic::tick_noise},
   });
 
   struct Params {
@@ -118,7 +128,7 @@ class SignalValidator {
     double noise_margin = 1.5;
     double spike_hold_s = 0.8;
     double spike_gap_probability = 0.01;
-    std::vector<std::string> tests{"frozen", "spikes", "noise"};
+    std::vector<std::string> tests{"frozen", "follow", "spikes", "noise"};
     static void describe(ParamSchema<Params>& schema);
     void validate(Diagnostics& diag, std::string_view path) const;
   };
@@ -142,8 +152,10 @@ class SignalValidator {
     double rest = 0.0;                // the value the driver clamps an unloaded sensor to
     bool has_rest = false;
     double stale_below = 0.0;         // sum(d2^2) of the reading below this: frozen (a)
-    double noise_level = 0.0;         // |d2| of the tested quantity above this counts for noise
-    double spike_above = 0.0;         // |D| above this: spike
+    double noise_level = 0.0;         // |d2| of the reading above this counts for noise
+    double spike_above = 0.0;         // |D| of the reading above this: spike
+    double residual_noise_level = 0.0;  // the same for x - r, with a reference (sigma_r^2 added)
+    double residual_spike_above = 0.0;
     double min_reference_change = 0.0;
   };
   // A window of n values with its running sum; the storage is a slice of a preallocated vector.
@@ -154,7 +166,7 @@ class SignalValidator {
     double sum = 0.0;
   };
   struct State {
-    double y1 = 0.0, y2 = 0.0;  // previous two tested values (x, or x - r with a reference)
+    double y1 = 0.0, y2 = 0.0;  // previous two residuals x - r (with a reference)
     double x1 = 0.0, x2 = 0.0;  // previous two readings
     int y_history = 0, x_history = 0;  // consecutive finite values seen, up to 2
     std::size_t since_rest = 0;        // ticks since the reading was last at its rest value
@@ -162,7 +174,7 @@ class SignalValidator {
     bool clipped = false;              // the present stuck episode sits where the previous one did
     double stuck_value = 0.0;          // the value of the last stuck episode
     bool stuck_before = false;         // an earlier stuck episode exists
-    Window tested_d2;    // 1 where |d2| of the tested quantity > noise_level, else 0
+    Window tested_d2;    // 1 where |d2| shows noise (of x, and of x - r with a reference), else 0
     Window reading_d2;   // d2^2 of the reading
     Window lp_signal;    // low-passed reading, n + 1 values (only its ends are used)
     Window lp_reference;
@@ -192,7 +204,7 @@ class SignalValidator {
   double noise_count_above_ = 0.0;  // more such |d2| in a window: noise
   double follow_ratio_ = 0.25;
   bool reference_ = false;
-  bool frozen_test_ = true, spike_test_ = true, noise_test_ = true;
+  bool frozen_test_ = true, follow_test_ = true, spike_test_ = true, noise_test_ = true;
   bool guard_ = false;
   std::size_t guard_input_ = 0;  // index of input guard, after signal (and reference)
 };
