@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Instructions per whole tick of configs/suralp.json (or CONFIG, one that reads the same inputs), counted by valgrind's callgrind (deterministic:
+# Instructions per whole tick of configs/suralp.json (or CONFIG, one that reads some of its inputs, by name), counted by valgrind's callgrind (deterministic:
 # the same binary and inputs give the same count on a busy or idle machine). Runs the benchmark
 # binary for N1 and N2 ticks and divides the difference, so set-up (the simulated walk, building
 # the pipeline) cancels out; then the same difference per function (self cost, the 15 largest).

@@ -6,7 +6,7 @@
 //   ftsense-bench [Google Benchmark flags]   per-stage and whole-tick benchmarks
 //   ftsense-bench --latency-histogram N      N whole ticks timed one by one: median, p99, p99.9, max
 //   ftsense-bench --ticks N [CONFIG]         just N whole ticks of configs/suralp.json, or of CONFIG
-//                                            (a config reading the same inputs; a path as given,
+//                                            (a config reading some of its inputs; a path as given,
 //                                            else relative to the source tree), for valgrind
 //                                            --tool=callgrind
 //
@@ -57,9 +57,14 @@ std::string config_path(const std::string& config) {
 }
 
 // The walk: per tick, the concatenated values of the pipeline's inputs.
+// A simulated walk's inputs, tick by tick, laid out as configs/suralp.json's inputs (names and
+// their columns, one after another).
 struct Walk {
   std::vector<double> time;
   std::vector<std::vector<double>> inputs;
+  std::vector<std::string> names;                  // the inputs, in suralp.json's order
+  std::vector<std::vector<std::string>> columns;   // each one's columns
+  std::vector<std::size_t> offsets;                // where each one starts in a tick's values
 };
 
 const Walk& walk() {
@@ -74,10 +79,13 @@ const Walk& walk() {
                                        ftsense::reference_plugins::registry());
     ftsense::io::CsvLogReader log(csv, "simulated walk");
     std::vector<std::size_t> columns;
+    Walk result;
     for (const auto& in : p.inputs()) {
+      result.names.push_back(in.name);
+      result.columns.push_back(in.columns);
+      result.offsets.push_back(columns.size());
       for (const auto& c : in.columns) columns.push_back(*log.find_column(c));
     }
-    Walk result;
     std::vector<double> row;
     while (log.next(row)) {
       result.time.push_back(row[0]);
@@ -98,11 +106,44 @@ Json suralp_config(const std::string& solver) {
   return config;
 }
 
+// Writes one tick's values into p's inputs, one after another (a stage replay's own layout).
 void write_inputs(Pipeline& p, const std::vector<double>& values) {
   std::size_t k = 0;
   for (std::size_t i = 0; i < p.inputs().size(); ++i) {
     for (double& v : p.input_values(i)) v = values[k++];
   }
+}
+
+// Where each of p's inputs starts in a walk's values: matched by name and columns, so a config
+// may read fewer of the walk's inputs (configs/suralp_robust.json reads no gait plan), in any
+// order. Empty when p reads an input the walk does not have.
+std::vector<std::size_t> walk_offsets(const Pipeline& p, const Walk& w) {
+  std::vector<std::size_t> offsets;
+  for (const auto& in : p.inputs()) {
+    const auto at = std::find(w.names.begin(), w.names.end(), in.name);
+    if (at == w.names.end() || w.columns[static_cast<std::size_t>(at - w.names.begin())] != in.columns) return {};
+    offsets.push_back(w.offsets[static_cast<std::size_t>(at - w.names.begin())]);
+  }
+  return offsets;
+}
+
+// Writes one tick of the walk into p's inputs, at the offsets walk_offsets gave.
+void write_walk_inputs(Pipeline& p, const std::vector<std::size_t>& offsets, const std::vector<double>& values) {
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    std::size_t k = offsets[i];
+    for (double& v : p.input_values(i)) v = values[k++];
+  }
+}
+
+// walk_offsets, or a clear end for a config that reads another robot's inputs.
+std::vector<std::size_t> walk_offsets_or_exit(const Pipeline& p, const Walk& w, const std::string& what) {
+  std::vector<std::size_t> offsets = walk_offsets(p, w);
+  if (offsets.empty() && !p.inputs().empty()) {
+    std::fprintf(stderr, "ftsense-bench: %s reads an input configs/suralp.json does not (by name and columns)\n",
+                 what.c_str());
+    std::exit(2);
+  }
+  return offsets;
 }
 
 // One stage, alone, with the inputs it saw in a full run.
@@ -138,9 +179,10 @@ StageReplay make_stage_replay(const Json& config, const std::string& stage_name)
   single["allow_dependent_virtual_sensor"] = true;
   StageReplay replay{stage_name, Pipeline::build(single, ftsense::reference_plugins::registry()), {}};
   const Walk& w = walk();
+  const std::vector<std::size_t> offsets = walk_offsets_or_exit(full, w, "the config of stage " + stage_name);
   full.reset();
   for (std::size_t k = 0; k < w.time.size(); ++k) {
-    write_inputs(full, w.inputs[k]);
+    write_walk_inputs(full, offsets, w.inputs[k]);
     full.step(w.time[k]);
     std::vector<double> seen;
     for (std::size_t p = 0; p < ports.size(); ++p) {
@@ -169,10 +211,11 @@ void bench_stage(benchmark::State& state, const Json& config, const std::string&
 void bench_tick_config(benchmark::State& state, const Json& config) {
   Pipeline p = Pipeline::build(config, ftsense::reference_plugins::registry());
   const Walk& w = walk();
+  const std::vector<std::size_t> offsets = walk_offsets_or_exit(p, w, "a benchmarked config");
   p.reset();
   std::size_t k = 0;
   for (auto _ : state) {
-    write_inputs(p, w.inputs[k]);
+    write_walk_inputs(p, offsets, w.inputs[k]);
     p.step(w.time[k]);
     benchmark::ClobberMemory();
     if (++k == w.time.size()) k = 0;
@@ -302,10 +345,11 @@ std::size_t parse_count(const char* text) {
 int latency_histogram(std::size_t ticks) {
   Pipeline p = Pipeline::build(suralp_config("active_set"), ftsense::reference_plugins::registry());
   const Walk& w = walk();
+  const std::vector<std::size_t> offsets = walk_offsets_or_exit(p, w, "configs/suralp.json");
   std::vector<double> ns(ticks);
   p.reset();
   for (std::size_t i = 0, k = 0; i < ticks; ++i) {
-    write_inputs(p, w.inputs[k]);
+    write_walk_inputs(p, offsets, w.inputs[k]);
     const auto start = std::chrono::steady_clock::now();
     p.step(w.time[k]);
     const auto stop = std::chrono::steady_clock::now();
@@ -325,18 +369,12 @@ int run_ticks(std::size_t ticks, const std::string& config) {
   Pipeline p = Pipeline::build(config.empty() ? suralp_config("active_set")
                                               : read_json(config_path(config)),
                                ftsense::reference_plugins::registry());
-  const Pipeline suralp = Pipeline::build(suralp_config("active_set"), ftsense::reference_plugins::registry());
-  for (std::size_t i = 0; i < std::max(p.inputs().size(), suralp.inputs().size()); ++i) {
-    if (i >= p.inputs().size() || i >= suralp.inputs().size() || p.inputs()[i].columns != suralp.inputs()[i].columns) {
-      std::fprintf(stderr, "ftsense-bench: %s does not read the same inputs as configs/suralp.json\n", config.c_str());
-      return 2;
-    }
-  }
   const Walk& w = walk();
+  const std::vector<std::size_t> offsets = walk_offsets_or_exit(p, w, config.empty() ? "configs/suralp.json" : config);
   p.reset();
   double sink = 0.0;
   for (std::size_t i = 0, k = 0; i < ticks; ++i) {
-    write_inputs(p, w.inputs[k]);
+    write_walk_inputs(p, offsets, w.inputs[k]);
     p.step(w.time[k]);
     sink += p.values(p.monitor()[ftsense::MonitorColumn::recovered])[0];
     if (++k == w.time.size()) k = 0;

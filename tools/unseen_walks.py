@@ -14,8 +14,8 @@ sole, the ankle 0.15 m above it): gaits 0.25/1.0/0.3, 0.28/0.8/0.15, 0.30/0.9/0.
 (step height 0.05 m, feet 0.12 m off the midline); sensors 0.001/2/0, 0.005/4/0, 0.002/3/3,
 0.001/3/8; seeds 900 + (950 + with faults); fault sizes for its 441 N per pad in single support:
 offsets +-60/100/160 N, drifts +-8/15/24 N/s, noise bursts 25/45/60 N, spikes 160/400 N,
-saturation at 400/550 N. Both builds' CoM height is the simulator's planned one (plan/com_z_m of
-a 0.05 s walk), printed.
+saturation at 400/550 N. A config that takes a CoM height (configs/suralp_robust.json no longer
+does) is told the simulator's planned one (plan/com_z_m of a 0.05 s walk), printed.
 
     tools/unseen_walks.py BUILD_BIN [--robot suralp|light_biped|heavy_biped|quadruped] [--gaits walks|stress]
                           [--faults] [--calibrate] [--config FILE] [--work DIR] [--duration S] [--jobs N]
@@ -110,9 +110,8 @@ ROBOTS = {
     },
     # A lighter biped of another build (sim/README.md "body"): 48 kg, shorter legs, a smaller sole.
     # Its config is configs/suralp_robust.json told this robot as a user would (adapt_to_body):
-    # the pads at the sole's corners, the mass, the CoM height (the simulator's planned CoM,
-    # plan/com_z_m) and the legs' effective mass (7.1 kg at 114 kg, limb_inertia_correction.hpp,
-    # scaled with the mass: the same build). Fault sizes and sensors scaled to its 118 N per pad on one foot.
+    # the pads at the sole's corners, the mass and the legs' effective mass (7.1 kg at 114 kg,
+    # limb_inertia_correction.hpp, scaled with the mass: the same build). Fault sizes and sensors scaled to its 118 N per pad on one foot.
     "light_biped": {
         "config": "suralp_robust.json",
         "body": {"total_mass_kg": 48.0, "upper_leg_m": 0.22, "lower_leg_m": 0.21, "sole_ankle_m": 0.09,
@@ -249,7 +248,8 @@ def planned_com_height(bin_dir, work, robot):
 
 def adapt_to_body(config, robot, com_height_m):
     """configs/suralp_robust.json told another biped's build, as its user would: the sole's pads,
-    the mass, the CoM height and the legs' effective mass (the default build's 7.1 of 114 kg)."""
+    the mass, the legs' effective mass (the default build's 7.1 of 114 kg) and, for a config that
+    takes one, the CoM height."""
     config = json.loads(json.dumps(config))
     body = robot["body"]
     gravity = 9.806
@@ -359,8 +359,10 @@ def robot_config(args, work):
     if not any(s["plugin"] == "contact_force_fdi" for s in config["stages"]) and not args.calibrate:
         sys.exit(f"{path} has no contact_force_fdi stage to tell the sensors: give --calibrate")
     if "body" in robot:
-        com_height_m = planned_com_height(args.bin, work, robot)
-        print(f"planned CoM height of this build: {com_height_m} m")
+        com_height_m = None  # asked of the planner only by a config that takes a CoM height
+        if any("com_height_m" in s.get("params", {}) for s in config["stages"]):
+            com_height_m = planned_com_height(args.bin, work, robot)
+            print(f"planned CoM height of this build: {com_height_m} m")
         config = adapt_to_body(config, robot, com_height_m)
     return config
 

@@ -59,9 +59,9 @@ row cutoff_tiny configs/suralp.json /stages/7/params/cutoff_hz 1e-300 \
 row warmup_huge configs/suralp.json /stages/8/params/warmup_s 1e300 \
     "1e\+300 is outside the plausible range 0 \.\. 600 s \(.*\); check the unit or the value"
 # The same kinds in the robust pipeline and the pipeline's own tick period.
-row robust_mass_in_grams configs/suralp_robust.json /stages/1/params/mass_kg 0.001 "0.001 is outside the plausible range 0.5 \.\. 1000 kg"
-row robust_sum_cutoff_tiny configs/suralp_robust.json /stages/4/params/sum_cutoff_hz 1e-300 "1e-300 is outside the plausible range 0.001 \.\. 5000 Hz"
-row robust_points_in_millimetres configs/suralp_robust.json /stages/3/params/points/0/0 120 "120 is outside the plausible range -1 \.\. 1 m"
+row robust_mass_in_grams configs/suralp_robust.json /stages/0/params/mass_kg 0.001 "0.001 is outside the plausible range 0.5 \.\. 1000 kg"
+row robust_sum_cutoff_tiny configs/suralp_robust.json /stages/3/params/sum_cutoff_hz 1e-300 "1e-300 is outside the plausible range 0.001 \.\. 5000 Hz"
+row robust_points_in_millimetres configs/suralp_robust.json /stages/2/params/points/0/0 120 "120 is outside the plausible range -1 \.\. 1 m"
 row sample_period_tiny tests/cli/good.json /sample_period_s 1e-9 "1e-09 is outside the plausible range 1e-05 \.\. 1 s \(control loops tick at 1 Hz to 100 kHz\)"
 
 # Hard bounds are still errors (exit 2), not warnings.

@@ -233,6 +233,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                                      : std::max(2, static_cast<int>(std::ceil(ticks - 1e-9)));
   }
   smoothing_ = -std::expm1(-2.0 * 3.141592653589793 * kSmoothingHz * period_s_);
+  sum_gain_ = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
   // Five time constants of that low-pass: a step has settled to within e^-5 (under 1 %).
   smoother_settle_s_ = 5.0 / (2.0 * 3.141592653589793 * kSmoothingHz);
   // Half a settling, less half a tick (a window a tick late on a rounded sum skips no turn).
@@ -691,9 +692,8 @@ void ContactForceFdi::step(const StepIO& io) noexcept {
       fault_estimate[j] = x - value;
     }
   }
-  const double a = -std::expm1(-2.0 * 3.141592653589793 * params_.sum_cutoff_hz * period_s_);
   // Without F_z the residual is unknown, not zero: hold the filter rather than pull it to zero.
-  if (fz_ok || !started_) sum_filtered_ = started_ ? sum_filtered_ + a * (residual - sum_filtered_) : residual;
+  if (fz_ok || !started_) sum_filtered_ = started_ ? sum_filtered_ + sum_gain_ * (residual - sum_filtered_) : residual;
   io.out(kSumResidual)[0] = sum_filtered_;
   io.out(kUnisolated)[0] =
       (!fz_ok || std::abs(sum_filtered_) > params_.sum_threshold_N || gain_unisolated_) ? 1.0 : 0.0;

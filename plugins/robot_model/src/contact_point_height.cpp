@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Core>
-
 #include "ftsense/biped/frames.hpp"
 #include "ftsense/biped/stacked_feet.hpp"
 #include "ftsense/plausible_ranges.hpp"
@@ -64,11 +62,18 @@ void ContactPointHeight::step(const StepIO& io) noexcept {
     const auto rpy = oriented_ ? io.in(kFootRpy).subspan(3 * f, 3) : std::span<const double>();
     const bool known = biped::all_finite(pos) && biped::all_finite(rpy);
     all_known = all_known && known;
-    const Eigen::Matrix3d rotation = known && oriented_ ? biped::rotation_from_rpy(rpy) : Eigen::Matrix3d::Identity();
+    // A point (x, y, 0) of the sole rises by the rotation's last row times it: R_zx x + R_zy y,
+    // with R_zx = -sin(pitch), R_zy = cos(pitch) sin(roll) (frames.hpp). Yaw and cos(roll) do
+    // not enter: two sines and a cosine per foot, not the whole rotation's three of each.
+    double rise_x = 0.0, rise_y = 0.0;
+    if (known && oriented_) {
+      rise_x = -std::sin(rpy[1]);
+      rise_y = std::cos(rpy[1]) * std::sin(rpy[0]);
+    }
     double lowest = std::numeric_limits<double>::infinity();
     for (std::size_t l = 0; l < points; ++l) {
-      const Eigen::Vector3d p(params_.points[l][0], params_.points[l][1], 0.0);
-      const double h = known ? pos[2] + rotation.row(2).dot(p) - params_.foot_radius_m : kNaN;
+      const double h =
+          known ? pos[2] + (rise_x * params_.points[l][0] + rise_y * params_.points[l][1]) - params_.foot_radius_m : kNaN;
       point_height[f * points + l] = h;
       lowest = std::min(lowest, h);
     }

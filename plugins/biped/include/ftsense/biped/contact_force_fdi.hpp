@@ -1139,6 +1139,7 @@ class ContactForceFdi {
   int min_airborne_samples_ = 10;
   static constexpr double kSmoothingHz = 10.0;  // cutoff of `smoothed` and `virtual_smoothed`
   double smoothing_ = 1.0;  // gain of that low-pass per tick
+  double sum_gain_ = 1.0;   // gain per tick of the sum residual's low-pass (sum_cutoff_hz)
   double smoother_settle_s_ = 0.0;  // its settling time (five time constants)
   // How long an end or onset seen inside a guard may wait for its judgment (the guards keep coming).
   double guard_pending_limit_s_ = 0.0;
