@@ -482,7 +482,7 @@ TEST(SignalValidator, OnlyTheChosenTestsRunBesidesInvalidAndSaturation) {
 }
 
 TEST(SignalValidator, WithoutTheFrozenOrFollowTestAStillOrUnfollowingReadingIsNotFrozen) {
-  // A reading that stops moving is frozen by test (a), `frozen`; one that does not follow its
+  // A reading that stops moving is frozen by the `frozen` test; one that does not follow its
   // moving reference by the `follow` test. tests = [spikes, noise] raises neither; [frozen,
   // spikes, noise] the still one only; the default tests both.
   struct Case {
@@ -501,7 +501,7 @@ TEST(SignalValidator, WithoutTheFrozenOrFollowTestAStillOrUnfollowingReadingIsNo
     for (int k = 0; k < 500; ++k) {
       const double load = 100.0 + 200.0 * std::sin(0.01 * k);  // 200 N swings, 0.6 s period
       last_still = still.step(100.0, 100.0);
-      // Alternating +-1 (d2 = +-4, so not stale by test a; no spike, no noise) while the reference swings.
+      // Alternating +-1 (d2 = +-4, so not stale by the frozen test; no spike, no noise) while the reference swings.
       last_unfollowing = unfollowing.step(100.0 + (k % 2 ? 1.0 : -1.0), load);
     }
     EXPECT_EQ(last_still, e.still_frozen ? FaultType::frozen : FaultType::none) << e.tests.size() << " tests";
@@ -563,9 +563,9 @@ TEST(SignalValidator, StuckAgainAtThePreviousEpisodesValueIsSaturationElsewhereF
 }
 
 TEST(SignalValidator, AReadingStuckOnItsRestValueIsFrozenWhenItsReferenceMoves) {
-  // rest_value 0 keeps test (a) off on exact zeros; test (b) still sees a reading that stays at
-  // 0 while its reference (the load it should carry) swings by 200 N, and nothing while the
-  // reference is 0 too (the foot in the air).
+  // rest_value 0 keeps the frozen test off on exact zeros; the follow test still sees a reading
+  // that stays at 0 while its reference (the load it should carry) swings by 200 N, and nothing
+  // while the reference is 0 too (the foot in the air).
   SignalValidator::Params p;
   p.noise_std = {1.0};
   p.rest_value = {0.0};

@@ -61,7 +61,7 @@ def row(path):
     metrics = json.load(open(path))
     summary = metrics["summary"]
     faulty = [c for c in metrics["channels"] if c["injected_type"] != "-"]
-    worst = max((c["recovered_rmse"] for c in faulty), default=None)
+    worst = max((c["recovered_rmse"] for c in faulty if c["recovered_rmse"] is not None), default=None)
     worst_text = "-" if worst is None else f"{worst:.1f}"
     detected = f"{summary['detected']}/{summary['faulty_channels']}" if faulty else "-"
     types = f"{summary['types_correct']}/{summary['faulty_channels']}" if faulty else "-"

@@ -12,6 +12,8 @@
 #               kinematics puts in the air carries 0 N, so only loaded pads are checked.)
 #   quiet       no channel is flagged anywhere
 #   finite      the pipeline runs through (flags allowed: the input really is wrong)
+# except the rows of a gait-plan column (plan/...) on the robust pipeline, which reads no plan:
+# its output must be byte-identical to its run on the clean log;
 # and every row: exit 0 and no NaN or Inf in any recovered signal, ever. Before the table, each
 # pipeline runs the clean log twice: the outputs must be byte-identical (determinism).
 set -u

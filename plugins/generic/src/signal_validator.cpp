@@ -287,7 +287,7 @@ void SignalValidator::step(const StepIO& io) noexcept {
     }
     if (x[j] >= l.upper - l.half_step || x[j] <= l.lower + l.half_step) found = FaultType::saturation;
 
-    // Frozen (a): the reading's own second differences. (Their noise and spike evidence, the
+    // Frozen: the reading's own second differences. (Their noise and spike evidence, the
     // reading's part of the tests below, is taken here, before the history moves on.)
     double reading_d2 = 0.0, reading_spike = 0.0, reading_span = 0.0;
     if (s.x_history == 2) {

@@ -17,14 +17,14 @@
 //
 //   invalid     x is NaN or Inf: flagged on that tick.
 //   saturation  x >= upper_limit - q / 2 or x <= lower_limit + q / 2: flagged on that tick. And,
-//               limits given or not, a reading that frozen test (a) finds stuck again at the value
+//               limits given or not, a reading that the frozen test finds stuck again at the value
 //               of its previous stuck episode (within q / 2), after moving in between: a clipped
 //               signal returns to the same ceiling whenever its input exceeds it, while a frozen
 //               sensor does not leave its value and come back (the first episode is frozen: one
 //               stuck value alone cannot tell a clip from a freeze). The value is remembered
 //               until reset: a sensor that freezes twice on the same value (within q / 2) is
 //               typed saturation the second time, which is how it behaves.
-//   frozen      (a) the reading has less tick-to-tick variation than its own noise allows: with
+//   frozen      the reading has less tick-to-tick variation than its own noise allows: with
 //               d2 = x_t - 2 x_{t-1} + x_{t-2} (6 sigma^2 in variance, slow motion removed),
 //               sum(d2^2 over n) < 6 (sigma / m)^2 chi2_nu(alpha) / nu, nu = 36 n / 70
 //               (Satterthwaite: overlapping d2 are correlated). Only when sigma / m >= q / 2: a
@@ -37,13 +37,14 @@
 //               sensor reporting exactly 0 N in the air) repeats it exactly while healthy, so a
 //               run on that value is no evidence of its own; the follow test and the constraint
 //               residuals judge it against what the sensor should read.
-//               (b) `follow`, with a reference: over the window, the low-passed reference moved
-//               by |dr| >= `min_reference_change` (default 10 sqrt(sigma^2 + sigma_r^2)) while
-//               the low-passed reading moved by less than `follow_ratio` |dr|: a frozen output
-//               that still carries electrical noise (typed frozen). Low-pass time constant
-//               n T / 8. Leave it out for a reference that carries other sensors' faults (a
-//               leave-one-out force moves by a neighbour's offset, which the healthy reading
-//               rightly does not follow).
+//   follow      with a reference (a test of its own in `tests`; listed without a reference it
+//               has nothing to judge): over the window, the low-passed reference moved by
+//               |dr| >= `min_reference_change` (default 10 sqrt(sigma^2 + sigma_r^2)) while the
+//               low-passed reading moved by less than `follow_ratio` |dr|: a frozen output that
+//               still carries electrical noise (typed frozen). Low-pass time constant n T / 8.
+//               Leave it out for a reference that carries other sensors' faults (a leave-one-out
+//               force moves by a neighbour's offset, which the healthy reading rightly does not
+//               follow). Until 2026-12-06 it ran as part of `frozen`.
 //   noise       more |d2| > 2 sqrt(6 s^2) in the window than healthy noise gives (s^2 = sigma^2 +
 //               q^2 / 4, the worst case: a value on a level boundary reads either level): healthy,
 //               each is over with p0 = P(|Z| > 2) = 4.55 %; the count's bound is n p0 + 2 z_alpha
@@ -151,7 +152,7 @@ class SignalValidator {
     bool stale_test = true;           // sigma / m >= q / 2
     double rest = 0.0;                // the value the driver clamps an unloaded sensor to
     bool has_rest = false;
-    double stale_below = 0.0;         // sum(d2^2) of the reading below this: frozen (a)
+    double stale_below = 0.0;         // sum(d2^2) of the reading below this: frozen
     double noise_level = 0.0;         // |d2| of the reading above this counts for noise
     double spike_above = 0.0;         // |D| of the reading above this: spike
     double residual_noise_level = 0.0;  // the same for x - r, with a reference (sigma_r^2 added)
@@ -170,7 +171,7 @@ class SignalValidator {
     double x1 = 0.0, x2 = 0.0;  // previous two readings
     int y_history = 0, x_history = 0;  // consecutive finite values seen, up to 2
     std::size_t since_rest = 0;        // ticks since the reading was last at its rest value
-    bool stuck = false;                // frozen test (a) failed on the previous tick
+    bool stuck = false;                // the frozen test failed on the previous tick
     bool clipped = false;              // the present stuck episode sits where the previous one did
     double stuck_value = 0.0;          // the value of the last stuck episode
     bool stuck_before = false;         // an earlier stuck episode exists
