@@ -199,42 +199,35 @@ TEST(SignalValidator, AFrozenOutputThatStillCarriesNoiseIsCaughtAgainstTheRefere
   EXPECT_LE(first_flag, 3.2);
 }
 
-TEST(SignalValidator, ASpikeIsFlaggedOneTickLateAndHeldForSpikeHold) {
+// A ramp of slope 0.5 per tick with unit noise, one reading 100 off at tick 50 (and with a
+// reference, the ramp with noise of sigma_r = 1): flagged spikes from tick 51 to 90, the first
+// spike's hold of 40 ticks, and nothing else.
+void expect_the_ramps_spike_flagged_from_51_to_90(bool with_reference, unsigned seed) {
   SignalValidator::Params p;
   p.noise_std = {1.0};
+  p.reference = with_reference;
+  p.reference_noise_std = {1.0};
   p.window_s = 0.02;      // 20 ticks
   p.spike_hold_s = 0.04;  // 40 ticks: a first spike's rate is unknown
   OneValidatedChannel c(p, 1e-3);
-  constexpr unsigned kSeed = 16;
-  std::printf("seed %u\n", kSeed);
-  std::mt19937_64 rng(kSeed);
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
-  // A ramp with unit noise, one reading 100 off at tick 50.
   for (int k = 0; k < 150; ++k) {
-    const FaultType found = c.step(0.5 * k + noise(rng) + (k == 50 ? 100.0 : 0.0));
+    const double load = 0.5 * k;
+    const double reading = load + noise(rng) + (k == 50 ? 100.0 : 0.0);
+    const FaultType found = with_reference ? c.step(reading, load + noise(rng)) : c.step(reading);
     EXPECT_EQ(found, k >= 51 && k < 91 ? FaultType::spikes : FaultType::none) << "tick " << k;
   }
 }
 
+TEST(SignalValidator, ASpikeIsFlaggedOneTickLateAndHeldForSpikeHold) {
+  expect_the_ramps_spike_flagged_from_51_to_90(false, 16);
+}
+
 TEST(SignalValidator, WithAReferenceASpikeOfTheReadingAloneIsFlaggedOnTheSameTicks) {
-  // The ramp of the test above, its reference the ramp with noise of sigma_r = 1: the spike at
-  // tick 50 is in x - r as in x, so it is flagged from tick 51 to 90 as without a reference.
-  SignalValidator::Params p;
-  p.noise_std = {1.0};
-  p.reference = true;
-  p.reference_noise_std = {1.0};
-  p.window_s = 0.02;
-  p.spike_hold_s = 0.04;
-  OneValidatedChannel c(p, 1e-3);
-  constexpr unsigned kSeed = 61;
-  std::printf("seed %u\n", kSeed);
-  std::mt19937_64 rng(kSeed);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  for (int k = 0; k < 150; ++k) {
-    const double load = 0.5 * k;
-    const FaultType found = c.step(load + noise(rng) + (k == 50 ? 100.0 : 0.0), load + noise(rng));
-    EXPECT_EQ(found, k >= 51 && k < 91 ? FaultType::spikes : FaultType::none) << "tick " << k;
-  }
+  // The spike at tick 50 is in x - r as in x, so it is flagged on the same ticks.
+  expect_the_ramps_spike_flagged_from_51_to_90(true, 61);
 }
 
 TEST(SignalValidator, ASpikeOfTheReferenceOrOneItExplainsIsNoSpikeOfTheReading) {

@@ -75,9 +75,8 @@
 //               healthy tick passes both with no more chance than either, so the bounds hold.
 // Invalid and saturation always run; `tests` chooses among frozen, follow (with a reference),
 // spikes and noise. Without a reference, spikes and noise judge the reading's own second
-// differences alone, so they hold only for a
-// signal whose own motion the sample rate resolves: a foot's landing logged at 200 Hz is one
-// sample off its neighbours, as a spike is. For such a signal leave them out, give a reference,
+// differences alone, so they hold only for a signal whose own motion the sample rate resolves:
+// a foot's landing logged at 200 Hz is one sample off its neighbours, as a spike is. For such a signal leave them out, give a reference,
 // or give a `guard` input (change_guard after the contact flags): on a tick it marks, no spike is
 // seen and no second difference counts as noise, so the tests judge the ticks between
 // transients.
