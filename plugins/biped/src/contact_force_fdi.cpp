@@ -425,6 +425,8 @@ void ContactForceFdi::reset() noexcept {
   group_pending_ = false;
   late_pending_ = group_deferred_ = false;
   ticks_since_divisor_change_ = kCountCap;
+  ticks_since_ceiling_ = kCountCap;
+  ceiling_read_s_ = -1e300;
   guard_powers_last_s_ = -1e300;
   std::fill(last_touchdown_s_.begin(), last_touchdown_s_.end(), -1e9);
   std::fill(foot_sum_.begin(), foot_sum_.end(), std::array<double, 2>{0.0, 0.0});

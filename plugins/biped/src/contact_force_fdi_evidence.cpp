@@ -98,6 +98,7 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
     Channel& c = channels_[j];
     const double x = measured[j];
     const bool airborne = height[j] > params_.airborne_height_m;
+    c.on_ceiling = false;  // (set below, from a value)
     const double divisor = c.type == FaultType::gain ? c.gain : 1.0;
     if (divisor != c.residual_divisor && !airborne && std::isfinite(x) &&
         std::abs(x / divisor - x / c.residual_divisor) >= params_.jump_confirm_N) {
@@ -393,6 +394,11 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
     }
     c.max_seen = std::max(c.max_seen, x);
     if (x > c.ceiling_N + repeat_band_N_) c.ceiling_N = std::numeric_limits<double>::quiet_NaN();  // not clipped there
+    // On the level it was clipped or stuck at before, under load: what it carries beyond that
+    // level is unread (at least 0), and the clip's end steps the sum residual and its foot's
+    // plane by it as a neighbour's step would (the jump test's groups, below).
+    c.on_ceiling = std::abs(x - c.ceiling_N) <= repeat_band_N_ && x > params_.airborne_threshold_N;
+    if (c.on_ceiling) ceiling_read_s_ = t;
     // A pad only pushes: a loaded pad reading below -airborne_threshold_N is a negative offset
     // or a negative multiple of its load (a sign flip). The least-squares line of the reading on
     // the leave-one-out force (fitted in step once that force is known) tells them apart: slope
@@ -409,6 +415,7 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
   }
 
   ticks_since_divisor_change_ = divisor_changed ? 0 : std::min(ticks_since_divisor_change_ + 1, kCountCap);
+  ticks_since_ceiling_ = ceiling_read_s_ == t ? 0 : std::min(ticks_since_ceiling_ + 1, kCountCap);
   return {touching_down, jump_candidates, group_emptied, any_step, jump_sum, late_candidates, late_jump_sum,
           raw_sum, median_lag_correction, all_finite_readings, divisor_changed};
 }

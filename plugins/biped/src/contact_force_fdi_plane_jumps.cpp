@@ -34,8 +34,9 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
       const double load = c.type == FaultType::gain                                    ? x / c.gain
                           : c.type == FaultType::offset || c.type == FaultType::drift ? x - fault_at(c, t)
                                                                                       : x;
+      // A pad on its known clip ceiling carries an unread load beyond it: not read as it is.
       full = full && std::isfinite(x) && !(height[j] > params_.airborne_height_m) &&
-             load > params_.airborne_threshold_N && (c.type == FaultType::none || corrects(c.type));
+             load > params_.airborne_threshold_N && (c.type == FaultType::none || corrects(c.type)) && !c.on_ceiling;
     }
     full_contact_run_[f] = full ? std::min(full_contact_run_[f] + 1, ring) : 0;
     for (std::size_t r = 0; r < relations; ++r) {

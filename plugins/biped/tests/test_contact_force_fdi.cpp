@@ -2777,6 +2777,85 @@ TEST(ContactForceFdi, PadsThatFallAsOneInsideAGuardAreNotNamedByAPlaneOneOfThemE
   EXPECT_EQ(flagged_after_right_pads_step({}, {0.0, 0.0, 40.0, 0.0}), std::vector<std::size_t>{6});
 }
 
+// r_foot/p1 (channel 4) clips at 500 N. The trace (1 kHz, the soles' layout, 2 N of noise, seed
+// 7, 2200 N of weight) first makes that ceiling known: the left foot swings (0.3-0.5 s; its load
+// handed over in the 50 ms before it lifts and taken back in the 50 ms after it lands) and the
+// right pads carry 550 N each, so channel 4 sits on 500 N for 0.2 s and is flagged; it is
+// re-admitted once its load falls below. In the left foot's second swing (1.0-1.2 s) a moment
+// keeps channel 4 under its ceiling (the right foot's loads a + m s_j, s = (+1, 0, 0, -1): a
+// diagonal moment, on the sole's plane). The left foot lands at 1.2 s; inside that landing's
+// guard channel 4's load rises to 540 N and stays there 10 ticks (read 500 N: 40 N unread, too
+// short a run to be found stuck), and on tick 1240 the sole's load moves on (channels 4 and 5
+// lose 46 and 40 N, channel 7 takes 6 N: on the plane, and the total force with them). Channel 4
+// leaves its ceiling by 6 N as read, under the jump threshold; channel 5 steps by 40 N, and the
+// plane as read steps by half the 40 N channel 4 hid: what channel 5's step alone implies
+// (before the rule, channel 5 was raised as an offset). Returns the channels other than 4
+// flagged on any tick, and whether channel 4 was flagged in the first swing and healthy again at
+// 1.0 s.
+struct ClipAtLandingResult {
+  std::vector<std::size_t> neighbours_flagged;
+  bool ceiling_learnt = false;
+  bool readmitted = false;
+};
+ClipAtLandingResult clip_ends_as_its_foot_unloads() {
+  auto p = suralp();
+  p.points = kSuralpSole;
+  Feet feet(p, 1e-3);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, p.noise_std_N);
+  constexpr double kCeiling = 500.0, kShare = 275.0;
+  const std::array<double, 4> moment_sign = {1.0, 0.0, 0.0, -1.0};
+  ClipAtLandingResult result;
+  std::vector<char> flagged(kChannels, 0);
+  double m_held = 0.0;
+  for (int k = 0; k < 1440; ++k) {
+    const bool swing = (k >= 300 && k < 500) || (k >= 1000 && k < 1200);
+    feet.left_foot_at(swing ? 0.03 : 0.0);
+    // The right foot's mean pad load: all the weight in a swing, half after a 50 ms landing ramp.
+    double a_right = kShare;
+    if (swing) a_right = 2.0 * kShare;
+    if ((k >= 250 && k < 300) || (k >= 950 && k < 1000)) a_right = kShare + kShare * ((k % 50) + 1) / 50.0;
+    if (k >= 500 && k < 550) a_right = 2.0 * kShare - kShare * (k - 500 + 1) / 50.0;
+    if (k >= 1200 && k < 1250) a_right = 2.0 * kShare - kShare * (k - 1200 + 1) / 50.0;
+    const double a_left = 2.0 * kShare - a_right;
+    // Channel 4's load in the second stride: 470 N in the swing, 494 N by tick 1233, then from its
+    // ceiling up by 6 N a tick to 530 N on tick 1239; the moment is what that takes.
+    double pad4 = a_right;
+    if (k >= 1000 && k < 1200) pad4 = 470.0;
+    if (k >= 1200 && k < 1222) pad4 = 470.0 + 24.0 * (k - 1200) / 22.0;
+    if (k >= 1222 && k < 1230) pad4 = 494.0 + 5.75 * (k - 1221);
+    if (k >= 1230 && k < 1240) pad4 = kCeiling + 40.0;
+    double m = pad4 - a_right;
+    if (k == 1239) m_held = m;
+    if (k >= 1240) m = m_held;
+    // The sole's load moving on: pads 4 and 5 lose 46 and 40 N, pad 7 takes 6 N (on the plane:
+    // the diagonals' sums change alike), and the total force with them.
+    const std::array<double, 4> step_N = {-46.0, -40.0, 0.0, 6.0};
+    double sum = 0.0;
+    for (std::size_t j = 0; j < kChannels; ++j) {
+      const double load = j < 4 ? (swing ? 0.0 : a_left) : a_right + m * moment_sign[j - 4] + (k >= 1240 ? step_N[j - 4] : 0.0);
+      sum += load;
+      const double reading = load + noise(rng);
+      feet.measured[j] = j == 4 ? std::min(reading, kCeiling) : reading;
+    }
+    feet.step(sum);
+    if (k == 499) result.ceiling_learnt = feet.type(4) != FaultType::none;
+    if (k == 999) result.readmitted = feet.type(4) == FaultType::none;
+    for (std::size_t j = 0; j < kChannels; ++j) flagged[j] = flagged[j] || (j != 4 && feet.type(j) != FaultType::none);
+  }
+  for (std::size_t j = 0; j < kChannels; ++j) {
+    if (flagged[j] != 0) result.neighbours_flagged.push_back(j);
+  }
+  return result;
+}
+
+TEST(ContactForceFdi, AClipThatEndsAsItsFootUnloadsNamesNoNeighbour) {
+  const ClipAtLandingResult r = clip_ends_as_its_foot_unloads();
+  EXPECT_TRUE(r.ceiling_learnt);
+  EXPECT_TRUE(r.readmitted);
+  EXPECT_EQ(r.neighbours_flagged, std::vector<std::size_t>{});
+}
+
 TEST(ContactForceFdi, AOneTickSpikeInsideATouchdownGuardIsNoStepOfItsSolesPlane) {
   // The same +80 N, back on the next tick, at 200 Hz: the plane relation's 2-tick mean moves by
   // half of it, within 50 % of what the jump implies; but the reading is back, so it leaves its
