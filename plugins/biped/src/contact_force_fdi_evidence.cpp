@@ -94,6 +94,7 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
   // group from forming and the flip's end was judged 10 ms late). In the air, or without a
   // value, its reading is not in the residual as x / k.
   bool divisor_changed = false;
+  bool any_on_ceiling = false;  // a healthy reading on a level it was found stuck at (below)
   for (std::size_t j = 0; j < channels_.size(); ++j) {
     Channel& c = channels_[j];
     const double x = measured[j];
@@ -394,11 +395,17 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
     }
     c.max_seen = std::max(c.max_seen, x);
     if (x > c.ceiling_N + repeat_band_N_) c.ceiling_N = std::numeric_limits<double>::quiet_NaN();  // not clipped there
-    // On the level it was clipped or stuck at before, under load: what it carries beyond that
-    // level is unread (at least 0), and the clip's end steps the sum residual and its foot's
-    // plane by it as a neighbour's step would (the jump test's groups, below).
-    c.on_ceiling = std::abs(x - c.ceiling_N) <= repeat_band_N_ && x > params_.airborne_threshold_N;
-    if (c.on_ceiling) ceiling_read_s_ = t;
+    // A healthy reading back on the level it was found stuck at under load: its load is not read
+    // (a clip hides what it carries beyond that level), and leaving the level steps the sum
+    // residual and its foot's plane by what it hid, as a neighbour's step would (the jump test's
+    // groups). Only while not flagged: a flagged stuck pad is substituted, and the groups then
+    // take their larger bar (judge_jump_groups), as before.
+    c.on_ceiling = c.type == FaultType::none && std::abs(x - c.ceiling_N) <= repeat_band_N_ &&
+                   x > params_.airborne_threshold_N;
+    if (c.on_ceiling) {
+      ceiling_read_s_ = t;
+      any_on_ceiling = true;
+    }
     // A pad only pushes: a loaded pad reading below -airborne_threshold_N is a negative offset
     // or a negative multiple of its load (a sign flip). The least-squares line of the reading on
     // the leave-one-out force (fitted in step once that force is known) tells them apart: slope
@@ -415,7 +422,7 @@ ContactForceFdi::TickEvidence ContactForceFdi::observe_evidence(std::span<const 
   }
 
   ticks_since_divisor_change_ = divisor_changed ? 0 : std::min(ticks_since_divisor_change_ + 1, kCountCap);
-  ticks_since_ceiling_ = ceiling_read_s_ == t ? 0 : std::min(ticks_since_ceiling_ + 1, kCountCap);
+  ticks_since_ceiling_ = any_on_ceiling ? 0 : std::min(ticks_since_ceiling_ + 1, kCountCap);
   return {touching_down, jump_candidates, group_emptied, any_step, jump_sum, late_candidates, late_jump_sum,
           raw_sum, median_lag_correction, all_finite_readings, divisor_changed};
 }

@@ -36,10 +36,11 @@ ContactForceFdi::GroupDecisions ContactForceFdi::judge_jump_groups(std::span<con
   const bool sum_held = !residual_smoothed_started_ || std::abs(residual_smoothed_) <= params_.sum_threshold_N;
   // Nor while the jump window before this tick holds a change of a gain's correction.
   const bool divisor_settled = ticks_since_divisor_change_ >= jump_window_ticks_;
-  // Nor while a reading sat on its known clip ceiling within that window or sits there now: the
-  // load it hides beyond the ceiling is in the residual unread, and the clip's end steps it as a
-  // neighbour's step would (a pad clipped at peak load as the other foot lands, every stride).
-  const bool ceiling_clear = ticks_since_ceiling_ >= jump_window_ticks_;
+  // Nor while a healthy reading sat on a level it was found stuck at (Channel::on_ceiling) on
+  // this tick or within that window: its load there is not read, and its leaving the level steps
+  // the residual as a neighbour's step would (a pad clipped at its stance peak as the other foot
+  // lands, every stride). (The window's oldest tick is jump_window_ticks_ ago.)
+  const bool ceiling_clear = ticks_since_ceiling_ > jump_window_ticks_;
   if (ev.jump_candidates > 0 && fz_ok && sum_held && divisor_settled && ceiling_clear &&
       !unread_landing_may_explain(height, ev.jump_sum)) {
     group_pending_ = true;
@@ -105,7 +106,7 @@ ContactForceFdi::GroupDecisions ContactForceFdi::judge_jump_groups(std::span<con
     group_pending_ = false;
     group_dropped = true;
   }
-  // A reading on its clip ceiling within a pending group's windows: its unread load is in the step.
+  // A reading on such a level within a pending group's windows: its unread load is in the step.
   if (ticks_since_ceiling_ == 0 && group_pending_) {
     group_pending_ = false;
     group_dropped = true;
@@ -232,12 +233,13 @@ ContactForceFdi::GroupDecisions ContactForceFdi::judge_jump_groups(std::span<con
     // longer measures these jumps alone.
     bool expired = false;
     for (const auto& c : channels_) {
-      // Or when a reading sat on its clip ceiling since the window before the guard: its unread
-      // load is in that step too.
+      // Or when a healthy reading sat on a level it was found stuck at since the window before
+      // the guard began (its oldest tick jump_window_ticks_ before; half a tick's margin for
+      // timestamps that accumulate): its unread load is in that step too.
       expired = expired || (c.onset_after_guard && (t - c.guard_onset_since_s > guard_pending_limit_s_ ||
                                                     last_flag_change_s_ >= c.guard_onset_guard_began_s ||
                                                     ceiling_read_s_ >= c.guard_onset_guard_began_s -
-                                                                           jump_window_ticks_ * period_s_));
+                                                                           (jump_window_ticks_ + 0.5) * period_s_));
     }
     if (ev.touching_down) guard_onsets_clear_ticks_ = 0;
     if (!ev.touching_down && fz_ok && !expired) ++guard_onsets_clear_ticks_;

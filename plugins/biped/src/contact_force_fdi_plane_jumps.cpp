@@ -34,7 +34,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
       const double load = c.type == FaultType::gain                                    ? x / c.gain
                           : c.type == FaultType::offset || c.type == FaultType::drift ? x - fault_at(c, t)
                                                                                       : x;
-      // A pad on its known clip ceiling carries an unread load beyond it: not read as it is.
+      // A healthy pad back on a level it was found stuck at (a clip's ceiling) is not read as it is.
       full = full && std::isfinite(x) && !(height[j] > params_.airborne_height_m) &&
              load > params_.airborne_threshold_N && (c.type == FaultType::none || corrects(c.type)) && !c.on_ceiling;
     }

@@ -130,16 +130,16 @@
 //             loaded pad's gain correction (its reading taken as x / k in this residual) was set,
 //             refitted or dropped, stepping the residual by |x (1 / k_new - 1 / k_old)| >=
 //             jump_confirm_N, and a pending group whose windows such a change falls in is
-//             dropped; nor within jump_window_s after a reading sat on its known ceiling (the
-//             level it was last found stuck at under load, within q / 2; `on_ceiling`): what it
-//             carries beyond that level is unread, and the clip's end steps the sum residual and
-//             its foot's plane by that load as a neighbour's step would (a pad clipped at its
+//             dropped; nor on or within a jump window after a tick where a healthy reading sat
+//             on a level it was found stuck at under load before (within q / 2: a clip's
+//             ceiling, `on_ceiling`). Its load is not read there (a clip hides what it carries
+//             beyond the ceiling), and its leaving the level steps the sum residual and its
+//             foot's plane by what it hid, as a neighbour's step would: a pad clipped at its
 //             stance peak for a few ticks as the other foot lands, then left as its foot
-//             unloads: its neighbour's step was confirmed by the plane, every stride), and a
-//             pending group a reading sits on its ceiling in is dropped, the plane takes no foot
-//             with such a pad as in full contact, and a jump left to the sum residual after a
-//             guard is dropped when a reading sat on its ceiling since the window before the
-//             guard;
+//             unloads, had its clip's end taken for a neighbour's step by the plane, stride
+//             after stride. So a pending group such a tick falls in is dropped, the plane takes
+//             no foot with such a pad as in full contact, and a jump left to the sum residual
+//             after a guard is dropped when such a tick fell since the window before the guard;
 //             confirmed when the sum
 //             residual steps over jump_window_s by the net jump of the channels that jumped in
 //             that tick (same sign, both >= jump_confirm_N, within max(jump_confirm_N, 50 %) of
@@ -654,7 +654,7 @@ class ContactForceFdi {
     // The level the reading was last found stuck at under load, a ceiling it may be clipped at
     // again (NaN: none known); kept across episodes until the reading goes above it.
     double ceiling_N = std::numeric_limits<double>::quiet_NaN();
-    bool on_ceiling = false;  // reads that level this tick, under load: its load beyond it unread
+    bool on_ceiling = false;  // healthy, reads that level this tick under load: its load not read
     double max_seen = 0.0;
     // The current spike episode, timed in seconds the spike test could see (not within a
     // touchdown's or the pad's landing guard, where spikes are not looked for).
@@ -1123,7 +1123,7 @@ class ContactForceFdi {
   // Ticks since a loaded channel's gain correction in the jump test's residual was set, changed
   // or dropped (capped): a group's two windows must not straddle it.
   int ticks_since_divisor_change_ = 1'000'000'000;
-  // The last tick a channel read its ceiling under load (Channel::on_ceiling), and ticks since.
+  // The last tick a healthy channel read its ceiling under load (Channel::on_ceiling), and ticks since.
   double ceiling_read_s_ = -1e300;
   int ticks_since_ceiling_ = 1'000'000'000;
   int late_age_ = 0;
