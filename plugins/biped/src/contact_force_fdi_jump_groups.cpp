@@ -101,17 +101,14 @@ ContactForceFdi::GroupDecisions ContactForceFdi::judge_jump_groups(std::span<con
     group_pending_ = false;
     group_dropped = true;
   }
-  // A gain's correction changed within a pending group's window: its step is in the residual's.
-  if (ev.divisor_changed && group_pending_) {
+  // A gain's correction changed within a pending group's window, or a healthy reading sat on a
+  // level it was found stuck at: that step, or that unread load, is in the residual's.
+  const bool residual_moved_unread = ev.divisor_changed || ticks_since_ceiling_ == 0;
+  if (residual_moved_unread && group_pending_) {
     group_pending_ = false;
     group_dropped = true;
   }
-  // A reading on such a level within a pending group's windows: its unread load is in the step.
-  if (ticks_since_ceiling_ == 0 && group_pending_) {
-    group_pending_ = false;
-    group_dropped = true;
-  }
-  if ((substituting_rolling || ev.divisor_changed || ticks_since_ceiling_ == 0) && (late_pending_ || group_deferred_)) {
+  if ((substituting_rolling || residual_moved_unread) && (late_pending_ || group_deferred_)) {
     group_dropped = group_dropped || group_deferred_;
     late_pending_ = group_deferred_ = false;
     for (auto& c : channels_) c.late_member = false;
