@@ -184,8 +184,8 @@ Json config_json_schema(const PluginRegistry& plugins) {
   definitions["wire_end"] = {
       {"type", "string"},
       {"pattern", kWireEndPattern},
-      {"description", "\"input.<name>\" or \"<stage>.<port>\", optionally with a selection of its values: "
-                      "\"[i]\" or \"[i:j]\" (0-based, j excluded)"}};
+      {"description", "\"input.<name>\", \"<stage>.<port>\" or \"previous_tick.<name>\", optionally with a "
+                      "selection of its values: \"[i]\" or \"[i:j]\" (0-based, j excluded)"}};
   definitions["wire"] = {
       {"description", "a wire end, or a non-empty array of them concatenated in order"},
       {"anyOf", Json::array({ref_to("wire_end"),

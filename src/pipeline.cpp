@@ -53,6 +53,11 @@ SignalRef Pipeline::signal(std::string_view reference) const {
         if (in.name == port) return in.values;
       }
     }
+    if (node == "previous_tick") {
+      for (const auto& p : previous_ticks_) {
+        if (p.name == port) return p.values;
+      }
+    }
     for (const auto& s : stages_) {
       if (s.name != node) continue;
       if (const auto index = s.stage->ports().find_output(port)) return s.output_refs[*index];
@@ -70,6 +75,7 @@ std::vector<std::pair<std::string, std::string>> Pipeline::signal_names() const 
     const auto& outputs = s.stage->ports().outputs();
     for (std::size_t o = 0; o < outputs.size(); ++o) out.emplace_back(s.name + "." + outputs[o].name, s.output_units[o]);
   }
+  for (const auto& p : previous_ticks_) out.emplace_back("previous_tick." + p.name, p.unit);
   return out;
 }
 
@@ -86,6 +92,9 @@ void Pipeline::bind_spans() noexcept {
 
 void Pipeline::reset() noexcept {
   std::fill(values_.begin(), values_.end(), 0.0);
+  for (const PreviousTick& p : previous_ticks_) {
+    std::fill_n(values_.begin() + static_cast<std::ptrdiff_t>(p.values.offset), p.values.dim, p.initial);
+  }
   for (auto& s : stages_) s.stage->reset();
 }
 
@@ -121,6 +130,8 @@ void Pipeline::step(double time_s) noexcept {
     double* to = v + derived_cannot_judge_.cannot_judge.offset;
     for (std::size_t i = 0; i < derived_cannot_judge_.cannot_judge.dim; ++i) to[i] = std::isfinite(from[i]) ? 0.0 : 1.0;
   }
+  // Last: what the next tick reads as previous_tick.<name> (its block never overlaps its source).
+  for (const Copy& c : previous_tick_copies_) gather(v + c.from, c.count, v + c.to);
 }
 
 }  // namespace ftsense

@@ -40,6 +40,7 @@ class PipelineBuilder {
     pipeline_.time_unit_ = doc_.time.unit;
     pipeline_.time_seconds_per_unit_ = doc_.time.seconds_per_unit;
     place_inputs();
+    place_previous_ticks();
     find_plugins();
     built_.assign(doc_.stages.size(), false);
     const std::vector<std::size_t> order = run_order();
@@ -50,6 +51,7 @@ class PipelineBuilder {
         plugin_of_[i]->check_params(doc_.stages[i].params, doc_.stages[i].path + "/params", diag_);
       }
     }
+    connect_previous_ticks();
     if (doc_.monitor) build_monitor(*doc_.monitor);
     diag_.throw_if_errors();
     pipeline_.values_.assign(next_offset_, 0.0);
@@ -91,6 +93,70 @@ class PipelineBuilder {
       }
       signals_["input." + in.name] = SignalInfo{input.values, in.unit, {input_dependencies(in.name, derivations), {}}};
       pipeline_.inputs_.push_back(std::move(input));
+    }
+  }
+
+  // Each previous-tick signal gets a block of its declared size; its stages read it there, and
+  // the pipeline copies its signal into it at the end of every tick.
+  void place_previous_ticks() {
+    for (const PreviousTickDecl& d : doc_.previous_tick) {
+      const SignalRef block = allocate(d.dim);
+      signals_["previous_tick." + d.name] = SignalInfo{block, d.unit, {upstream_inputs(d.signal), {}}};
+      pipeline_.previous_ticks_.push_back({d.name, d.unit, block, d.initial});
+    }
+  }
+
+  // The pipeline inputs a wire end depends on, through every stage upstream of it and every
+  // previous-tick signal on the way: read from the document, before any plugin is built, since
+  // a stage reading a previous-tick signal is built before the stage that computes it. It counts
+  // everything a stage reads in each of its outputs (no leave-one-out exemption: a fed-back value
+  // of channel i may carry channel j through the loop), so it errs towards reporting a breach.
+  std::set<std::string> upstream_inputs(const WireEnd& end) const {
+    std::vector<InputDerivation> derivations;
+    for (const InputDecl& in : doc_.inputs) derivations.push_back({in.name, in.derived_from});
+    std::set<std::string> inputs;
+    std::set<std::size_t> seen_stages;
+    std::set<std::string> seen_previous;
+    std::vector<const WireEnd*> todo{&end};
+    while (!todo.empty()) {
+      const WireEnd* e = todo.back();
+      todo.pop_back();
+      if (e->from_input) {
+        const std::set<std::string> d = input_dependencies(e->port, derivations);
+        inputs.insert(d.begin(), d.end());
+      } else if (e->from_previous_tick) {
+        if (!seen_previous.insert(e->port).second) continue;
+        for (const PreviousTickDecl& p : doc_.previous_tick) {
+          if (p.name == e->port) todo.push_back(&p.signal);
+        }
+      } else if (seen_stages.insert(e->producer).second) {
+        for (const WireDecl& w : doc_.stages[e->producer].wires) {
+          for (const WireEnd& u : w.ends) todo.push_back(&u);
+        }
+      }
+    }
+    return inputs;
+  }
+
+  // Once every stage is built: each previous-tick signal's source, checked against what it
+  // declared, and the copy that fills its block at the end of a tick.
+  void connect_previous_ticks() {
+    for (std::size_t i = 0; i < doc_.previous_tick.size(); ++i) {
+      const PreviousTickDecl& d = doc_.previous_tick[i];
+      const SignalInfo* source = resolve(d.signal);
+      if (source == nullptr) continue;  // reported, or its stage was not built (its cause is reported)
+      if (source->ref.dim != d.dim) {
+        diag_.error(d.path + "/dim", " = " + std::to_string(d.dim) + " but \"" + d.signal.text + "\" carries " +
+                                         std::to_string(source->ref.dim) + " values; declare \"dim\": " +
+                                         std::to_string(source->ref.dim));
+        continue;
+      }
+      if (source->unit != d.unit) {
+        diag_.error(d.path + "/unit", " = \"" + d.unit + "\" but \"" + d.signal.text + "\" is in '" + source->unit +
+                                          "'; declare \"unit\": \"" + source->unit + "\"");
+        continue;
+      }
+      pipeline_.previous_tick_copies_.push_back({source->ref.offset, pipeline_.previous_ticks_[i].values.offset, d.dim});
     }
   }
 
@@ -153,7 +219,8 @@ class PipelineBuilder {
           for (std::size_t c : cycle) forward += decls[c].name + " -> ";
           forward += decls[cycle.front()].name;
           diag_.error("/stages", "the stages form a cycle (" + forward +
-                                     "); a stage cannot depend on its own output, so cut the loop");
+                                     "); a stage cannot read its own output on the same tick: cut the loop, or read one of its "
+                                     "signals one tick late (\"previous_tick\")");
           break;
         }
         walk.push_back(next);
@@ -165,8 +232,8 @@ class PipelineBuilder {
   // What one end of a wire carries: null while its producer is unbuilt (its problems are
   // reported) or when the producer has no such output (reported here).
   const SignalInfo* resolve(const WireEnd& e) {
-    if (e.from_input) {
-      // Absent when the input's declaration is broken (reported with the document).
+    if (e.from_input || e.from_previous_tick) {
+      // Absent when the declaration is broken (reported with the document).
       const auto it = signals_.find(e.signal);
       return it == signals_.end() ? nullptr : select(e, it->second);
     }

@@ -80,6 +80,9 @@ std::vector<DocumentSection> make_sections() {
          "the log's time column (see `time` below)"},
         {"allow_dependent_virtual_sensor", V::boolean, false, "false", "",
          "accept a virtual sensor computed from the sensor it judges (a warning instead of an error)"},
+        {"previous_tick", V::object, false, "", "",
+         "signals read one tick late, by name, as `previous_tick.<name>`: how a stage reads what a later stage "
+         "computes (recovered values fed back into the virtual sensors, say); see `previous_tick` below"},
         description,
         {"definitions", V::object, false, "", "",
          "values written once and used in several places as {\"$ref\": \"#/definitions/<name>\"} (a sole "
@@ -110,7 +113,8 @@ std::vector<DocumentSection> make_sections() {
         {"plugin", V::text, true, "", "", "the plugin that runs the stage; `ftsense plugins` lists them"},
         {"params", V::object, false, "{}", "", "the plugin's parameters"},
         {"inputs", V::wires, false, "", "one wire per input port of the plugin",
-         "input port to wire: `\"input.<name>\"`, `\"<stage>.<port>\"`, either with a selection of its values "
+         "input port to wire: `\"input.<name>\"`, `\"<stage>.<port>\"` or `\"previous_tick.<name>\"` (a later "
+         "stage's signal, one tick late), any with a selection of its values "
          "(`\"imu.acc[2]\"`, `\"input.pos[0:2]\"`: 0-based, end excluded), or an array of them (concatenated)"},
         description}});
   DocumentSection monitor{"monitor", "the monitor",
@@ -134,6 +138,19 @@ std::vector<DocumentSection> make_sections() {
        "PlotJuggler writes `__time` in seconds; loggers often write nanoseconds.",
        {{"column", V::text, false, "\"time_s\"", "non-empty", "name of the log's first column"},
         {"unit", V::text, false, "\"s\"", "one of: s, ms, us, ns", "unit of the time stamps"}}});
+  sections.push_back(
+      {"previous_tick/<name>", "a previous-tick signal",
+       "`<name>` is an identifier. Wires read it as `previous_tick.<name>`: what `signal` held at the end of the "
+       "tick before (`initial` before the first tick). A stage cannot read a later stage's output on the same "
+       "tick (that would be a cycle); it can read it one tick late, so a feedback loop has a delay by "
+       "construction. Its size and unit are declared because the stages that read it are built before the "
+       "one that computes it; the build checks them against `signal`.",
+       {{"signal", V::text, true, "", "\"<stage>.<port>\" or \"input.<name>\", optionally with a selection",
+         "the signal to read one tick late"},
+        {"dim", V::number, true, "", "whole number >= 1", "how many values it carries"},
+        {"unit", V::text, true, "", "non-empty", "its unit, as the signal's (\"1\" if dimensionless)"},
+        {"initial", V::number, false, "0", "finite", "its value before the first tick and after a reset"},
+        description}});
   return sections;
 }
 
@@ -197,7 +214,13 @@ class DocumentReader {
     (void)field(cfg_, "", section, "description");
     (void)field(cfg_, "", section, "$schema");
     if (const Json* inputs = field(cfg_, "", section, "inputs")) read_inputs(*inputs);
+    const Json* previous = field(cfg_, "", section, "previous_tick");
+    if (previous != nullptr) {
+      // Names first, so that stage wires may read them; their signals once stages are named.
+      for (const auto& [name, spec] : previous->items()) declared_previous_.push_back(name);
+    }
     if (const Json* stages = field(cfg_, "", section, "stages")) read_stages(*stages);
+    if (previous != nullptr) read_previous_tick(*previous);
     if (const Json* monitor = field(cfg_, "", section, "monitor")) read_monitor(*monitor);
     return std::move(doc_);
   }
@@ -317,6 +340,71 @@ class DocumentReader {
     }
   }
 
+  void read_previous_tick(const Json& previous) {
+    const DocumentSection& section = document_section(DocumentSectionId::previous_tick);
+    for (const auto& [name, spec] : previous.items()) {
+      const std::string path = json_pointer_append("/previous_tick", name);
+      if (!is_identifier(name)) {
+        diag_.error(path, "previous-tick signal name '" + name + "' must be an identifier (letters, digits, _)");
+        continue;
+      }
+      if (!spec.is_object()) {
+        type_error(spec, path, "object", "a previous-tick signal", diag_);
+        continue;
+      }
+      check_keys(spec, path, section);
+      PreviousTickDecl d;
+      d.name = name;
+      d.path = path;
+      bool ok = true;
+      if (const Json* signal = field(spec, path, section, "signal")) {
+        WireDecl w;
+        w.port = name;
+        w.path = path + "/signal";
+        if (!read_wire(*signal, w)) {
+          ok = false;
+        } else if (w.ends.front().from_previous_tick) {
+          diag_.error(w.path, " = " + signal->dump() + " reads a previous-tick signal; name the signal it delays "
+                                                      "itself (a delay of two ticks is not offered)");
+          ok = false;
+        } else {
+          d.signal = std::move(w.ends.front());
+        }
+      } else {
+        ok = false;
+      }
+      if (const Json* dim = field(spec, path, section, "dim")) {
+        const double n = dim->get<double>();
+        if (!(n >= 1.0 && n <= 1e6 && n == std::floor(n))) {
+          diag_.error(path + "/dim", " = " + dim->dump() + " violates whole number >= 1 (how many values it carries)");
+          ok = false;
+        } else {
+          d.dim = static_cast<std::size_t>(n);
+        }
+      } else {
+        ok = false;
+      }
+      if (const Json* unit = field(spec, path, section, "unit")) {
+        d.unit = unit->get<std::string>();
+        if (d.unit.empty()) {
+          diag_.error(path + "/unit", "is empty; give the signal's unit, \"1\" if dimensionless");
+          ok = false;
+        }
+      } else {
+        ok = false;
+      }
+      if (const Json* initial = field(spec, path, section, "initial")) {
+        d.initial = initial->get<double>();
+        if (!std::isfinite(d.initial)) {
+          diag_.error(path + "/initial", " = " + initial->dump() + " is not finite");
+          ok = false;
+        }
+      }
+      (void)field(spec, path, section, "description");
+      if (ok) doc_.previous_tick.push_back(std::move(d));
+    }
+  }
+
   void read_time(const Json& time) {
     const DocumentSection& section = document_section(DocumentSectionId::time);
     check_keys(time, "/time", section);
@@ -393,8 +481,9 @@ class DocumentReader {
     const DocumentSection& section = document_section(DocumentSectionId::stage);
     check_keys(s, d.path, section);
     if (const Json* name = field(s, d.path, section, "name")) {
-      if (!is_identifier(d.name) || d.name == "input") {
-        diag_.error(d.path + "/name", " = " + name->dump() + " violates identifier (letters, digits, _; not 'input')");
+      if (!is_identifier(d.name) || d.name == "input" || d.name == "previous_tick") {
+        diag_.error(d.path + "/name",
+                    " = " + name->dump() + " violates identifier (letters, digits, _; not 'input' or 'previous_tick')");
         d.ok = false;
       }
       for (std::size_t j = 0; j < index; ++j) {
@@ -429,7 +518,8 @@ class DocumentReader {
         continue;
       }
       for (const auto& e : w.ends) {
-        if (!e.from_input) d.upstream.push_back(e.producer);
+        // A previous-tick signal is no dependency within the tick: it was written on the one before.
+        if (!e.from_input && !e.from_previous_tick) d.upstream.push_back(e.producer);
       }
       d.wires.push_back(std::move(w));
     }
@@ -504,6 +594,16 @@ class DocumentReader {
         e.from_input = true;
         if (std::find(declared_inputs_.begin(), declared_inputs_.end(), e.port) == declared_inputs_.end()) {
           diag_.error(path, "no input named '" + e.port + "'; " + suggest(e.port, declared_inputs_));
+          ok = false;
+          continue;
+        }
+      } else if (e.node == "previous_tick") {
+        e.from_previous_tick = true;
+        const auto found = std::find(declared_previous_.begin(), declared_previous_.end(), e.port);
+        if (found == declared_previous_.end()) {
+          diag_.error(path, "no previous-tick signal named '" + e.port + "'; " +
+                                (declared_previous_.empty() ? std::string("declare it under \"previous_tick\"")
+                                                            : suggest(e.port, declared_previous_)));
           ok = false;
           continue;
         }
@@ -595,6 +695,7 @@ class DocumentReader {
   PipelineDocument doc_;
   std::vector<std::string> declared_inputs_;
   std::vector<std::string> stage_names_;
+  std::vector<std::string> declared_previous_;  // previous_tick names, as declared (broken ones too)
 };
 
 }  // namespace

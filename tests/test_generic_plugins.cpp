@@ -335,12 +335,12 @@ struct RecoveryRig {
   double step(double m, double eta, double v, double f, double type) {
     measured[0] = m, fault_estimate[0] = eta, estimate[0] = v, fault[0] = f, fault_type[0] = type;
     const std::span<const double> ins[] = {measured, fault_estimate, estimate, fault, fault_type};
-    const std::span<double> outs[] = {out};
+    const std::span<double> outs[] = {out, correction};
     recovery.step(StepIO{0.0, ins, outs});
     return out[0];
   }
   generic::FaultRecovery recovery;
-  std::vector<double> measured{0}, fault_estimate{0}, estimate{0}, fault{0}, fault_type{0}, out{0};
+  std::vector<double> measured{0}, fault_estimate{0}, estimate{0}, fault{0}, fault_type{0}, out{0}, correction{0};
 };
 
 TEST(FaultRecovery, SubtractsTheEstimateOrSubstitutesTheVirtualValue) {
@@ -420,6 +420,31 @@ TEST(FaultRecovery, ASpikyChannelTakesTheMedianOfItsLastThreeReadings) {
   EXPECT_EQ(rig.step(10.0, 0.0, -1.0, 1.0, 7.0), 10.0);
   EXPECT_EQ(rig.step(11.0, 0.0, -1.0, 1.0, 7.0), 11.0);
   EXPECT_EQ(rig.step(12.0, 0.0, -1.0, 1.0, 7.0), 11.0);
+}
+
+// The correction a relation's other channels may subtract: measured - recovered where the
+// recovered value is the channel's own readings' (corrected, median), 0 where it carries the
+// virtual value (substituted, blended) or the reading passes through.
+TEST(FaultRecovery, TheCorrectionIsWhatTheChannelsOwnReadingsGive) {
+  generic::FaultRecovery::Params p;
+  p.correction = generic::FaultRecovery::Correction::when_flagged;
+  p.blend_types = {"noise"};
+  p.median_types = {"spikes"};
+  RecoveryRig rig(p);
+  EXPECT_EQ(rig.step(150.0, 3.0, 90.0, 0.0, 0.0), 150.0);  // healthy: passes through
+  EXPECT_EQ(rig.correction[0], 0.0);
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 2.0), 100.0);  // offset
+  EXPECT_EQ(rig.correction[0], 50.0);
+  EXPECT_EQ(rig.step(150.0, 30.0, 90.0, 1.0, 5.0), 120.0);  // gain: x (1 - 1/k) with k = 1.25
+  EXPECT_EQ(rig.correction[0], 30.0);
+  EXPECT_EQ(rig.step(150.0, 60.0, 90.0, 1.0, 4.0), 90.0);   // frozen: substituted
+  EXPECT_EQ(rig.correction[0], 0.0);
+  (void)rig.step(150.0, 0.0, 90.0, 1.0, 6.0);                // noise: blended with the virtual value
+  EXPECT_EQ(rig.correction[0], 0.0);
+  EXPECT_EQ(rig.step(250.0, 0.0, 90.0, 1.0, 7.0), 150.0);   // spikes: the median of 150, 150, 250
+  EXPECT_EQ(rig.correction[0], 100.0);
+  EXPECT_EQ(rig.step(std::nan(""), 0.0, 90.0, 1.0, 2.0), 90.0);  // no reading: substituted
+  EXPECT_EQ(rig.correction[0], 0.0);
 }
 
 TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {

@@ -1,5 +1,6 @@
 // Pipeline building and stepping on valid configs.
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 #include <limits>
@@ -136,6 +137,67 @@ TEST(Pipeline, ResetRestoresTheInitialState) {
     return trace;
   };
   EXPECT_EQ(run(), run());
+}
+
+// A feedback loop through previous_tick: r(t) = u(t) - r(t - 1), r(-1) = the declared initial
+// value. The loop feeds u into its own virtual sensor, which the independence rule reports unless
+// allowed (a warning here).
+TEST(Pipeline, APreviousTickSignalIsItsSignalOneTickLate) {
+  const Json config = Json::parse(R"({
+    "sample_period_s": 0.001,
+    "allow_dependent_virtual_sensor": true,
+    "inputs": {"u": {"columns": ["u"], "unit": "N"}},
+    "previous_tick": {"last": {"signal": "residual.residual", "dim": 1, "unit": "N", "initial": 0.5}},
+    "stages": [
+      {"name": "residual", "plugin": "difference_residual",
+       "inputs": {"measured": "input.u", "virtual": "previous_tick.last"}}
+    ]
+  })");
+  Pipeline p = build(config);
+  ASSERT_EQ(p.warnings().size(), 1u);
+  EXPECT_NE(p.warnings()[0].message.find("independence rule"), std::string::npos) << p.warnings()[0].message;
+  const auto r = p.values(p.signal("residual.residual"));
+  const auto last = p.values(p.signal("previous_tick.last"));
+  const std::vector<double> u{1.0, 2.0, 3.0, 4.0};
+  const std::vector<double> expected{0.5, 1.5, 1.5, 2.5};
+  for (int pass = 0; pass < 2; ++pass) {
+    EXPECT_EQ(last[0], 0.5);  // the initial value, again after reset()
+    for (std::size_t k = 0; k < u.size(); ++k) {
+      p.input_values(0)[0] = u[k];
+      p.step(static_cast<double>(k) * 1e-3);
+      EXPECT_EQ(r[0], expected[k]) << "tick " << k << ", pass " << pass;
+      EXPECT_EQ(last[0], expected[k]);  // what the next tick reads
+    }
+    p.reset();
+  }
+  const auto names = p.signal_names();
+  EXPECT_NE(std::find(names.begin(), names.end(), std::pair<std::string, std::string>{"previous_tick.last", "N"}),
+            names.end());
+}
+
+// A wire that would be a cycle is a loop once one of its signals is read one tick late: the
+// run order ignores it, and the delayed signal carries any selection of its source.
+TEST(Pipeline, APreviousTickSignalCutsACycleAndKeepsTheRunOrder) {
+  Json config = test::base_config();
+  config["previous_tick"] = Json::parse(R"({"smoothed": {"signal": "smooth.filtered[1:3]", "dim": 2, "unit": "N"}})");
+  config["stages"].push_back(Json::parse(R"({"name": "echo", "plugin": "difference_residual",
+      "inputs": {"measured": "input.measured[1:3]", "virtual": "previous_tick.smoothed"}})"));
+  config["stages"][0]["inputs"]["measured"] = Json::array({"input.measured[0:1]", "echo.residual"});
+  config["allow_dependent_virtual_sensor"] = true;
+  Pipeline p = build(config);
+  ASSERT_EQ(p.stage_count(), 4u);
+  EXPECT_EQ(p.stage_name(0), "echo");  // reads smooth's output one tick late: runs first
+  EXPECT_EQ(p.stage_name(1), "residual");
+  set_inputs(p, {10, 20, 30}, {0, 0, 0});
+  p.step(0.0);
+  // Tick 0: echo = measured - 0; the low-pass starts at its first sample.
+  EXPECT_EQ(p.values(p.signal("echo.residual"))[0], 20.0);
+  EXPECT_EQ(p.values(p.signal("smooth.filtered"))[1], 20.0);
+  EXPECT_EQ(p.values(p.signal("previous_tick.smoothed"))[0], 20.0);
+  EXPECT_EQ(p.values(p.signal("previous_tick.smoothed"))[1], 30.0);
+  p.step(1e-3);
+  EXPECT_EQ(p.values(p.signal("echo.residual"))[0], 0.0);  // 20 - 20
+  EXPECT_EQ(p.values(p.signal("echo.residual"))[1], 0.0);  // 30 - 30
 }
 
 TEST(Pipeline, SurvivesBeingMoved) {

@@ -97,6 +97,43 @@ TEST(SumConstraintResidual, TheVirtualValueIsBoundedByWhatPhysicsAllowsTheResidu
   EXPECT_EQ(sum, (std::vector<double>{1.0}));
 }
 
+// With corrections (a recovery's, one tick late), each virtual value takes the others as
+// corrected, x_i - c_i; the residuals stay the readings' own. Reference 10 N, readings 2, 3, 4 N,
+// corrections 0.5, 1 and none (NaN counts as 0):
+//   v_0 = 10 - (3 - 1) - 4 = 4,  v_1 = 10 - (2 - 0.5) - 4 = 4.5,  v_2 = 10 - (2 - 0.5) - (3 - 1) = 6.5.
+// Channel 2 off the ground: its virtual value is 0, and the others' take its reading as it is.
+TEST(SumConstraintResidual, CorrectionsReachTheOthersVirtualValuesNotTheResiduals) {
+  for (const bool airborne : {false, true}) {
+    SumConstraintResidual::Params p;
+    p.loadable = true;
+    p.correction = true;
+    SumConstraintResidual stage(p, StageContext(1e-3, "sum", {{"signal", 3}, {"reference", 1}, {"loadable", 3},
+                                                             {"correction", 3}}));
+    ASSERT_EQ(stage.ports().inputs().size(), 4u);
+    EXPECT_EQ(stage.ports().inputs()[3].name, "correction");
+    std::vector<double> x{2.0, 3.0, 4.0}, reference{10.0}, loadable{1.0, 1.0, airborne ? 0.0 : 1.0},
+        correction{0.5, 1.0, std::nan("")}, v(3), r(3), s(9), sum(1), w(3);
+    const std::span<const double> ins[] = {x, reference, loadable, correction};
+    const std::span<double> outs[] = {v, r, s, sum, w};
+    stage.step(StepIO{0.0, ins, outs});
+    EXPECT_EQ(v, airborne ? (std::vector<double>{4.0, 4.5, 0.0}) : (std::vector<double>{4.0, 4.5, 6.5}));
+    EXPECT_EQ(r, airborne ? (std::vector<double>{-1.0, -1.0, 4.0}) : (std::vector<double>{-1.0, -1.0, -1.0}));
+    EXPECT_EQ(sum, (std::vector<double>{-1.0}));
+  }
+  // Without loadable, the correction is the third input; a missing reading leaves its own
+  // virtual value, taken from the others as corrected: 10 - (2 - 0.5) - (4 - 1) = 5.5.
+  SumConstraintResidual::Params p;
+  p.correction = true;
+  SumConstraintResidual stage(p, StageContext(1e-3, "sum", {{"signal", 3}, {"reference", 1}, {"correction", 3}}));
+  std::vector<double> x{2.0, std::nan(""), 4.0}, reference{10.0}, correction{0.5, 7.0, 1.0}, v(3), r(3), s(9),
+      sum(1), w(3);
+  const std::span<const double> ins[] = {x, reference, correction};
+  const std::span<double> outs[] = {v, r, s, sum, w};
+  stage.step(StepIO{0.0, ins, outs});
+  EXPECT_EQ(v[1], 5.5);
+  EXPECT_TRUE(std::isnan(v[0]) && std::isnan(v[2]));
+}
+
 TEST(SumConstraintResidual, GroupsHaveTheirOwnReferences) {
   // Two groups of two: (1, 2) sum to 5, (3, 4) sum to 6.
   const Outputs o = step_once(2, false, {1.0, 2.0, 3.0, 4.0}, {5.0, 6.0});

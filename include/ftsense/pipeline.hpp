@@ -12,8 +12,10 @@
 //                  "fault_type": "..." },
 //     "allow_dependent_virtual_sensor": false
 //   }
-// A wire names "input.<input>" or "<stage>.<output port>", or an array of them that is
-// concatenated in order.
+// A wire names "input.<input>", "<stage>.<output port>" or "previous_tick.<name>", or an array
+// of them that is concatenated in order. "previous_tick.<name>" (declared under "previous_tick":
+// signal, dim, unit, initial) holds what its signal held at the end of the tick before: how a
+// stage reads a later stage's output, one tick late (a feedback loop; without it, a cycle).
 //
 // Build checks, all reported together with JSON Pointer paths: document structure and key sets,
 // unknown plugins, parameters, unknown or missing ports, doubly driven inputs, dimensions, units,
@@ -119,7 +121,7 @@ class Pipeline {
   [[nodiscard]] std::span<const double> values(SignalRef ref) const noexcept {
     return {values_.data() + ref.offset, ref.dim};
   }
-  // Every signal's reference name and unit, inputs first, then stage outputs in run order.
+  // Every signal's reference name and unit: inputs, stage outputs in run order, previous-tick signals.
   [[nodiscard]] std::vector<std::pair<std::string, std::string>> signal_names() const;
 
   [[nodiscard]] std::size_t stage_count() const noexcept { return stages_.size(); }
@@ -171,6 +173,16 @@ class Pipeline {
   std::vector<PipelineInput> inputs_;
   std::vector<StageRun> stages_;
   std::vector<Copy> monitor_gathers_;
+  // The previous-tick signals: each a block the stages read, filled from its signal at the end
+  // of a tick (`previous_tick_copies_`, in declaration order) and set to `initial` by reset().
+  struct PreviousTick {
+    std::string name;
+    std::string unit;
+    SignalRef values;
+    double initial = 0.0;
+  };
+  std::vector<PreviousTick> previous_ticks_;
+  std::vector<Copy> previous_tick_copies_;
   bool has_monitor_ = false;
   // The monitor's cannot_judge when no stage gives it: 1 where the virtual value is not finite.
   struct DerivedCannotJudge {

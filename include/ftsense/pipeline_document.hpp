@@ -12,11 +12,15 @@
 //     "stages": [ { "name": "...", "plugin": "...", "params": {...},
 //                   "inputs": { "<port>": "<wire>", ... } }, ... ],
 //     "monitor": { "channels": [...], "<monitor column key>": "<wire>", ..., "extra": {...} },
+//     "previous_tick": { "<name>": { "signal": "<stage>.<port>", "dim": 8, "unit": "N" }, ... },
 //     "allow_dependent_virtual_sensor": false
 //   }
 //
-// A wire is "input.<name>" or "<stage>.<port>", or a non-empty array of them concatenated in
-// order. Reading resolves every name the document itself defines (inputs, stages); what only
+// A wire is "input.<name>", "<stage>.<port>" or "previous_tick.<name>", or a non-empty array of
+// them concatenated in order. "previous_tick.<name>" is what its signal held at the end of the
+// tick before (its `initial` value before the first): the one way a stage reads what a later
+// stage computes, so a loop (recovered values fed back into the virtual sensors) has a delay by
+// construction and the run order stays a dependency order. Reading resolves every name the document itself defines (inputs, stages); what only
 // the plugins know (ports, dimensions, units, parameters) is the builder's to check.
 
 #include <array>
@@ -63,7 +67,7 @@ struct DocumentSection {
   [[nodiscard]] std::vector<std::string> key_names() const;
 };
 
-enum class DocumentSectionId : std::size_t { pipeline, input, stage, monitor, time };
+enum class DocumentSectionId : std::size_t { pipeline, input, stage, monitor, time, previous_tick };
 // Every section of the document, in DocumentSectionId order.
 [[nodiscard]] const std::vector<DocumentSection>& pipeline_document_sections();
 [[nodiscard]] const DocumentSection& document_section(DocumentSectionId id);
@@ -78,7 +82,8 @@ struct WireEnd {
   std::string port;          // input name or output port name
   std::string path;          // its JSON Pointer
   bool from_input = false;
-  std::size_t producer = 0;  // index into PipelineDocument::stages when !from_input
+  bool from_previous_tick = false;  // "previous_tick.<name>" (the builder finds it by `signal`)
+  std::size_t producer = 0;  // index into PipelineDocument::stages when from neither
 };
 
 // The form of one wire element as an ECMAScript regular expression (for the config schema):
@@ -132,6 +137,18 @@ struct MonitorDecl {
   bool ok = true;  // false: some part is reported; the monitor is not built
 };
 
+// A signal read one tick late: "previous_tick.<name>" holds what `signal` held at the end of the
+// tick before. Its size and unit are declared, since the stages that read it are built before
+// the one that computes it; the builder checks them against the signal.
+struct PreviousTickDecl {
+  std::string name;
+  std::string path;  // "/previous_tick/<name>"
+  WireEnd signal;    // "<stage>.<port>" or "input.<name>", optionally with a selection
+  std::size_t dim = 0;
+  std::string unit;
+  double initial = 0.0;  // its value before the first tick, and after reset()
+};
+
 struct PipelineDocument {
   std::optional<double> sample_period_s;  // empty: missing or invalid (reported)
   TimeColumnDecl time;
@@ -139,6 +156,7 @@ struct PipelineDocument {
   std::vector<InputDecl> inputs;  // the well-declared ones (a broken one is reported, not here)
   std::vector<StageDecl> stages;
   std::optional<MonitorDecl> monitor;
+  std::vector<PreviousTickDecl> previous_tick;  // the well-declared ones
 };
 
 // Reads `config` against the document's table: every problem goes to `diag` with its JSON

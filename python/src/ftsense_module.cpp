@@ -79,7 +79,8 @@ class PyPipeline {
     for (const PipelineInput& in : pipeline_.inputs()) {
       inputs_.push_back({in.name, in.values.dim, in.unit, "", in.columns});
     }
-    // signal_names(): inputs first, then every stage's outputs in run order and port order.
+    // signal_names(): inputs first, then every stage's outputs in run order and port order (then
+    // the previous-tick signals, not listed here: they copy an output).
     const auto names = pipeline_.signal_names();
     std::size_t at = pipeline_.inputs().size();
     for (std::size_t s = 0; s < pipeline_.stage_count(); ++s) {

@@ -85,6 +85,11 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
                        .sized_by("as `measured`"));
   ports_.add_output(PortSpec{"recovered", dim, std::string(kAnyUnit), "the signal to use downstream"}
                         .sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"correction", dim, std::string(kAnyUnit),
+                             "measured - recovered where the recovery uses the channel's own readings alone "
+                             "(corrected, median), else 0: what a relation's other channels may subtract from this "
+                             "reading (sum_constraint_residual's correction, one tick late)"}
+                        .sized_by("as `measured`"));
   last_.assign(dim, 0.0);
   difference_lp_.assign(dim, 0.0);
   difference_seen_.assign(dim, 0);
@@ -108,6 +113,7 @@ void FaultRecovery::step(const StepIO& io) noexcept {
   const auto fault = io.in(kFault);
   const auto type = io.in(kFaultType);
   const auto out = io.out(kRecovered);
+  const auto own_correction = io.out(kCorrection);
   for (std::size_t j = 0; j < out.size(); ++j) {
     // A code that is not one of the table's is itself invalid data.
     const FaultType t = fault_type_from_code(type[j]).value_or(FaultType::invalid);
@@ -139,6 +145,10 @@ void FaultRecovery::step(const StepIO& io) noexcept {
     if (!std::isfinite(value)) value = last_[j];
     out[j] = value;
     last_[j] = value;
+    // Only a value made of the channel's own readings: a substituted or blended one carries the
+    // virtual value, itself the others' readings, which would feed them back into their own.
+    const bool from_own_readings = !substitute && !blend && (median || mode == Mode::correct);
+    own_correction[j] = from_own_readings && std::isfinite(measured[j] - value) ? measured[j] - value : 0.0;
   }
 }
 

@@ -19,13 +19,18 @@ void SumConstraintResidual::Params::describe(ParamSchema<Params>& schema) {
   schema.add("loadable", &Params::loadable,
              "adds input loadable (1 while a channel can carry load, by kinematics): a channel that cannot "
              "has virtual value 0 and is judged on its own reading");
+  schema.add("correction", &Params::correction,
+             "adds input correction c (per channel, the readings' unit): each virtual value takes the others' "
+             "readings as corrected, x_i - c_i (a recovery's correction, one tick late through previous_tick), "
+             "so a corrected fault of one channel leaves the others' virtual values; the residuals stay the "
+             "readings' own");
   schema.add("virtual_min", &Params::virtual_min,
              "the least value the virtual sensor may take, in the signal's unit (a force sensor that only "
              "pushes: 0); empty: none; one value applies to all");
 }
 
 SumConstraintResidual::SumConstraintResidual(const Params& params, const StageContext& context)
-    : loadable_(params.loadable) {
+    : loadable_(params.loadable), correction_(params.correction) {
   // Unwired (the docs' port table): one group of the given size, or of two.
   channels_ = context.wired_dim("signal", params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : 2);
   group_size_ = params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : channels_;
@@ -53,6 +58,11 @@ SumConstraintResidual::SumConstraintResidual(const Params& params, const StageCo
     ports_.add_input(PortSpec{"loadable", channels_, std::string(kDimensionless),
                               "1 while channel j can carry load, 0 while it cannot (below 1/2: cannot; NaN: can)",
                               PortRole::virtual_estimate}
+                         .sized_by("as `signal`"));
+  }
+  if (correction_) {
+    ports_.add_input(PortSpec{"correction", channels_, std::string(kAnyUnit),
+                              "c_i, subtracted from reading i in the others' virtual values (non-finite: 0)"}
                          .sized_by("as `signal`"));
   }
   ports_.add_output(PortSpec{"virtual", channels_, std::string(kAnyUnit),
@@ -84,16 +94,23 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
   const auto sum_residual = io.out(kSumResidual);
   const auto row_weight = io.out(kRowWeight);
   const std::span<const double> loadable = loadable_ ? io.in(kLoadable) : std::span<const double>{};
+  const std::span<const double> correction =
+      correction_ ? io.in(loadable_ ? kCorrection : kCorrection - 1) : std::span<const double>{};
+  const auto correction_of = [&](std::size_t i) {
+    return correction_ && std::isfinite(correction[i]) ? correction[i] : 0.0;
+  };
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const std::size_t g = group_size_;
   for (std::size_t group = 0; group < groups_; ++group) {
     const std::size_t first = group * g;
     // The finite readings' sum, how many are not finite and which one (when one).
     double finite_sum = 0.0;
+    double correction_total = 0.0;  // the finite readings' corrections
     std::size_t missing = 0, missing_index = first;
     for (std::size_t i = first; i < first + g; ++i) {
       if (std::isfinite(x[i])) {
         finite_sum += x[i];
+        correction_total += correction_of(i);
       } else {
         ++missing;
         missing_index = i;
@@ -116,7 +133,13 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
         const bool others_known = missing == 0 || (missing == 1 && missing_index == i);
         v = others_known && reference_known ? r - (finite_sum - (missing == 0 ? x[i] : 0.0)) : kNaN;
       }
-      virtual_value[i] = std::isnan(v) ? v : std::max(v, virtual_min_[i]);
+      // The virtual value takes the others as corrected; the residual stays the readings' own, so
+      // the detectors and the signatures see the faults as they are.
+      // R - sum_{k != i} (x_k - c_k) = v + sum_{k != i} c_k.
+      const double others_correction =
+          can_carry ? correction_total - (std::isfinite(x[i]) ? correction_of(i) : 0.0) : 0.0;
+      const double corrected_v = v + others_correction;
+      virtual_value[i] = std::isnan(corrected_v) ? corrected_v : std::max(corrected_v, virtual_min_[i]);
       residual[i] = x[i] - v;
       double* row = block + (i - first) * g;
       for (std::size_t j = 0; j < g; ++j) row[j] = can_carry ? 1.0 : (j == i - first ? 1.0 : 0.0);

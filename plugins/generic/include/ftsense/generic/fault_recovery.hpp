@@ -29,6 +29,14 @@
 // 0.18 at 10 Hz and 1 kHz; 0.27 and 0.39 at 200 Hz). Neither mode uses fault_estimate: a blended
 // or median channel's recovery is its own reading's, not the classifier's estimate.
 // With correction = "when_flagged", measured_j passes through unchanged while fault_j = 0.
+//
+// Output `correction`: c_j = measured_j - recovered_j where the recovered value is made of the
+// channel's own readings alone (corrected: the fault estimate; median), else 0 (unflagged under
+// "when_flagged", substituted, blended). A relation's other channels subtract it from this reading
+// (sum_constraint_residual's input `correction`, read one tick late through previous_tick), so a
+// corrected fault leaves their virtual values. Not the substituted or blended values: they carry
+// the virtual value v_j, which is the others' readings, and fed back it would give each of them
+// its own reading as its virtual value.
 // The output is never NaN: if the chosen value is not finite, the other one is used, and if
 // neither is, the last recovered value is held.
 
@@ -64,7 +72,7 @@ class FaultRecovery {
   };
 
   enum Input : std::size_t { kMeasured, kFaultEstimate, kVirtual, kFault, kFaultType };
-  enum Output : std::size_t { kRecovered };
+  enum Output : std::size_t { kRecovered, kCorrection };
 
   FaultRecovery(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }

@@ -35,6 +35,20 @@
 // neighbours' until one of them leaves the ground (signature_isolator then says "cannot judge"
 // rather than guess); a channel whose contact is off the ground is seen on its own row too.
 //
+// With `correction` on, input c (per channel) gives the readings as recovered, x_i - c_i, and the
+// virtual values take the others as corrected:
+//
+//   v_j = R_G - sum_{i in G, i != j} (x_i - c_i)     (non-finite c_i: 0)
+//
+// while the residuals and signatures stay the readings' own (the detectors see the faults as they
+// are). Wire a recovery's correction one tick late (fault_recovery's `correction` through
+// previous_tick): a fault found and corrected on one channel then leaves the others' virtual
+// values, and with them their classification and recovery. Only corrections made of a channel's
+// own readings belong there (fault_recovery gives 0 for a substituted or blended channel): a
+// substituted value is R_G less the others, and fed back it would hand each of them its own
+// reading. What still reaches v_j from x_j: a fault estimate that was fitted while channel j's
+// reading was in its channel's virtual value (a second fault during the first's fit).
+//
 // A non-finite reading (or reference) makes every value that depends on it NaN: the residuals of
 // the group's loaded channels (not judged downstream: a CUSUM holds, the isolator waits), the
 // virtual sensors of the others. The non-finite channel's own virtual value stays finite when the
@@ -53,17 +67,20 @@ class SumConstraintResidual {
   static constexpr std::string_view name = "sum_constraint_residual";
   static constexpr std::string_view summary =
       "channels that sum to a reference: leave-one-out virtual sensors, residuals and their fault signatures";
-  // For the config reference's port table and the schema (plugin.hpp): input loadable is optional.
-  static constexpr std::string_view example_params = R"([{}, {"loadable": true}])";
+  // For the config reference's port table and the schema (plugin.hpp): inputs loadable and correction
+  // are optional.
+  static constexpr std::string_view example_params = R"([{}, {"loadable": true, "correction": true}])";
 
   struct Params {
     int group_size = 0;
     bool loadable = false;
+    bool correction = false;
     std::vector<double> virtual_min{};
     static void describe(ParamSchema<Params>& schema);
   };
 
-  enum Input : std::size_t { kSignal, kReference, kLoadable };
+  // kCorrection is the third input when `loadable` is off (the enum names the order with both on).
+  enum Input : std::size_t { kSignal, kReference, kLoadable, kCorrection };
   enum Output : std::size_t { kVirtual, kResidual, kSignature, kSumResidual, kRowWeight };
 
   SumConstraintResidual(const Params& params, const StageContext& context);
@@ -77,6 +94,7 @@ class SumConstraintResidual {
   std::size_t group_size_ = 0;
   std::size_t groups_ = 0;
   bool loadable_ = false;
+  bool correction_ = false;
   std::vector<double> virtual_min_;  // per channel; -inf: none
 };
 
