@@ -94,6 +94,7 @@ void Pipeline::reset() noexcept {
   std::fill(values_.begin(), values_.end(), 0.0);
   for (const PreviousTick& p : previous_ticks_) {
     std::fill_n(values_.begin() + static_cast<std::ptrdiff_t>(p.values.offset), p.values.dim, p.initial);
+    std::fill_n(values_.begin() + static_cast<std::ptrdiff_t>(p.staged.offset), p.staged.dim, p.initial);
   }
   for (auto& s : stages_) s.stage->reset();
 }
@@ -108,6 +109,8 @@ void Pipeline::step_stage(std::size_t run_index, double time_s) noexcept {
 
 void Pipeline::step(double time_s) noexcept {
   double* const v = values_.data();
+  // What the tick before left: its previous-tick signals' values, read in place through this one.
+  for (const Copy& c : previous_tick_loads_) gather(v + c.from, c.count, v + c.to);
   for (const InputConversion& c : conversions_) v[c.at] = c.scale * v[c.at] + c.offset;
   for (const InputGate& g : gates_) {
     double* const first = v + g.values.offset;
@@ -130,8 +133,9 @@ void Pipeline::step(double time_s) noexcept {
     double* to = v + derived_cannot_judge_.cannot_judge.offset;
     for (std::size_t i = 0; i < derived_cannot_judge_.cannot_judge.dim; ++i) to[i] = std::isfinite(from[i]) ? 0.0 : 1.0;
   }
-  // Last: what the next tick reads as previous_tick.<name> (its block never overlaps its source).
-  for (const Copy& c : previous_tick_copies_) gather(v + c.from, c.count, v + c.to);
+  // Last: what the next tick reads as previous_tick.<name>, staged so that its block keeps this
+  // tick's value for whoever reads the pipeline after step() (the monitor, --record, calibrate).
+  for (const Copy& c : previous_tick_stores_) gather(v + c.from, c.count, v + c.to);
 }
 
 }  // namespace ftsense

@@ -96,13 +96,14 @@ class PipelineBuilder {
     }
   }
 
-  // Each previous-tick signal gets a block of its declared size; its stages read it there, and
-  // the pipeline copies its signal into it at the end of every tick.
+  // Each previous-tick signal gets a block of its declared size, which its stages read, and one
+  // that stages its signal from the end of a tick to the start of the next (pipeline.hpp).
   void place_previous_ticks() {
     for (const PreviousTickDecl& d : doc_.previous_tick) {
       const SignalRef block = allocate(d.dim);
+      const SignalRef staged = allocate(d.dim);
       signals_["previous_tick." + d.name] = SignalInfo{block, d.unit, {upstream_inputs(d.signal), {}}};
-      pipeline_.previous_ticks_.push_back({d.name, d.unit, block, d.initial});
+      pipeline_.previous_ticks_.push_back({d.name, d.unit, block, staged, d.initial});
     }
   }
 
@@ -156,7 +157,9 @@ class PipelineBuilder {
                                           "'; declare \"unit\": \"" + source->unit + "\"");
         continue;
       }
-      pipeline_.previous_tick_copies_.push_back({source->ref.offset, pipeline_.previous_ticks_[i].values.offset, d.dim});
+      const Pipeline::PreviousTick& p = pipeline_.previous_ticks_[i];
+      pipeline_.previous_tick_stores_.push_back({source->ref.offset, p.staged.offset, d.dim});
+      pipeline_.previous_tick_loads_.push_back({p.staged.offset, p.values.offset, d.dim});
     }
   }
 
@@ -346,7 +349,7 @@ class PipelineBuilder {
                     "missing input of plugin " + plugin->name + ": " + spec.description + " (" +
                         std::to_string(spec.dim) + " values" + (spec.unit.empty() ? std::string() : ", " + spec.unit) +
                         (spec.frame.empty() ? std::string() : ", " + spec.frame + " frame") +
-                        "); wire it to \"input.<name>\" or \"<stage>.<port>\"");
+                        "); wire it to \"input.<name>\", \"<stage>.<port>\" or \"previous_tick.<name>\"");
         ok = false;
         continue;
       }

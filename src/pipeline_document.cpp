@@ -109,7 +109,7 @@ std::vector<DocumentSection> make_sections() {
         description}});
   sections.push_back(
       {"stages/<i>", "a stage", "",
-       {{"name", V::text, true, "", "unique identifier, not `input`", "the stage's unique name"},
+       {{"name", V::text, true, "", "unique identifier, not `input` or `previous_tick`", "the stage's unique name"},
         {"plugin", V::text, true, "", "", "the plugin that runs the stage; `ftsense plugins` lists them"},
         {"params", V::object, false, "{}", "", "the plugin's parameters"},
         {"inputs", V::wires, false, "", "one wire per input port of the plugin",
@@ -555,14 +555,14 @@ class DocumentReader {
     } else if (value.is_array() && !value.empty()) {
       for (std::size_t i = 0; i < value.size(); ++i) {
         if (!value[i].is_string()) {
-          type_error(value[i], json_pointer_append(w.path, i), "string", "\"input.<name>\" or \"<stage>.<port>\"",
+          type_error(value[i], json_pointer_append(w.path, i), "string", "\"input.<name>\", \"<stage>.<port>\" or \"previous_tick.<name>\"",
                      diag_);
           return false;
         }
         texts.emplace_back(value[i].get<std::string>(), json_pointer_append(w.path, i));
       }
     } else {
-      type_error(value, w.path, "string or non-empty array of strings", "\"input.<name>\" or \"<stage>.<port>\"",
+      type_error(value, w.path, "string or non-empty array of strings", "\"input.<name>\", \"<stage>.<port>\" or \"previous_tick.<name>\"",
                  diag_);
       return false;
     }
@@ -584,7 +584,8 @@ class DocumentReader {
       }
       const auto dot = e.signal.find('.');
       if (dot == std::string::npos) {
-        diag_.error(path, " = \"" + text + "\" violates the wire form \"input.<name>\" or \"<stage>.<port>\"");
+        diag_.error(path, " = \"" + text + "\" violates the wire form \"input.<name>\", \"<stage>.<port>\" or "
+                          "\"previous_tick.<name>\"");
         ok = false;
         continue;
       }

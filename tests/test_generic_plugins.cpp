@@ -445,6 +445,13 @@ TEST(FaultRecovery, TheCorrectionIsWhatTheChannelsOwnReadingsGive) {
   EXPECT_EQ(rig.correction[0], 100.0);
   EXPECT_EQ(rig.step(std::nan(""), 0.0, 90.0, 1.0, 2.0), 90.0);  // no reading: substituted
   EXPECT_EQ(rig.correction[0], 0.0);
+  // An offset whose estimate is not a number falls back on the virtual value: no correction.
+  EXPECT_EQ(rig.step(150.0, std::nan(""), 90.0, 1.0, 2.0), 90.0);
+  EXPECT_EQ(rig.correction[0], 0.0);
+  // A frozen channel whose virtual value is not a number falls back on its corrected reading,
+  // its own: a correction (150 - 60).
+  EXPECT_EQ(rig.step(150.0, 60.0, std::nan(""), 1.0, 4.0), 90.0);
+  EXPECT_EQ(rig.correction[0], 60.0);
 }
 
 TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {

@@ -166,7 +166,8 @@ TEST(Pipeline, APreviousTickSignalIsItsSignalOneTickLate) {
       p.input_values(0)[0] = u[k];
       p.step(static_cast<double>(k) * 1e-3);
       EXPECT_EQ(r[0], expected[k]) << "tick " << k << ", pass " << pass;
-      EXPECT_EQ(last[0], expected[k]);  // what the next tick reads
+      // After the tick, the value this tick read (the monitor and --record see it so).
+      EXPECT_EQ(last[0], k == 0 ? 0.5 : expected[k - 1]) << "tick " << k;
     }
     p.reset();
   }
@@ -190,14 +191,32 @@ TEST(Pipeline, APreviousTickSignalCutsACycleAndKeepsTheRunOrder) {
   EXPECT_EQ(p.stage_name(1), "residual");
   set_inputs(p, {10, 20, 30}, {0, 0, 0});
   p.step(0.0);
-  // Tick 0: echo = measured - 0; the low-pass starts at its first sample.
+  // Tick 0: echo = measured - 0 (the initial value); the low-pass starts at its first sample.
   EXPECT_EQ(p.values(p.signal("echo.residual"))[0], 20.0);
   EXPECT_EQ(p.values(p.signal("smooth.filtered"))[1], 20.0);
+  EXPECT_EQ(p.values(p.signal("previous_tick.smoothed"))[0], 0.0);
+  p.step(1e-3);
   EXPECT_EQ(p.values(p.signal("previous_tick.smoothed"))[0], 20.0);
   EXPECT_EQ(p.values(p.signal("previous_tick.smoothed"))[1], 30.0);
-  p.step(1e-3);
   EXPECT_EQ(p.values(p.signal("echo.residual"))[0], 0.0);  // 20 - 20
   EXPECT_EQ(p.values(p.signal("echo.residual"))[1], 0.0);  // 30 - 30
+  // The monitor reads a previous-tick signal as the stages did: alone (in place) or gathered.
+  config["monitor"]["extra"] = Json::parse(R"({"alone": "previous_tick.smoothed",
+      "gathered": ["previous_tick.smoothed[0:1]", "echo.residual"]})");
+  config["previous_tick"]["smoothed"]["signal"] = "smooth.filtered";
+  config["previous_tick"]["smoothed"]["dim"] = 3;
+  config["stages"][3]["inputs"]["virtual"] = "previous_tick.smoothed[1:3]";
+  Pipeline q = build(config);
+  set_inputs(q, {10, 20, 30}, {0, 0, 0});
+  q.step(0.0);
+  set_inputs(q, {11, 21, 31}, {0, 0, 0});
+  q.step(1e-3);
+  ASSERT_EQ(q.monitor().extra.size(), 2u);
+  const auto alone = q.values(q.monitor().extra[0].signal);
+  const auto gathered = q.values(q.monitor().extra[1].signal);
+  ASSERT_EQ(alone.size(), 3u);
+  EXPECT_EQ(std::vector<double>(alone.begin(), alone.end()), (std::vector<double>{10.0, 20.0, 30.0}));  // tick 0's
+  EXPECT_EQ(gathered[0], 10.0);
 }
 
 TEST(Pipeline, SurvivesBeingMoved) {

@@ -73,10 +73,31 @@ TEST(ShippedConfigs, EveryShippedConfigIsPlausible) {
       warnings = diag.warnings();
     }
     for (const Diagnostic& w : warnings) {
-      const bool allowed_dependence = path.filename() == "suralp_measured_zmp.json" &&
-                                      w.message.find("allow_dependent_virtual_sensor") != std::string::npos;
+      // The measured ZMP is computed from the force sensors; suralp_generic.json feeds the
+      // recovery's corrections back into the leave-one-out forces (previous_tick).
+      const bool allowed_dependence =
+          (path.filename() == "suralp_measured_zmp.json" || path.filename() == "suralp_generic.json") &&
+          w.message.find("allow_dependent_virtual_sensor") != std::string::npos;
       EXPECT_TRUE(allowed_dependence) << w.text();
     }
+  }
+}
+
+// The recovery's corrections fed back one tick late depend on the force sensors they correct:
+// the independence rule reports the loop, through previous_tick, unless allowed.
+TEST(ShippedConfigs, FedBackCorrectionsTripTheIndependenceRuleUnlessAllowed) {
+  Json config = load("configs/suralp_generic.json");
+  const Pipeline allowed = Pipeline::build(config, reference_plugins::registry(), std::filesystem::path(FTSENSE_SOURCE_DIR) / "configs");
+  ASSERT_EQ(allowed.warnings().size(), 1u);
+  EXPECT_EQ(allowed.warnings()[0].path, "/stages/3/inputs/correction");
+  config["allow_dependent_virtual_sensor"] = false;
+  try {
+    (void)Pipeline::build(config, reference_plugins::registry(), std::filesystem::path(FTSENSE_SOURCE_DIR) / "configs");
+    FAIL() << "the fed-back corrections make the virtual sensor depend on the monitored sensors";
+  } catch (const ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1u) << e.what();
+    EXPECT_NE(e.problems()[0].message.find("independence rule"), std::string::npos) << e.what();
+    EXPECT_NE(e.problems()[0].message.find("'l_forces', 'r_forces'"), std::string::npos) << e.what();
   }
 }
 

@@ -101,7 +101,8 @@ TEST(SumConstraintResidual, TheVirtualValueIsBoundedByWhatPhysicsAllowsTheResidu
 // corrected, x_i - c_i; the residuals stay the readings' own. Reference 10 N, readings 2, 3, 4 N,
 // corrections 0.5, 1 and none (NaN counts as 0):
 //   v_0 = 10 - (3 - 1) - 4 = 4,  v_1 = 10 - (2 - 0.5) - 4 = 4.5,  v_2 = 10 - (2 - 0.5) - (3 - 1) = 6.5.
-// Channel 2 off the ground: its virtual value is 0, and the others' take its reading as it is.
+// Channel 2 off the ground: its virtual value is 0; the others' take its reading corrected, as
+// any other's (with a correction of 2: v_0 = 10 - 2 - 2 = 6, v_1 = 10 - 1.5 - 2 = 6.5).
 TEST(SumConstraintResidual, CorrectionsReachTheOthersVirtualValuesNotTheResiduals) {
   for (const bool airborne : {false, true}) {
     SumConstraintResidual::Params p;
@@ -112,11 +113,11 @@ TEST(SumConstraintResidual, CorrectionsReachTheOthersVirtualValuesNotTheResidual
     ASSERT_EQ(stage.ports().inputs().size(), 4u);
     EXPECT_EQ(stage.ports().inputs()[3].name, "correction");
     std::vector<double> x{2.0, 3.0, 4.0}, reference{10.0}, loadable{1.0, 1.0, airborne ? 0.0 : 1.0},
-        correction{0.5, 1.0, std::nan("")}, v(3), r(3), s(9), sum(1), w(3);
+        correction{0.5, 1.0, airborne ? 2.0 : std::nan("")}, v(3), r(3), s(9), sum(1), w(3);
     const std::span<const double> ins[] = {x, reference, loadable, correction};
     const std::span<double> outs[] = {v, r, s, sum, w};
     stage.step(StepIO{0.0, ins, outs});
-    EXPECT_EQ(v, airborne ? (std::vector<double>{4.0, 4.5, 0.0}) : (std::vector<double>{4.0, 4.5, 6.5}));
+    EXPECT_EQ(v, airborne ? (std::vector<double>{6.0, 6.5, 0.0}) : (std::vector<double>{4.0, 4.5, 6.5}));
     EXPECT_EQ(r, airborne ? (std::vector<double>{-1.0, -1.0, 4.0}) : (std::vector<double>{-1.0, -1.0, -1.0}));
     EXPECT_EQ(sum, (std::vector<double>{-1.0}));
   }

@@ -116,7 +116,8 @@ class Pipeline {
   // since the pipeline was built (reset() keeps the count).
   [[nodiscard]] const std::vector<std::size_t>& implausible_counts() const noexcept { return implausible_; }
 
-  // Looks up "input.<name>" or "<stage>.<port>" (set-up time only; throws ConfigError).
+  // Looks up "input.<name>", "<stage>.<port>" or "previous_tick.<name>" (set-up time only; throws
+  // ConfigError).
   [[nodiscard]] SignalRef signal(std::string_view reference) const;
   [[nodiscard]] std::span<const double> values(SignalRef ref) const noexcept {
     return {values_.data() + ref.offset, ref.dim};
@@ -139,7 +140,8 @@ class Pipeline {
   // Runs one stage alone (its input gathers, then its step) over the current buffers.
   void step_stage(std::size_t run_index, double time_s) noexcept;
 
-  // Back to the initial state: every stage reset, every buffer zeroed.
+  // Back to the initial state: every stage reset, every buffer zeroed but the previous-tick
+  // signals, which take their `initial` value.
   void reset() noexcept;
   // One tick at time `time_s` over the values currently in the input buffers.
   void step(double time_s) noexcept;
@@ -173,16 +175,20 @@ class Pipeline {
   std::vector<PipelineInput> inputs_;
   std::vector<StageRun> stages_;
   std::vector<Copy> monitor_gathers_;
-  // The previous-tick signals: each a block the stages read, filled from its signal at the end
-  // of a tick (`previous_tick_copies_`, in declaration order) and set to `initial` by reset().
+  // The previous-tick signals: each a block the stages read (`values`), which holds one value
+  // through a whole tick and after it: at the end of a tick its signal is copied into `staged`
+  // (`previous_tick_stores_`), and at the start of the next `staged` into `values`
+  // (`previous_tick_loads_`); reset() sets both to `initial`.
   struct PreviousTick {
     std::string name;
     std::string unit;
     SignalRef values;
+    SignalRef staged;
     double initial = 0.0;
   };
   std::vector<PreviousTick> previous_ticks_;
-  std::vector<Copy> previous_tick_copies_;
+  std::vector<Copy> previous_tick_loads_;
+  std::vector<Copy> previous_tick_stores_;
   bool has_monitor_ = false;
   // The monitor's cannot_judge when no stage gives it: 1 where the virtual value is not finite.
   struct DerivedCannotJudge {

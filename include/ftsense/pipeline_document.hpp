@@ -72,7 +72,8 @@ enum class DocumentSectionId : std::size_t { pipeline, input, stage, monitor, ti
 [[nodiscard]] const std::vector<DocumentSection>& pipeline_document_sections();
 [[nodiscard]] const DocumentSection& document_section(DocumentSectionId id);
 
-// One element of a wire: "input.<name>" or "<stage>.<port>", optionally followed by a selection
+// One element of a wire: "input.<name>", "<stage>.<port>" or "previous_tick.<name>", optionally
+// followed by a selection
 // of its values, "[i]" or "[i:j]" (0-based, j excluded, as in Python): "imu.acc[2]".
 struct WireEnd {
   std::string text;          // as written

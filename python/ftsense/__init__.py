@@ -140,7 +140,7 @@ class Pipeline:
         return self._p.step(float(time_s), dict(inputs), outputs)
 
     def values(self, name):
-        """The current values of a signal ("input.<name>" or "<stage>.<port>")."""
+        """The current values of a signal ("input.<name>", "<stage>.<port>" or "previous_tick.<name>")."""
         return self._p.values(name)
 
     def run(self, inputs, time=None, outputs=None, reset=True):

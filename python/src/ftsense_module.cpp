@@ -80,7 +80,7 @@ class PyPipeline {
       inputs_.push_back({in.name, in.values.dim, in.unit, "", in.columns});
     }
     // signal_names(): inputs first, then every stage's outputs in run order and port order (then
-    // the previous-tick signals, not listed here: they copy an output).
+    // the previous-tick signals, which name_of finds through signal_names()).
     const auto names = pipeline_.signal_names();
     std::size_t at = pipeline_.inputs().size();
     for (std::size_t s = 0; s < pipeline_.stage_count(); ++s) {
@@ -138,7 +138,7 @@ class PyPipeline {
     return out;
   }
 
-  // The current values of a signal ("input.<name>" or "<stage>.<port>"), a copy.
+  // The current values of a signal ("input.<name>", "<stage>.<port>" or "previous_tick.<name>"), a copy.
   py::array_t<double> values(const std::string& name) {
     const Busy busy(*this);
     return current_values(name);
@@ -327,6 +327,11 @@ class PyPipeline {
     for (const Port& p : outputs_) {
       const SignalRef r = pipeline_.signal(p.name);
       if (r.offset == ref.offset && r.dim == ref.dim) return p.name;
+    }
+    for (const auto& [name, unit] : pipeline_.signal_names()) {
+      if (name.rfind("previous_tick.", 0) != 0) continue;
+      const SignalRef r = pipeline_.signal(name);
+      if (r.offset == ref.offset && r.dim == ref.dim) return name;
     }
     return {};
   }

@@ -141,14 +141,22 @@ void FaultRecovery::step(const StepIO& io) noexcept {
     } else {
       previous_count_[j] = 0;  // readings from before a gap are no neighbours of those after it
     }
-    if (!std::isfinite(value)) value = substitute ? corrected : estimate[j];
-    if (!std::isfinite(value)) value = last_[j];
+    // Whether the value is made of the channel's own readings alone (corrected, median), not of
+    // the virtual value (substituted, blended, or a fallback below).
+    bool own_readings = !substitute && !blend && (median || mode == Mode::correct);
+    if (!std::isfinite(value)) {
+      value = substitute ? corrected : estimate[j];
+      own_readings = substitute;  // the corrected reading stands in for a virtual value that is not finite
+    }
+    if (!std::isfinite(value)) {
+      value = last_[j];
+      own_readings = false;
+    }
     out[j] = value;
     last_[j] = value;
     // Only a value made of the channel's own readings: a substituted or blended one carries the
     // virtual value, itself the others' readings, which would feed them back into their own.
-    const bool from_own_readings = !substitute && !blend && (median || mode == Mode::correct);
-    own_correction[j] = from_own_readings && std::isfinite(measured[j] - value) ? measured[j] - value : 0.0;
+    own_correction[j] = own_readings && std::isfinite(measured[j] - value) ? measured[j] - value : 0.0;
   }
 }
 

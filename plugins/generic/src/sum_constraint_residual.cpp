@@ -61,13 +61,16 @@ SumConstraintResidual::SumConstraintResidual(const Params& params, const StageCo
                          .sized_by("as `signal`"));
   }
   if (correction_) {
+    // A virtual estimate for the independence rule: a correction fed back from the readings'
+    // recovery depends on them (docs/architecture.md, "The plugin contract").
     ports_.add_input(PortSpec{"correction", channels_, std::string(kAnyUnit),
-                              "c_i, subtracted from reading i in the others' virtual values (non-finite: 0)"}
+                              "c_i, subtracted from reading i in the others' virtual values (non-finite: 0)",
+                              PortRole::virtual_estimate}
                          .sized_by("as `signal`"));
   }
   ports_.add_output(PortSpec{"virtual", channels_, std::string(kAnyUnit),
-                             "leave-one-out estimate R_G - sum of the group's other readings (0 while j cannot "
-                             "carry load)",
+                             "leave-one-out estimate R_G - sum of the group's other readings, less their "
+                             "corrections with `correction` (0 while j cannot carry load)",
                              PortRole::signal, /*leave_one_out=*/true}
                         .sized_by("as `signal`"));
   ports_.add_output(PortSpec{"residual", channels_, std::string(kAnyUnit),
