@@ -423,8 +423,9 @@ TEST(FaultRecovery, ASpikyChannelTakesTheMedianOfItsLastThreeReadings) {
 }
 
 // The correction a relation's other channels may subtract: measured - recovered where the
-// recovered value is the channel's own readings' (corrected, median), 0 where it carries the
-// virtual value (substituted, blended) or the reading passes through.
+// recovered value is the reading less its fault estimate, 0 where it carries the virtual value
+// (substituted, blended), is a median (a spike's correction lasts one tick) or the reading
+// passes through.
 TEST(FaultRecovery, TheCorrectionIsWhatTheChannelsOwnReadingsGive) {
   generic::FaultRecovery::Params p;
   p.correction = generic::FaultRecovery::Correction::when_flagged;
@@ -442,16 +443,21 @@ TEST(FaultRecovery, TheCorrectionIsWhatTheChannelsOwnReadingsGive) {
   (void)rig.step(150.0, 0.0, 90.0, 1.0, 6.0);                // noise: blended with the virtual value
   EXPECT_EQ(rig.correction[0], 0.0);
   EXPECT_EQ(rig.step(250.0, 0.0, 90.0, 1.0, 7.0), 150.0);   // spikes: the median of 150, 150, 250
-  EXPECT_EQ(rig.correction[0], 100.0);
+  EXPECT_EQ(rig.correction[0], 0.0);  // its own tick's: a tick late it would move the spike
   EXPECT_EQ(rig.step(std::nan(""), 0.0, 90.0, 1.0, 2.0), 90.0);  // no reading: substituted
   EXPECT_EQ(rig.correction[0], 0.0);
+  // Not yet named: the classifier's estimate is x - v, so the value is the virtual one again.
+  EXPECT_EQ(rig.step(150.0, 60.0, 90.0, 1.0, 1.0), 90.0);
+  EXPECT_EQ(rig.correction[0], 0.0);
+  EXPECT_EQ(rig.step(150.0, 4.5, 90.0, 1.0, 3.0), 145.5);  // drift
+  EXPECT_EQ(rig.correction[0], 4.5);
   // An offset whose estimate is not a number falls back on the virtual value: no correction.
   EXPECT_EQ(rig.step(150.0, std::nan(""), 90.0, 1.0, 2.0), 90.0);
   EXPECT_EQ(rig.correction[0], 0.0);
-  // A frozen channel whose virtual value is not a number falls back on its corrected reading,
-  // its own: a correction (150 - 60).
+  // A frozen channel whose virtual value is not a number falls back on its corrected reading:
+  // no fault model's correction either.
   EXPECT_EQ(rig.step(150.0, 60.0, std::nan(""), 1.0, 4.0), 90.0);
-  EXPECT_EQ(rig.correction[0], 60.0);
+  EXPECT_EQ(rig.correction[0], 0.0);
 }
 
 TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {

@@ -86,9 +86,9 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
   ports_.add_output(PortSpec{"recovered", dim, std::string(kAnyUnit), "the signal to use downstream"}
                         .sized_by("as `measured`"));
   ports_.add_output(PortSpec{"correction", dim, std::string(kAnyUnit),
-                             "measured - recovered where the recovery uses the channel's own readings alone "
-                             "(corrected, median), else 0: what a relation's other channels may subtract from this "
-                             "reading (sum_constraint_residual's correction, one tick late)"}
+                             "measured - recovered where the recovered value is the reading less an offset, drift or "
+                             "gain estimate, else 0: what a relation's other channels may subtract from this reading "
+                             "(sum_constraint_residual's correction, one tick late)"}
                         .sized_by("as `measured`"));
   last_.assign(dim, 0.0);
   difference_lp_.assign(dim, 0.0);
@@ -141,12 +141,16 @@ void FaultRecovery::step(const StepIO& io) noexcept {
     } else {
       previous_count_[j] = 0;  // readings from before a gap are no neighbours of those after it
     }
-    // Whether the value is made of the channel's own readings alone (corrected, median), not of
-    // the virtual value (substituted, blended, or a fallback below).
-    bool own_readings = !substitute && !blend && (median || mode == Mode::correct);
+    // Whether the value is the reading corrected by a fault model's estimate, a correction that
+    // lasts (offset, drift, gain): not the virtual value (substituted, blended, a fallback below,
+    // or an estimate that is x - v, as fault_classifier's for a fault not yet named), nor a
+    // median, whose correction is its own tick's (a spike) and, read a tick late, would put the
+    // spike into the others' virtual values on the tick after it.
+    const bool lasting_model = t == FaultType::offset || t == FaultType::drift || t == FaultType::gain;
+    bool own_readings = !substitute && !blend && !median && mode == Mode::correct && lasting_model;
     if (!std::isfinite(value)) {
       value = substitute ? corrected : estimate[j];
-      own_readings = substitute;  // the corrected reading stands in for a virtual value that is not finite
+      own_readings = false;
     }
     if (!std::isfinite(value)) {
       value = last_[j];

@@ -30,13 +30,17 @@
 // or median channel's recovery is its own reading's, not the classifier's estimate.
 // With correction = "when_flagged", measured_j passes through unchanged while fault_j = 0.
 //
-// Output `correction`: c_j = measured_j - recovered_j where the recovered value is made of the
-// channel's own readings alone (corrected: the fault estimate; median), else 0 (unflagged under
-// "when_flagged", substituted, blended). A relation's other channels subtract it from this reading
-// (sum_constraint_residual's input `correction`, read one tick late through previous_tick), so a
-// corrected fault leaves their virtual values. Not the substituted or blended values: they carry
-// the virtual value v_j, which is the others' readings, and fed back it would give each of them
-// its own reading as its virtual value.
+// Output `correction`: c_j = measured_j - recovered_j where the recovered value is the reading
+// less an offset, drift or gain estimate (a correction that lasts), else 0 (unflagged under
+// "when_flagged", substituted, blended, median, and any other type: fault_classifier's estimate
+// for a fault not yet named is x - v, the virtual value again). A relation's other channels
+// subtract it from this reading (sum_constraint_residual's input `correction`, read one tick late
+// through previous_tick), so a corrected fault leaves their virtual values. Not the substituted
+// or blended values: they carry the virtual value v_j, which is the others' readings, and fed
+// back it would give each of them its own reading as its virtual value. Not the median's: its
+// correction is its own tick's spike, and read a tick late it would put that spike into the
+// others' virtual values on the tick after. (Both were seen on an unseen walk, each flagging a
+// healthy neighbour.)
 // The output is never NaN: if the chosen value is not finite, the other one is used, and if
 // neither is, the last recovered value is held.
 
