@@ -245,6 +245,38 @@ class BadConfigs(unittest.TestCase):
             ftsense.Pipeline(dict(small_config(), sample_period_s=math.nan))
 
 
+class PreviousTickLoop(unittest.TestCase):
+    """A loop through previous_tick, r(t) = u(t) - r(t - 1) with r(-1) = 0.5: the signal is read
+    by name, the monitor names it, and step and run agree."""
+
+    def config(self):
+        config = small_config()
+        config["allow_dependent_virtual_sensor"] = True
+        config["previous_tick"] = {"last": {"signal": "residual.residual", "dim": 3, "unit": "N", "initial": 0.5}}
+        config["stages"][0]["inputs"]["virtual"] = "previous_tick.last"
+        config["monitor"]["virtual"] = "previous_tick.last"
+        return config
+
+    def test_loop(self):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            p = ftsense.Pipeline(self.config())
+        # The loop feeds the measured cells into the stage's and the monitor's virtual values.
+        self.assertEqual([str(w.message).split(":")[0] for w in caught], ["/stages/0/inputs/virtual", "/monitor/virtual"])
+        self.assertTrue(all("independence rule" in str(w.message) for w in caught))
+        self.assertEqual(p.monitor["virtual"], "previous_tick.last")
+        expected = [0.5, 1.5, 1.5, 2.5]  # u = 1, 2, 3, 4 on every channel
+        inputs = {"measured": numpy.repeat(numpy.arange(1.0, 5.0)[:, None], 3, axis=1),
+                  "reference": numpy.zeros((4, 3))}
+        for k in range(4):
+            tick = p.step(k * 0.001, {name: rows[k] for name, rows in inputs.items()})
+            self.assertEqual(list(tick["residual.residual"]), [expected[k]] * 3)
+            # After the tick: the value this tick read.
+            self.assertEqual(list(p.values("previous_tick.last")), [0.5 if k == 0 else expected[k - 1]] * 3)
+        whole = p.run(inputs)
+        self.assertEqual(list(whole["residual.residual"][:, 1]), expected)
+
+
 def re_escape(text):
     import re
     return re.escape(text)
