@@ -335,12 +335,12 @@ struct RecoveryRig {
   double step(double m, double eta, double v, double f, double type) {
     measured[0] = m, fault_estimate[0] = eta, estimate[0] = v, fault[0] = f, fault_type[0] = type;
     const std::span<const double> ins[] = {measured, fault_estimate, estimate, fault, fault_type};
-    const std::span<double> outs[] = {out, correction};
+    const std::span<double> outs[] = {out, correction, substituted};
     recovery.step(StepIO{0.0, ins, outs});
     return out[0];
   }
   generic::FaultRecovery recovery;
-  std::vector<double> measured{0}, fault_estimate{0}, estimate{0}, fault{0}, fault_type{0}, out{0}, correction{0};
+  std::vector<double> measured{0}, fault_estimate{0}, estimate{0}, fault{0}, fault_type{0}, out{0}, correction{0}, substituted{0};
 };
 
 TEST(FaultRecovery, SubtractsTheEstimateOrSubstitutesTheVirtualValue) {
@@ -422,42 +422,43 @@ TEST(FaultRecovery, ASpikyChannelTakesTheMedianOfItsLastThreeReadings) {
   EXPECT_EQ(rig.step(12.0, 0.0, -1.0, 1.0, 7.0), 11.0);
 }
 
-// The correction a relation's other channels may subtract: measured - recovered where the
-// recovered value is the reading less its fault estimate, 0 where it carries the virtual value
-// (substituted, blended), is a median (a spike's correction lasts one tick) or the reading
-// passes through.
+// The correction a relation's other channels subtract: measured - recovered where the recovered
+// value is the reading less a lasting fault model's estimate (offset, drift, gain), else 0; and
+// `substituted` 1 where the recovered value is the virtual one (the reading stands for nothing).
 TEST(FaultRecovery, TheCorrectionIsWhatTheChannelsOwnReadingsGive) {
   generic::FaultRecovery::Params p;
   p.correction = generic::FaultRecovery::Correction::when_flagged;
   p.blend_types = {"noise"};
   p.median_types = {"spikes"};
   RecoveryRig rig(p);
+  const auto told = [&rig] { return std::pair{rig.correction[0], rig.substituted[0]}; };
+  using Told = std::pair<double, double>;
   EXPECT_EQ(rig.step(150.0, 3.0, 90.0, 0.0, 0.0), 150.0);  // healthy: passes through
-  EXPECT_EQ(rig.correction[0], 0.0);
+  EXPECT_EQ(told(), (Told{0.0, 0.0}));
   EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 2.0), 100.0);  // offset
-  EXPECT_EQ(rig.correction[0], 50.0);
+  EXPECT_EQ(told(), (Told{50.0, 0.0}));
   EXPECT_EQ(rig.step(150.0, 30.0, 90.0, 1.0, 5.0), 120.0);  // gain: x (1 - 1/k) with k = 1.25
-  EXPECT_EQ(rig.correction[0], 30.0);
+  EXPECT_EQ(told(), (Told{30.0, 0.0}));
+  EXPECT_EQ(rig.step(150.0, 4.5, 90.0, 1.0, 3.0), 145.5);   // drift
+  EXPECT_EQ(told(), (Told{4.5, 0.0}));
   EXPECT_EQ(rig.step(150.0, 60.0, 90.0, 1.0, 4.0), 90.0);   // frozen: substituted
-  EXPECT_EQ(rig.correction[0], 0.0);
-  (void)rig.step(150.0, 0.0, 90.0, 1.0, 6.0);                // noise: blended with the virtual value
-  EXPECT_EQ(rig.correction[0], 0.0);
+  EXPECT_EQ(told(), (Told{0.0, 1.0}));
+  (void)rig.step(150.0, 0.0, 90.0, 1.0, 6.0);                // noise: blended, the reading as it is
+  EXPECT_EQ(told(), (Told{0.0, 0.0}));
   EXPECT_EQ(rig.step(250.0, 0.0, 90.0, 1.0, 7.0), 150.0);   // spikes: the median of 150, 150, 250
-  EXPECT_EQ(rig.correction[0], 0.0);  // its own tick's: a tick late it would move the spike
+  EXPECT_EQ(told(), (Told{0.0, 0.0}));  // its own tick's: a tick late it would move the spike
   EXPECT_EQ(rig.step(std::nan(""), 0.0, 90.0, 1.0, 2.0), 90.0);  // no reading: substituted
-  EXPECT_EQ(rig.correction[0], 0.0);
+  EXPECT_EQ(told(), (Told{0.0, 1.0}));
   // Not yet named: the classifier's estimate is x - v, so the value is the virtual one again.
   EXPECT_EQ(rig.step(150.0, 60.0, 90.0, 1.0, 1.0), 90.0);
-  EXPECT_EQ(rig.correction[0], 0.0);
-  EXPECT_EQ(rig.step(150.0, 4.5, 90.0, 1.0, 3.0), 145.5);  // drift
-  EXPECT_EQ(rig.correction[0], 4.5);
-  // An offset whose estimate is not a number falls back on the virtual value: no correction.
+  EXPECT_EQ(told(), (Told{0.0, 1.0}));
+  // An offset whose estimate is not a number falls back on the virtual value.
   EXPECT_EQ(rig.step(150.0, std::nan(""), 90.0, 1.0, 2.0), 90.0);
-  EXPECT_EQ(rig.correction[0], 0.0);
-  // A frozen channel whose virtual value is not a number falls back on its corrected reading:
-  // no fault model's correction either.
+  EXPECT_EQ(told(), (Told{0.0, 1.0}));
+  // A frozen channel whose virtual value is not a number falls back on its corrected reading,
+  // which stands for nothing either.
   EXPECT_EQ(rig.step(150.0, 60.0, std::nan(""), 1.0, 4.0), 90.0);
-  EXPECT_EQ(rig.correction[0], 0.0);
+  EXPECT_EQ(told(), (Told{0.0, 1.0}));
 }
 
 TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {

@@ -110,6 +110,15 @@ TEST(ReportMetrics, ChannelMetricsOfAnOffsetFault) {
   EXPECT_EQ(m.false_alarms, 0);
   EXPECT_EQ(m.vfs_rmse, 4.0);  // t = 2..7 in contact after warm-up, |104 - 100|
   EXPECT_EQ(m.vfs_p95, 4.0);
+  EXPECT_EQ(m.vfs_missing_share, 0.0);
+  // A virtual value that is not a number (cannot judge) is counted apart, not scored: 2 of the 6.
+  std::vector<double> virtual_gaps = virtual_value;
+  virtual_gaps[3] = virtual_gaps[7] = std::nan("");
+  const ChannelSeries gaps{measured, virtual_gaps, estimate, recovered, flag, type, truth, code, contact};
+  const ChannelMetrics g = channel_metrics("c1", kTime, gaps, o);
+  EXPECT_EQ(g.vfs_rmse, 4.0);
+  EXPECT_EQ(g.vfs_p95, 4.0);
+  EXPECT_EQ(g.vfs_missing_share, 2.0 / 6.0);
   const RunTotals t = totals({m, channel_metrics("c2", kTime, {truth, truth, truth, truth, std::vector<double>(10, 0.0),
                                                                 std::vector<double>(10, 0.0), truth, {}, {}},
                                                   o)});

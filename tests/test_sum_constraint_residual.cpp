@@ -99,36 +99,53 @@ TEST(SumConstraintResidual, TheVirtualValueIsBoundedByWhatPhysicsAllowsTheResidu
 
 // With corrections (a recovery's, one tick late), each virtual value takes the others as
 // corrected, x_i - c_i; the residuals stay the readings' own. Reference 10 N, readings 2, 3, 4 N,
-// corrections 0.5, 1 and none (NaN counts as 0):
-//   v_0 = 10 - (3 - 1) - 4 = 4,  v_1 = 10 - (2 - 0.5) - 4 = 4.5,  v_2 = 10 - (2 - 0.5) - (3 - 1) = 6.5.
-// Channel 2 off the ground: its virtual value is 0; the others' take its reading corrected, as
-// any other's (with a correction of 2: v_0 = 10 - 2 - 2 = 6, v_1 = 10 - 1.5 - 2 = 6.5).
+// corrections 0.5, 1, 2:
+//   v_0 = 10 - (3 - 1) - (4 - 2) = 6,  v_1 = 10 - (2 - 0.5) - (4 - 2) = 6.5,
+//   v_2 = 10 - (2 - 0.5) - (3 - 1) = 6.5.
+// Channel 2 off the ground: its virtual value is 0, the others' take it corrected as before.
 TEST(SumConstraintResidual, CorrectionsReachTheOthersVirtualValuesNotTheResiduals) {
   for (const bool airborne : {false, true}) {
     SumConstraintResidual::Params p;
     p.loadable = true;
     p.correction = true;
     SumConstraintResidual stage(p, StageContext(1e-3, "sum", {{"signal", 3}, {"reference", 1}, {"loadable", 3},
-                                                             {"correction", 3}}));
-    ASSERT_EQ(stage.ports().inputs().size(), 4u);
+                                                             {"correction", 3}, {"substituted", 3}}));
+    ASSERT_EQ(stage.ports().inputs().size(), 5u);
     EXPECT_EQ(stage.ports().inputs()[3].name, "correction");
+    EXPECT_EQ(stage.ports().inputs()[4].name, "substituted");
     std::vector<double> x{2.0, 3.0, 4.0}, reference{10.0}, loadable{1.0, 1.0, airborne ? 0.0 : 1.0},
-        correction{0.5, 1.0, airborne ? 2.0 : std::nan("")}, v(3), r(3), s(9), sum(1), w(3);
-    const std::span<const double> ins[] = {x, reference, loadable, correction};
+        correction{0.5, 1.0, 2.0}, substituted{0.0, 0.0, 0.0}, v(3), r(3), s(9), sum(1), w(3);
+    const std::span<const double> ins[] = {x, reference, loadable, correction, substituted};
     const std::span<double> outs[] = {v, r, s, sum, w};
     stage.step(StepIO{0.0, ins, outs});
-    EXPECT_EQ(v, airborne ? (std::vector<double>{6.0, 6.5, 0.0}) : (std::vector<double>{4.0, 4.5, 6.5}));
+    EXPECT_EQ(v, airborne ? (std::vector<double>{6.0, 6.5, 0.0}) : (std::vector<double>{6.0, 6.5, 6.5}));
     EXPECT_EQ(r, airborne ? (std::vector<double>{-1.0, -1.0, 4.0}) : (std::vector<double>{-1.0, -1.0, -1.0}));
     EXPECT_EQ(sum, (std::vector<double>{-1.0}));
+    // Reading 2 substituted (or its correction not a number): it stands for nothing. On the ground
+    // its load is unknown, so the others cannot be judged (NaN) while its own virtual value
+    // stands; off the ground it carries 0, whatever it reads: v_0 = 10 - 2 - 0 = 8, v_1 = 8.5.
+    for (const bool by_nan : {false, true}) {
+      substituted[2] = by_nan ? 0.0 : 1.0;
+      correction[2] = by_nan ? std::nan("") : 2.0;
+      stage.step(StepIO{0.0, ins, outs});
+      if (airborne) {
+        EXPECT_EQ(v, (std::vector<double>{8.0, 8.5, 0.0}));
+      } else {
+        EXPECT_TRUE(std::isnan(v[0]) && std::isnan(v[1]));
+        EXPECT_EQ(v[2], 6.5);
+      }
+      EXPECT_EQ(sum, (std::vector<double>{-1.0}));  // the readings' own
+    }
   }
-  // Without loadable, the correction is the third input; a missing reading leaves its own
+  // Without loadable, correction and substituted are the third and fourth inputs; a missing reading leaves its own
   // virtual value, taken from the others as corrected: 10 - (2 - 0.5) - (4 - 1) = 5.5.
   SumConstraintResidual::Params p;
   p.correction = true;
-  SumConstraintResidual stage(p, StageContext(1e-3, "sum", {{"signal", 3}, {"reference", 1}, {"correction", 3}}));
-  std::vector<double> x{2.0, std::nan(""), 4.0}, reference{10.0}, correction{0.5, 7.0, 1.0}, v(3), r(3), s(9),
-      sum(1), w(3);
-  const std::span<const double> ins[] = {x, reference, correction};
+  SumConstraintResidual stage(p, StageContext(1e-3, "sum", {{"signal", 3}, {"reference", 1}, {"correction", 3},
+                                                           {"substituted", 3}}));
+  std::vector<double> x{2.0, std::nan(""), 4.0}, reference{10.0}, correction{0.5, 7.0, 1.0}, substituted(3, 0.0),
+      v(3), r(3), s(9), sum(1), w(3);
+  const std::span<const double> ins[] = {x, reference, correction, substituted};
   const std::span<double> outs[] = {v, r, s, sum, w};
   stage.step(StepIO{0.0, ins, outs});
   EXPECT_EQ(v[1], 5.5);

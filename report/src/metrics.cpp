@@ -158,6 +158,7 @@ ChannelMetrics channel_metrics(std::string channel, std::span<const double> time
   m.false_alarm_time_s = alarms.time_s;
 
   std::vector<double> estimate_error, recovered_error, measured_error, vfs_error;
+  std::size_t vfs_missing = 0;
   if (!s.true_force.empty()) {
     const double t0 = time.empty() ? 0.0 : time.front();
     for (std::size_t k = 0; k < time.size(); ++k) {
@@ -175,7 +176,13 @@ ChannelMetrics channel_metrics(std::string channel, std::span<const double> time
         if (std::isfinite(s.measured[k])) measured_error.push_back(s.measured[k] - truth);
       }
       if (after_warmup && (s.contact.empty() || s.contact[k] > 0.5)) {
-        vfs_error.push_back(std::abs(s.virtual_value[k] - truth));
+        // A virtual value that is not a number is no estimate (not ready, or cannot judge): it is
+        // counted apart, not scored (a NaN would make the RMS NaN and the percentile's order UB).
+        if (std::isfinite(s.virtual_value[k])) {
+          vfs_error.push_back(std::abs(s.virtual_value[k] - truth));
+        } else {
+          ++vfs_missing;
+        }
       }
     }
   }
@@ -184,6 +191,8 @@ ChannelMetrics channel_metrics(std::string channel, std::span<const double> time
   m.measured_rmse = rms(measured_error);
   m.vfs_rmse = rms(vfs_error);
   m.vfs_p95 = percentile(vfs_error, 0.95);
+  const std::size_t vfs_samples = vfs_error.size() + vfs_missing;
+  m.vfs_missing_share = vfs_samples > 0 ? static_cast<double>(vfs_missing) / static_cast<double>(vfs_samples) : kNaN;
   return m;
 }
 

@@ -111,7 +111,8 @@ Json metrics_json(const ScoredRun& run, const std::vector<ChannelMetrics>& chann
                              {"false_alarms", m.false_alarms},
                              {"false_alarm_time_s", m.false_alarm_time_s},
                              {"vfs_rmse", number_or_null(m.vfs_rmse)},
-                             {"vfs_p95", number_or_null(m.vfs_p95)}});
+                             {"vfs_p95", number_or_null(m.vfs_p95)},
+                             {"vfs_missing_share", number_or_null(m.vfs_missing_share)}});
   }
   const RunTotals t = totals(channels);
   j["summary"] = {{"faulty_channels", t.faulty_channels},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ftsense/generic/median_of_three.hpp"
 #include "ftsense/low_pass_gain.hpp"
@@ -86,9 +87,14 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
   ports_.add_output(PortSpec{"recovered", dim, std::string(kAnyUnit), "the signal to use downstream"}
                         .sized_by("as `measured`"));
   ports_.add_output(PortSpec{"correction", dim, std::string(kAnyUnit),
-                             "measured - recovered where the recovered value is the reading less an offset, drift or "
-                             "gain estimate, else 0: what a relation's other channels may subtract from this reading "
-                             "(sum_constraint_residual's correction, one tick late)"}
+                             "what a relation's other channels subtract from this reading (sum_constraint_residual's "
+                             "correction, one tick late): measured - recovered where that is the reading less an offset, "
+                             "drift or gain estimate, else 0"}
+                        .sized_by("as `measured`"));
+  ports_.add_output(PortSpec{"substituted", dim, std::string(kDimensionless),
+                             "1 where the recovered value is the virtual one (substituted, a fallback on it, or an "
+                             "estimate of measured - virtual): the reading stands for nothing (sum_constraint_residual's "
+                             "substituted, one tick late)"}
                         .sized_by("as `measured`"));
   last_.assign(dim, 0.0);
   difference_lp_.assign(dim, 0.0);
@@ -114,6 +120,7 @@ void FaultRecovery::step(const StepIO& io) noexcept {
   const auto type = io.in(kFaultType);
   const auto out = io.out(kRecovered);
   const auto own_correction = io.out(kCorrection);
+  const auto substituted = io.out(kSubstituted);
   for (std::size_t j = 0; j < out.size(); ++j) {
     // A code that is not one of the table's is itself invalid data.
     const FaultType t = fault_type_from_code(type[j]).value_or(FaultType::invalid);
@@ -141,26 +148,32 @@ void FaultRecovery::step(const StepIO& io) noexcept {
     } else {
       previous_count_[j] = 0;  // readings from before a gap are no neighbours of those after it
     }
-    // Whether the value is the reading corrected by a fault model's estimate, a correction that
-    // lasts (offset, drift, gain): not the virtual value (substituted, blended, a fallback below,
-    // or an estimate that is x - v, as fault_classifier's for a fault not yet named), nor a
-    // median, whose correction is its own tick's (a spike) and, read a tick late, would put the
-    // spike into the others' virtual values on the tick after it.
+    // What the others may take this reading for (output `correction`, header): corrected by a
+    // fault model's estimate that lasts (offset, drift, gain); as it is (healthy, blended, a
+    // median: a spike's correction is its own tick's, and read a tick late it would put the spike
+    // into the others' virtual values on the tick after); or for nothing, where the value is the
+    // virtual one (substituted, a fallback below, or an estimate of x - v, as fault_classifier's
+    // for a fault not yet named).
     const bool lasting_model = t == FaultType::offset || t == FaultType::drift || t == FaultType::gain;
-    bool own_readings = !substitute && !blend && !median && mode == Mode::correct && lasting_model;
+    const bool flagged_correct = !substitute && !blend && !median && mode == Mode::correct && fault[j] != 0.0;
+    bool stands_for_nothing = substitute || (flagged_correct && !lasting_model);
     if (!std::isfinite(value)) {
       value = substitute ? corrected : estimate[j];
-      own_readings = false;
+      stands_for_nothing = true;
     }
     if (!std::isfinite(value)) {
       value = last_[j];
-      own_readings = false;
+      stands_for_nothing = true;
     }
     out[j] = value;
     last_[j] = value;
-    // Only a value made of the channel's own readings: a substituted or blended one carries the
-    // virtual value, itself the others' readings, which would feed them back into their own.
-    own_correction[j] = own_readings && std::isfinite(measured[j] - value) ? measured[j] - value : 0.0;
+    const double lasting = measured[j] - value;
+    substituted[j] = stands_for_nothing ? 1.0 : 0.0;
+    own_correction[j] =
+        !stands_for_nothing && lasting_model && mode == Mode::correct && correct && !blend && !median &&
+                std::isfinite(lasting)
+            ? lasting
+            : 0.0;
   }
 }
 

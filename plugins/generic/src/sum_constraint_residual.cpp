@@ -20,10 +20,10 @@ void SumConstraintResidual::Params::describe(ParamSchema<Params>& schema) {
              "adds input loadable (1 while a channel can carry load, by kinematics): a channel that cannot "
              "has virtual value 0 and is judged on its own reading");
   schema.add("correction", &Params::correction,
-             "adds input correction c (per channel, the readings' unit): each virtual value takes the others' "
-             "readings as corrected, x_i - c_i (a recovery's correction, one tick late through previous_tick), "
-             "so a corrected fault of one channel leaves the others' virtual values; the residuals stay the "
-             "readings' own");
+             "adds inputs correction c (per channel, the readings' unit) and substituted: each virtual value "
+             "takes the others' readings as corrected, x_i - c_i, and a substituted one's load as unknown (a "
+             "recovery's correction and substituted, one tick late through previous_tick), so a corrected fault "
+             "of one channel leaves the others' virtual values; the residuals stay the readings' own");
   schema.add("virtual_min", &Params::virtual_min,
              "the least value the virtual sensor may take, in the signal's unit (a force sensor that only "
              "pushes: 0); empty: none; one value applies to all");
@@ -64,7 +64,12 @@ SumConstraintResidual::SumConstraintResidual(const Params& params, const StageCo
     // A virtual estimate for the independence rule: a correction fed back from the readings'
     // recovery depends on them (docs/architecture.md, "The plugin contract").
     ports_.add_input(PortSpec{"correction", channels_, std::string(kAnyUnit),
-                              "c_i, subtracted from reading i in the others' virtual values (non-finite: 0)",
+                              "c_i, subtracted from reading i in the others' virtual values (not finite: as substituted)",
+                              PortRole::virtual_estimate}
+                         .sized_by("as `signal`"));
+    ports_.add_input(PortSpec{"substituted", channels_, std::string(kDimensionless),
+                              "1 where reading i stands for nothing (its recovery is the virtual value): its load is "
+                              "unknown to the others while it can carry load, 0 while it cannot",
                               PortRole::virtual_estimate}
                          .sized_by("as `signal`"));
   }
@@ -88,6 +93,21 @@ SumConstraintResidual::SumConstraintResidual(const Params& params, const StageCo
                         .sized_by("as `signal`"));
 }
 
+bool SumConstraintResidual::load_known(std::span<const double> x, std::span<const double> correction,
+                                       std::span<const double> substituted, std::size_t i,
+                                       bool can_carry) const noexcept {
+  if (!correction_) return std::isfinite(x[i]);
+  // A reading that stands for nothing: 0 off the ground, else unknown (NaN counts as standing).
+  if (!std::isfinite(correction[i]) || !(substituted[i] < 0.5)) return !can_carry;
+  return std::isfinite(x[i]);
+}
+
+double SumConstraintResidual::load_of(std::span<const double> x, std::span<const double> correction,
+                                      std::span<const double> substituted, std::size_t i) const noexcept {
+  if (!correction_) return x[i];
+  return std::isfinite(correction[i]) && substituted[i] < 0.5 ? x[i] - correction[i] : 0.0;
+}
+
 void SumConstraintResidual::step(const StepIO& io) noexcept {
   const auto x = io.in(kSignal);
   const auto reference = io.in(kReference);
@@ -99,50 +119,57 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
   const std::span<const double> loadable = loadable_ ? io.in(kLoadable) : std::span<const double>{};
   const std::span<const double> correction =
       correction_ ? io.in(loadable_ ? kCorrection : kCorrection - 1) : std::span<const double>{};
-  const auto correction_of = [&](std::size_t i) {
-    return correction_ && std::isfinite(correction[i]) ? correction[i] : 0.0;
-  };
+  const std::span<const double> substituted =
+      correction_ ? io.in(loadable_ ? kSubstituted : kSubstituted - 1) : std::span<const double>{};
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const std::size_t g = group_size_;
   for (std::size_t group = 0; group < groups_; ++group) {
     const std::size_t first = group * g;
-    // The finite readings' sum, how many are not finite and which one (when one).
+    // NaN (unknown) counts as loadable: nothing is judged on a guess.
+    const auto can_carry_load = [&](std::size_t i) { return !loadable_ || !(loadable[i] < 0.5); };
+    // The finite readings' sum, how many are not finite and which one (when one): the residuals'.
     double finite_sum = 0.0;
-    double correction_total = 0.0;  // the finite readings' corrections
     std::size_t missing = 0, missing_index = first;
+    // What each channel carries as the others' virtual values take it: its reading less its
+    // correction; unknown for a reading that is not finite or a correction that is not (its
+    // reading stands for nothing), 0 for the latter while it cannot carry load.
+    double known_loads = 0.0;
+    std::size_t unknown = 0, unknown_index = first;
     for (std::size_t i = first; i < first + g; ++i) {
       if (std::isfinite(x[i])) {
         finite_sum += x[i];
-        correction_total += correction_of(i);
       } else {
         ++missing;
         missing_index = i;
+      }
+      if (load_known(x, correction, substituted, i, can_carry_load(i))) {
+        known_loads += load_of(x, correction, substituted, i);
+      } else {
+        ++unknown;
+        unknown_index = i;
       }
     }
     const double r = reference[group];
     const bool reference_known = std::isfinite(r);
     sum_residual[group] = missing == 0 && reference_known ? finite_sum - r : kNaN;
-    // NaN (unknown) counts as loadable: nothing is judged on a guess.
-    const auto can_carry_load = [&](std::size_t i) { return !loadable_ || !(loadable[i] < 0.5); };
     std::size_t loaded = 0;
     for (std::size_t i = first; i < first + g; ++i) loaded += can_carry_load(i) ? 1 : 0;
     double* block = signature.data() + group * g * g;
     for (std::size_t i = first; i < first + g; ++i) {
       const bool can_carry = can_carry_load(i);
       row_weight[i] = can_carry ? 1.0 / static_cast<double>(loaded) : 1.0;  // loaded >= 1 here
-      double v = 0.0;
+      double v = 0.0;          // from the readings as they are: the residual's
+      double corrected = 0.0;  // from the others' loads as corrected: the virtual value
       if (can_carry) {
         // The others' sum is known when nobody is missing, or when i is the one missing.
         const bool others_known = missing == 0 || (missing == 1 && missing_index == i);
         v = others_known && reference_known ? r - (finite_sum - (missing == 0 ? x[i] : 0.0)) : kNaN;
+        const bool others_loads_known = unknown == 0 || (unknown == 1 && unknown_index == i);
+        corrected = others_loads_known && reference_known
+                        ? r - (known_loads - (unknown == 0 ? load_of(x, correction, substituted, i) : 0.0))
+                        : kNaN;
       }
-      // The virtual value takes the others as corrected; the residual stays the readings' own, so
-      // the detectors and the signatures see the faults as they are.
-      // R - sum_{k != i} (x_k - c_k) = v + sum_{k != i} c_k.
-      const double others_correction =
-          can_carry ? correction_total - (std::isfinite(x[i]) ? correction_of(i) : 0.0) : 0.0;
-      const double corrected_v = v + others_correction;
-      virtual_value[i] = std::isnan(corrected_v) ? corrected_v : std::max(corrected_v, virtual_min_[i]);
+      virtual_value[i] = std::isnan(corrected) ? corrected : std::max(corrected, virtual_min_[i]);
       residual[i] = x[i] - v;
       double* row = block + (i - first) * g;
       for (std::size_t j = 0; j < g; ++j) row[j] = can_carry ? 1.0 : (j == i - first ? 1.0 : 0.0);

@@ -117,7 +117,10 @@ struct ChannelMetrics {
   double fault_slope = 0.0;      // per s; NaN: fewer than two faulty samples with a reading
   int false_alarms = 0;
   double false_alarm_time_s = 0.0;
+  // |virtual - truth| in contact after the warm-up, over the samples with a virtual value; the
+  // share of those samples without one (NaN: not ready, or the relation cannot judge).
   double vfs_rmse = 0.0, vfs_p95 = 0.0;
+  double vfs_missing_share = 0.0;
   double measured_rmse = 0.0;  // |measured - truth| over the same samples as recovered_rmse
 
   [[nodiscard]] bool faulty() const noexcept { return injected_type != FaultType::none; }

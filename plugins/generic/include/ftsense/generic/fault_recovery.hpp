@@ -30,18 +30,22 @@
 // or median channel's recovery is its own reading's, not the classifier's estimate.
 // With correction = "when_flagged", measured_j passes through unchanged while fault_j = 0.
 //
-// Output `correction`: c_j = measured_j - recovered_j where the recovered value is the reading
-// less an offset, drift or gain estimate (a correction that lasts), else 0 (unflagged under
-// "when_flagged", substituted, blended, median, and any other type: fault_classifier's estimate
-// for a fault not yet named is x - v, the virtual value again). A relation's other channels
-// subtract it from this reading (sum_constraint_residual's input `correction`, read one tick late
-// through previous_tick), so a corrected fault leaves their virtual values. Not the substituted
-// or blended values: they carry the virtual value v_j, which is the others' readings, and fed
-// back it would give each of them its own reading as its virtual value. Not the median's: its
-// correction is its own tick's spike, and read a tick late it would put that spike into the
-// others' virtual values on the tick after. (Both were seen on an unseen walk, each flagging a
-// healthy neighbour.)
-// The output is never NaN: if the chosen value is not finite, the other one is used, and if
+// Output `correction`: what a relation's other channels subtract from this reading
+// (sum_constraint_residual's input `correction`, read one tick late through previous_tick), so
+// that a corrected fault leaves their virtual values:
+//   c_j = measured_j - recovered_j   where the recovered value is the reading less an offset,
+//                                    drift or gain estimate (a correction that lasts);
+//   0                                else (healthy, blended, median: the reading as it is;
+//                                    substituted: see below).
+// Output `substituted`: 1 where the recovered value is the virtual one (substituted, a fallback
+// on it, or fault_classifier's x - v for a fault not yet named): the reading stands for nothing,
+// and the relation's other channels cannot be judged by it while it carries load
+// (sum_constraint_residual's input `substituted`, one tick late).
+// Not x - v: the virtual value v_j is the others' readings, and fed back it would give each of
+// them its own reading as its virtual value. Not a median's x - median: that is its own tick's
+// spike, and read a tick late it would put the spike into the others' virtual values on the tick
+// after. (Both were seen on an unseen walk, each flagging a healthy neighbour.)
+// `recovered` is never NaN: if the chosen value is not finite, the other one is used, and if
 // neither is, the last recovered value is held.
 
 #include <array>
@@ -76,7 +80,7 @@ class FaultRecovery {
   };
 
   enum Input : std::size_t { kMeasured, kFaultEstimate, kVirtual, kFault, kFaultType };
-  enum Output : std::size_t { kRecovered, kCorrection };
+  enum Output : std::size_t { kRecovered, kCorrection, kSubstituted };
 
   FaultRecovery(const Params& params, const StageContext& context);
   [[nodiscard]] const Ports& ports() const noexcept { return ports_; }

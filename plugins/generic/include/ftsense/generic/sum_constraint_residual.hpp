@@ -38,15 +38,21 @@
 // With `correction` on, input c (per channel) gives the readings as recovered, x_i - c_i, and the
 // virtual values take the others as corrected:
 //
-//   v_j = R_G - sum_{i in G, i != j} (x_i - c_i)     (non-finite c_i: 0)
+//   v_j = R_G - sum_{i in G, i != j} (x_i - c_i)
+//
+// and input `substituted` (1 where reading i stands for nothing: its recovery is the virtual
+// value, as for a frozen, saturated or invalid sensor) makes its load unknown while it can carry
+// load, so the others' virtual values are NaN (the relation cannot judge them: one equation, two
+// unknown loads), and 0 while it cannot (a foot in the air carries nothing, whatever its sensor
+// reads). A non-finite c_i counts as substituted.
 //
 // while the residuals and signatures stay the readings' own (the detectors see the faults as they
 // are). Wire a recovery's correction one tick late (fault_recovery's `correction` through
 // previous_tick): a fault found and corrected on one channel then leaves the others' virtual
 // values, and with them their classification and recovery. Only corrections made of a channel's
-// own readings belong there (fault_recovery gives 0 for a substituted or blended channel): a
-// substituted value is R_G less the others, and fed back it would hand each of them its own
-// reading. What still reaches v_j from x_j: a fault estimate that was fitted while channel j's
+// own readings belong there (fault_recovery gives 0 for a substituted or blended channel, and
+// says substituted): a substituted value is R_G less the others, and fed back it would hand each
+// of them its own reading. What still reaches v_j from x_j: a fault estimate that was fitted while channel j's
 // reading was in its channel's virtual value (a second fault during the first's fit).
 //
 // A non-finite reading (or reference) makes every value that depends on it NaN: the residuals of
@@ -55,6 +61,7 @@
 // rest of its group is, so recovery has what the other channels leave. Units: any; all of a
 // group's readings and its reference share one. Allocation-free: nothing is sized per tick.
 
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -79,8 +86,9 @@ class SumConstraintResidual {
     static void describe(ParamSchema<Params>& schema);
   };
 
-  // kCorrection is the third input when `loadable` is off (the enum names the order with both on).
-  enum Input : std::size_t { kSignal, kReference, kLoadable, kCorrection };
+  // kCorrection and kSubstituted come one earlier when `loadable` is off (the enum names the
+  // order with every input on).
+  enum Input : std::size_t { kSignal, kReference, kLoadable, kCorrection, kSubstituted };
   enum Output : std::size_t { kVirtual, kResidual, kSignature, kSumResidual, kRowWeight };
 
   SumConstraintResidual(const Params& params, const StageContext& context);
@@ -89,6 +97,12 @@ class SumConstraintResidual {
   void step(const StepIO& io) noexcept;
 
  private:
+  // Whether channel i's load is known to the others' virtual values, and what it is (below).
+  [[nodiscard]] bool load_known(std::span<const double> x, std::span<const double> correction,
+                                std::span<const double> substituted, std::size_t i, bool can_carry) const noexcept;
+  [[nodiscard]] double load_of(std::span<const double> x, std::span<const double> correction,
+                               std::span<const double> substituted, std::size_t i) const noexcept;
+
   Ports ports_;
   std::size_t channels_ = 0;
   std::size_t group_size_ = 0;
