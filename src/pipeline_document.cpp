@@ -300,15 +300,7 @@ class DocumentReader {
       } else {
         ok = false;
       }
-      if (const Json* unit = field(spec, path, section, "unit")) {
-        input.unit = unit->get<std::string>();
-        if (input.unit.empty()) {
-          diag_.error(path + "/unit", "is empty; give the SI unit of the values, \"1\" if dimensionless");
-          ok = false;
-        }
-      } else {
-        ok = false;
-      }
+      ok = read_unit(spec, path, section, "the SI unit of the values", input.unit) && ok;
       if (const Json* from = field(spec, path, section, "derived_from")) {
         for (const Json& f : *from) input.derived_from.push_back(f.get<std::string>());
       }
@@ -338,6 +330,19 @@ class DocumentReader {
         }
       }
     }
+  }
+
+  // The required, non-empty "unit" of an input or a previous-tick signal; false when reported.
+  bool read_unit(const Json& spec, const std::string& path, const DocumentSection& section, std::string_view what,
+                 std::string& unit) {
+    const Json* value = field(spec, path, section, "unit");
+    if (value == nullptr) return false;
+    unit = value->get<std::string>();
+    if (unit.empty()) {
+      diag_.error(path + "/unit", "is empty; give " + std::string(what) + ", \"1\" if dimensionless");
+      return false;
+    }
+    return true;
   }
 
   void read_previous_tick(const Json& previous) {
@@ -384,15 +389,7 @@ class DocumentReader {
       } else {
         ok = false;
       }
-      if (const Json* unit = field(spec, path, section, "unit")) {
-        d.unit = unit->get<std::string>();
-        if (d.unit.empty()) {
-          diag_.error(path + "/unit", "is empty; give the signal's unit, \"1\" if dimensionless");
-          ok = false;
-        }
-      } else {
-        ok = false;
-      }
+      ok = read_unit(spec, path, section, "the signal's unit", d.unit) && ok;
       if (const Json* initial = field(spec, path, section, "initial")) {
         d.initial = initial->get<double>();
         if (!std::isfinite(d.initial)) {

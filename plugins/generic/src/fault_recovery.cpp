@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "ftsense/generic/median_of_three.hpp"
 #include "ftsense/low_pass_gain.hpp"
@@ -154,9 +153,10 @@ void FaultRecovery::step(const StepIO& io) noexcept {
     // into the others' virtual values on the tick after); or for nothing, where the value is the
     // virtual one (substituted, a fallback below, or an estimate of x - v, as fault_classifier's
     // for a fault not yet named).
+    // (Mode::correct is neither blended nor a median.)
     const bool lasting_model = t == FaultType::offset || t == FaultType::drift || t == FaultType::gain;
-    const bool flagged_correct = !substitute && !blend && !median && mode == Mode::correct && fault[j] != 0.0;
-    bool stands_for_nothing = substitute || (flagged_correct && !lasting_model);
+    const bool corrected_by_model = !substitute && mode == Mode::correct && correct;
+    bool stands_for_nothing = substitute || (corrected_by_model && fault[j] != 0.0 && !lasting_model);
     if (!std::isfinite(value)) {
       value = substitute ? corrected : estimate[j];
       stands_for_nothing = true;
@@ -169,11 +169,7 @@ void FaultRecovery::step(const StepIO& io) noexcept {
     last_[j] = value;
     const double lasting = measured[j] - value;
     substituted[j] = stands_for_nothing ? 1.0 : 0.0;
-    own_correction[j] =
-        !stands_for_nothing && lasting_model && mode == Mode::correct && correct && !blend && !median &&
-                std::isfinite(lasting)
-            ? lasting
-            : 0.0;
+    own_correction[j] = !stands_for_nothing && corrected_by_model && lasting_model && std::isfinite(lasting) ? lasting : 0.0;
   }
 }
 

@@ -96,7 +96,6 @@ SumConstraintResidual::SumConstraintResidual(const Params& params, const StageCo
 bool SumConstraintResidual::load_known(std::span<const double> x, std::span<const double> correction,
                                        std::span<const double> substituted, std::size_t i,
                                        bool can_carry) const noexcept {
-  if (!correction_) return std::isfinite(x[i]);
   // A reading that stands for nothing: 0 off the ground, else unknown (NaN counts as standing).
   if (!std::isfinite(correction[i]) || !(substituted[i] < 0.5)) return !can_carry;
   return std::isfinite(x[i]);
@@ -104,7 +103,6 @@ bool SumConstraintResidual::load_known(std::span<const double> x, std::span<cons
 
 double SumConstraintResidual::load_of(std::span<const double> x, std::span<const double> correction,
                                       std::span<const double> substituted, std::size_t i) const noexcept {
-  if (!correction_) return x[i];
   return std::isfinite(correction[i]) && substituted[i] < 0.5 ? x[i] - correction[i] : 0.0;
 }
 
@@ -142,6 +140,7 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
         ++missing;
         missing_index = i;
       }
+      if (!correction_) continue;  // the virtual values are then the residuals' v
       if (load_known(x, correction, substituted, i, can_carry_load(i))) {
         known_loads += load_of(x, correction, substituted, i);
       } else {
@@ -165,7 +164,8 @@ void SumConstraintResidual::step(const StepIO& io) noexcept {
         const bool others_known = missing == 0 || (missing == 1 && missing_index == i);
         v = others_known && reference_known ? r - (finite_sum - (missing == 0 ? x[i] : 0.0)) : kNaN;
         const bool others_loads_known = unknown == 0 || (unknown == 1 && unknown_index == i);
-        corrected = others_loads_known && reference_known
+        corrected = !correction_ ? v
+                    : others_loads_known && reference_known
                         ? r - (known_loads - (unknown == 0 ? load_of(x, correction, substituted, i) : 0.0))
                         : kNaN;
       }

@@ -97,7 +97,8 @@ class SumConstraintResidual {
   void step(const StepIO& io) noexcept;
 
  private:
-  // Whether channel i's load is known to the others' virtual values, and what it is (below).
+  // With `correction`: whether channel i's load is known to the others' virtual values, and what
+  // it is (the model above).
   [[nodiscard]] bool load_known(std::span<const double> x, std::span<const double> correction,
                                 std::span<const double> substituted, std::size_t i, bool can_carry) const noexcept;
   [[nodiscard]] double load_of(std::span<const double> x, std::span<const double> correction,
