@@ -88,15 +88,16 @@ TEST(ShippedConfigs, EveryShippedConfigIsPlausible) {
 TEST(ShippedConfigs, FedBackCorrectionsTripTheIndependenceRuleUnlessAllowed) {
   Json config = load("configs/suralp_generic.json");
   const Pipeline allowed = Pipeline::build(config, reference_plugins::registry(), std::filesystem::path(FTSENSE_SOURCE_DIR) / "configs");
-  ASSERT_EQ(allowed.warnings().size(), 2u);
+  ASSERT_EQ(allowed.warnings().size(), 3u);
   EXPECT_EQ(allowed.warnings()[0].path, "/stages/3/inputs/correction");
   EXPECT_EQ(allowed.warnings()[1].path, "/stages/3/inputs/substituted");
+  EXPECT_EQ(allowed.warnings()[2].path, "/stages/5/inputs/substituted");  // gain_isolator's
   config["allow_dependent_virtual_sensor"] = false;
   try {
     (void)Pipeline::build(config, reference_plugins::registry(), std::filesystem::path(FTSENSE_SOURCE_DIR) / "configs");
     FAIL() << "the fed-back corrections make the virtual sensor depend on the monitored sensors";
   } catch (const ConfigError& e) {
-    ASSERT_EQ(e.problems().size(), 2u) << e.what();
+    ASSERT_EQ(e.problems().size(), 3u) << e.what();
     for (const Diagnostic& problem : e.problems()) {
       EXPECT_NE(problem.message.find("independence rule"), std::string::npos) << e.what();
       EXPECT_NE(problem.message.find("'l_forces', 'r_forces'"), std::string::npos) << e.what();

@@ -8,6 +8,7 @@
 #include "ftsense/generic/fault_merge.hpp"
 #include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/generic/fault_recovery.hpp"
+#include "ftsense/generic/gain_isolator.hpp"
 #include "ftsense/generic/low_pass.hpp"
 #include "ftsense/generic/orientation_to_rpy.hpp"
 #include "ftsense/generic/random_walk_fault_filter.hpp"
@@ -24,6 +25,6 @@ namespace ftsense::generic {
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
                                   UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge,
-                                  ChangeGuard, StepIsolator>;
+                                  ChangeGuard, StepIsolator, GainIsolator>;
 
 }  // namespace ftsense::generic

@@ -1,0 +1,129 @@
+#pragma once
+// Isolation by the shape a gain gives a shared residual over time.
+//
+// Channels that share one residual (the pads of a robot on the ground, whose leave-one-out
+// residuals are all the group's sum residual) cannot be told apart by the residual's level on
+// any tick: a fault of size f on any of them moves it by f. A gain can: it moves the sum residual
+// by what its channel reads. With the readings x_i of group G summing to the reference R_G,
+//
+//   e(t) = sum_{i in G} x_i(t) - R_G(t)          (input `sum_residual`, sum_constraint_residual's)
+//
+// and channel j reading k times its load L_j from an onset t0 on (x_j = k L_j; k = -1 a sign flip),
+//
+//   e(t) = c + beta x_j(t) [t >= t0] + n(t),     beta = 1 - 1/k,
+//
+// c the reference's slow error (and any constant fault of the group: an offset is constant in
+// e, whoever carries it), n its noise. The channels of a loaded foot carry loads of different
+// shapes over a stance (heel, then toe), so the channel whose reading explains e's course is the
+// gain's, where no tick's level could say. Per group, on block means (blocks of b = `block_s`,
+// the last `history_s` of them), whenever a block ends while the group's alarm is up (any of its
+// channels' input `alarm`), each channel j is fitted with its onset o searched over the blocks
+// (least squares with the intercept c):
+//
+//   GLR_j = max_o [S_ez - S_e S_z / N]^2 / [S_zz - S_z^2 / N] / s^2,    z_b = x_jb [b >= o],
+//
+// sums over the window's N usable blocks, s^2 = q^2 / b the variance of a block mean of fault-free
+// e (q its noise density, `residual_noise_density`, which `ftsense calibrate` measures). Channel j
+// is named (output `fault` 1, `fault_type` gain) when all of these hold, with m = chi^2_1(1 - alpha)
+// and alpha = b / false_alarm_interval_s (one decision per block):
+//   - GLR_j >= m                  (the gain explains more of e than its noise would by chance);
+//   - GLR_j - GLR_i >= m, i != j  (no other channel's reading explains it nearly as well: the
+//                                  runner-up, as signature_isolator's margin);
+//   - SSE_j / s^2 <= chi^2_{N-3}(1 - alpha)  (what the fit leaves is noise: a drift, a second
+//                                  fault or a gain that ended leaves more, and nobody is named);
+//   - the onset leaves at least `min_fault_s` of blocks after it (a fit on one or two blocks
+//                                  would take a reading's noise in the air for a huge gain).
+// With `substituted` on (input `substituted`, 1 where a channel's reading stands for nothing:
+// fault_recovery's output of that name, one tick late through previous_tick), a channel
+// substituted on any tick of the window's blocks (frozen, clipped, invalid: its reading is not its
+// load) leaves an unknown course in e, which its neighbours' loads follow: nobody is judged then,
+// except the channel this part has named, whose recovery stands for nothing while it is typed.
+// The name holds while the group's alarm holds (re-judged at every block's end), and drops with
+// it: the detector's state, not this part's, says when the fault is over. A block is usable when
+// at least half its ticks have e and every reading of the group finite.
+//
+// What it is not for: a fault that does not scale with the reading (an offset, a drift, a frozen
+// output: the intercept absorbs a constant, and the fit test refuses the others), nor channels
+// whose loads keep one shape (then the runner-up ties and nobody is named). It names the channel;
+// fault_classifier types the fault and estimates k from the channel's own leave-one-out force.
+// Units: any, e and x share one. Allocation-free per tick; the work of a decision, O(N g) per
+// group, falls on a block's last tick.
+
+#include <array>
+#include <cstddef>
+#include <string_view>
+#include <vector>
+
+#include "ftsense/calibration.hpp"
+#include "ftsense/plugin.hpp"
+
+namespace ftsense::generic {
+
+class GainIsolator {
+ public:
+  static constexpr std::string_view name = "gain_isolator";
+  static constexpr std::string_view summary =
+      "names the channel whose reading explains a shared sum residual's course (a gain or a sign flip)";
+  // For the config reference's port table and the schema (plugin.hpp): input substituted is optional.
+  static constexpr std::string_view example_params =
+      R"([{"residual_noise_density": [1.0]}, {"residual_noise_density": [1.0], "substituted": true}])";
+
+  // `ftsense calibrate` measures the noise density of the fault-free sum residual.
+  static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
+      {"residual_noise_density", "sum_residual", FaultFreeStatistic::noise_density},
+  });
+
+  struct Params {
+    int group_size = 0;
+    std::vector<double> residual_noise_density{1.0};
+    double block_s = 0.1;
+    double history_s = 3.0;
+    double min_fault_s = 0.3;
+    double false_alarm_interval_s = 86400.0;
+    bool substituted = false;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kSignal, kSumResidual, kAlarm, kSubstituted };
+  enum Output : std::size_t { kFault, kFaultType };
+
+  GainIsolator(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept;
+  void step(const StepIO& io) noexcept;
+
+  // chi^2_1(1 - alpha): the least GLR, and the least lead over the runner-up.
+  [[nodiscard]] double margin() const noexcept { return margin_; }
+
+ private:
+  // Judges group `group` on the window of blocks; returns the named channel (in the group), or -1.
+  [[nodiscard]] long judge(std::size_t group) noexcept;
+
+  Ports ports_;
+  std::size_t channels_ = 0;
+  std::size_t group_size_ = 0;
+  std::size_t groups_ = 0;
+  int ticks_per_block_ = 1;
+  std::size_t capacity_ = 0;         // blocks in the window
+  std::size_t min_fault_blocks_ = 1;
+  double margin_ = 0.0;
+  std::vector<double> fit_bound_;    // chi^2_{N-3}(1 - alpha) for N = 0 .. capacity
+  std::vector<double> inv_block_var_;  // 1 / s^2 per group
+  // The block being filled, per group: sums over its usable ticks.
+  std::vector<double> sum_e_, sum_x_;  // groups; channels
+  std::vector<int> usable_ticks_;      // groups
+  std::vector<char> substituted_now_;  // channels: substituted on a tick of the block being filled
+  int tick_in_block_ = 0;
+  // The window: rings of block means, [group * capacity + slot] and [channel * capacity + slot];
+  // a slot's usable flag per group.
+  std::vector<double> block_e_, block_x_;
+  std::vector<char> block_usable_;
+  std::vector<char> block_substituted_;  // [channel * capacity + slot]
+  bool substituted_ = false;
+  std::size_t blocks_ = 0;  // blocks completed
+  std::vector<long> named_;  // per group: the named channel in the group, -1 none
+  // Scratch for a decision (sized once): the window's usable blocks in order.
+  std::vector<double> window_e_, window_x_;
+};
+
+}  // namespace ftsense::generic

@@ -1,0 +1,285 @@
+#include "ftsense/generic/gain_isolator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "ftsense/channel_values.hpp"
+#include "ftsense/fault_type.hpp"
+#include "ftsense/generic/chi_square.hpp"
+#include "ftsense/plausible_ranges.hpp"
+
+namespace ftsense::generic {
+
+void GainIsolator::Params::describe(ParamSchema<Params>& schema) {
+  schema.add("group_size", &Params::group_size,
+             "channels per sum residual g; the wired channels are the groups one after another (0: all of them, "
+             "one residual)")
+      .at_least(0)
+      .at_most(64);
+  schema
+      .add("residual_noise_density", &Params::residual_noise_density,
+           "low-frequency noise density q of each group's fault-free sum residual, in its unit times sqrt(s): the "
+           "mean of e over w seconds has standard deviation q / sqrt(w); one value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+  schema.add("block_s", &Params::block_s, "length of the blocks whose means are fitted (a whole number of ticks)")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(0.001, 2.0, "from a tick to a couple of seconds");
+  schema
+      .add("history_s", &Params::history_s,
+           "how far back the gain's onset is searched and the fit made (a few strides: the loads' shapes must differ "
+           "within it)")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(0.2, 600.0, "from a stride to ten minutes");
+  schema
+      .add("min_fault_s", &Params::min_fault_s,
+           "the least time after the fitted onset a gain is named on (a fit on a block or two takes a reading's "
+           "noise for a gain)")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(0.01, 60.0, "from a few ticks to a minute");
+  schema
+      .add("false_alarm_interval_s", &Params::false_alarm_interval_s,
+           "mean time between wrong names the margins are set for, per decision: alpha = block_s / interval")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(1.0, 1e9, "from a second (tests) to decades");
+  schema.add("substituted", &Params::substituted,
+             "adds input substituted (1 where a reading stands for nothing, a recovery's substituted one tick "
+             "late): while one other than the named channel is in the window nobody is judged");
+}
+
+GainIsolator::GainIsolator(const Params& params, const StageContext& context) : substituted_(params.substituted) {
+  const double period = context.sample_period_s();
+  channels_ = context.wired_dim("signal", params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : 2);
+  group_size_ = params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : channels_;
+  if (channels_ % group_size_ != 0) {
+    throw ConfigError("/params/group_size", " = " + std::to_string(group_size_) + " does not divide the " +
+                                                std::to_string(channels_) + " wired channels into whole groups");
+  }
+  if (group_size_ < 2) {
+    throw ConfigError("/params/group_size", ": a group of " + std::to_string(group_size_) +
+                                                " channel shares its residual with nobody; there is nothing to "
+                                                "isolate, give 2 or more");
+  }
+  groups_ = channels_ / group_size_;
+  ticks_per_block_ = std::max(1, static_cast<int>(std::lround(params.block_s / period)));
+  const double block_s = ticks_per_block_ * period;
+  const double blocks_in_history = std::ceil(params.history_s / block_s - 1e-9);
+  const double min_fault_blocks = std::ceil(params.min_fault_s / block_s - 1e-9);
+  if (!(blocks_in_history <= 1e5)) {
+    throw ConfigError("/params/history_s", " = " + format_number(params.history_s) + " s is more than 100000 blocks of " +
+                                               format_number(block_s) + " s: make it shorter or block_s longer");
+  }
+  // The fit takes the intercept, the slope and the onset: it needs blocks beyond those three.
+  if (!(blocks_in_history >= min_fault_blocks + 3.0)) {
+    throw ConfigError("/params/history_s", " = " + format_number(params.history_s) + " s holds " +
+                                               format_number(blocks_in_history) + " blocks of " +
+                                               format_number(block_s) + " s; the fit needs min_fault_s (" +
+                                               format_number(min_fault_blocks) +
+                                               " blocks) and 3 more: make it longer or min_fault_s shorter");
+  }
+  capacity_ = static_cast<std::size_t>(blocks_in_history);
+  min_fault_blocks_ = static_cast<std::size_t>(std::max(1.0, min_fault_blocks));
+  const double alpha = std::clamp(block_s / params.false_alarm_interval_s, 1e-15, 0.5);
+  margin_ = chi_square_quantile(1.0, 1.0 - alpha);
+  fit_bound_.assign(capacity_ + 1, 0.0);
+  for (std::size_t n = 4; n <= capacity_; ++n) {
+    fit_bound_[n] = chi_square_quantile(static_cast<double>(n - 3), 1.0 - alpha);
+  }
+  const std::vector<double> density = channel_values(params.residual_noise_density, groups_, "residual_noise_density");
+  inv_block_var_.resize(groups_);
+  for (std::size_t g = 0; g < groups_; ++g) inv_block_var_[g] = block_s / (density[g] * density[g]);
+
+  ports_.add_input(PortSpec{"signal", channels_, std::string(kAnyUnit),
+                            "the readings x, group after group (those the sum residual sums)", PortRole::measured}
+                       .sized_by("as wired"));
+  ports_.add_input(PortSpec{"sum_residual", groups_, std::string(kAnyUnit),
+                            "e per group: its readings' sum less its reference (sum_constraint_residual's sum_residual)"}
+                       .sized_by("channels / group_size"));
+  ports_.add_input(PortSpec{"alarm", channels_, std::string(kDimensionless),
+                            "1 while a detector flags the channel's residual; a group is judged while any of its "
+                            "channels is flagged"}
+                       .sized_by("as `signal`"));
+  if (substituted_) {
+    // A virtual estimate for the independence rule: fed back from the readings' recovery.
+    ports_.add_input(PortSpec{"substituted", channels_, std::string(kDimensionless),
+                              "1 where reading i stands for nothing (its recovery is a virtual value)",
+                              PortRole::virtual_estimate}
+                         .sized_by("as `signal`"));
+  }
+  ports_.add_output(PortSpec{"fault", channels_, std::string(kDimensionless),
+                             "1 while the channel is named: its reading explains the raised sum residual"}
+                        .sized_by("as `signal`"));
+  ports_.add_output(PortSpec{"fault_type", channels_, std::string(kDimensionless),
+                             "fault type code (fault_type.hpp): gain while named, else none"}
+                        .sized_by("as `signal`"));
+
+  sum_e_.assign(groups_, 0.0);
+  sum_x_.assign(channels_, 0.0);
+  usable_ticks_.assign(groups_, 0);
+  block_e_.assign(groups_ * capacity_, 0.0);
+  block_x_.assign(channels_ * capacity_, 0.0);
+  block_usable_.assign(groups_ * capacity_, 0);
+  block_substituted_.assign(channels_ * capacity_, 0);
+  substituted_now_.assign(channels_, 0);
+  named_.assign(groups_, -1);
+  window_e_.assign(capacity_, 0.0);
+  window_x_.assign(group_size_ * capacity_, 0.0);
+}
+
+void GainIsolator::reset() noexcept {
+  std::fill(sum_e_.begin(), sum_e_.end(), 0.0);
+  std::fill(sum_x_.begin(), sum_x_.end(), 0.0);
+  std::fill(usable_ticks_.begin(), usable_ticks_.end(), 0);
+  std::fill(block_usable_.begin(), block_usable_.end(), 0);
+  std::fill(block_substituted_.begin(), block_substituted_.end(), 0);
+  std::fill(substituted_now_.begin(), substituted_now_.end(), 0);
+  std::fill(named_.begin(), named_.end(), -1);
+  tick_in_block_ = 0;
+  blocks_ = 0;
+}
+
+long GainIsolator::judge(std::size_t group) noexcept {
+  // The window's usable blocks, oldest first.
+  const std::size_t filled = std::min(blocks_, capacity_);
+  std::size_t n = 0;
+  for (std::size_t age = filled; age-- > 0;) {
+    const std::size_t slot = (blocks_ - 1 - age) % capacity_;
+    if (!block_usable_[group * capacity_ + slot]) continue;
+    window_e_[n] = block_e_[group * capacity_ + slot];
+    for (std::size_t j = 0; j < group_size_; ++j) {
+      window_x_[j * capacity_ + n] = block_x_[(group * group_size_ + j) * capacity_ + slot];
+    }
+    ++n;
+  }
+  if (n < min_fault_blocks_ + 3) return -1;
+  // A reading that stood for nothing in the window (frozen, clipped, invalid) left an unknown
+  // course in e that its neighbours' loads follow: nobody is judged, except that the channel
+  // named here stands for nothing while it is typed (its own course is the gain's).
+  for (std::size_t j = 0; j < group_size_; ++j) {
+    if (named_[group] == static_cast<long>(j)) continue;
+    const char* flags = block_substituted_.data() + (group * group_size_ + j) * capacity_;
+    if (std::any_of(flags, flags + std::min(blocks_, capacity_), [](char f) { return f != 0; })) return -1;
+  }
+  const double count = static_cast<double>(n);
+  double sum_e = 0.0, sum_ee = 0.0;
+  for (std::size_t b = 0; b < n; ++b) {
+    sum_e += window_e_[b];
+    sum_ee += window_e_[b] * window_e_[b];
+  }
+  const double centred_ee = sum_ee - sum_e * sum_e / count;  // what the intercept alone leaves
+  const double w = inv_block_var_[group];
+  // What a regressor z (given by its sums over the window, z = 0 before the onset) explains of e
+  // beside the intercept; a regressor that does not move explains nothing (and divides by nothing).
+  const auto explained = [&](double s_z, double s_zz, double s_ez) {
+    const double spread = s_zz - s_z * s_z / count;
+    if (!(spread > 1e-12 * std::max(1.0, s_zz))) return 0.0;
+    const double covariance = s_ez - sum_e * s_z / count;
+    return covariance * covariance / spread;
+  };
+  // The courses that are nobody's gain: a step and a ramp from an onset (an offset, a drift, the
+  // reference's own move), whichever channel carries them.
+  double nobody = 0.0;
+  {
+    double s_e = 0.0, s_eb = 0.0;  // suffix sums of e_b and b e_b
+    for (std::size_t o = n; o-- > 0;) {
+      s_e += window_e_[o];
+      s_eb += static_cast<double>(o) * window_e_[o];
+      const double m = static_cast<double>(n - o);
+      if (n - o < min_fault_blocks_) continue;
+      nobody = std::max(nobody, explained(m, m, s_e));
+      const double ramp_ez = s_eb - static_cast<double>(o) * s_e;  // sum of (b - o) e_b
+      nobody = std::max(nobody, explained(m * (m - 1.0) / 2.0, (m - 1.0) * m * (2.0 * m - 1.0) / 6.0, ramp_ez));
+    }
+  }
+  double best = 0.0, runner_up = nobody;
+  long best_channel = -1;
+  for (std::size_t j = 0; j < group_size_; ++j) {
+    const double* x = window_x_.data() + j * capacity_;
+    // Onsets from the latest allowed back to the window's start: suffix sums of z = x [b >= o].
+    double s_z = 0.0, s_zz = 0.0, s_ez = 0.0, best_j = 0.0;
+    for (std::size_t o = n; o-- > 0;) {
+      s_z += x[o];
+      s_zz += x[o] * x[o];
+      s_ez += window_e_[o] * x[o];
+      if (n - o < min_fault_blocks_) continue;
+      best_j = std::max(best_j, explained(s_z, s_zz, s_ez));
+    }
+    if (best_j > best) {
+      runner_up = std::max(runner_up, best);
+      best = best_j;
+      best_channel = static_cast<long>(j);
+    } else {
+      runner_up = std::max(runner_up, best_j);
+    }
+  }
+  // In units of the block mean's variance: GLRs, and what the fit leaves, a chi^2_{N-3}.
+  const double left = std::max(0.0, centred_ee - best) * w;
+  const bool explains = best * w >= margin_ && (best - runner_up) * w >= margin_ && left <= fit_bound_[n];
+  return explains ? best_channel : -1;
+}
+
+void GainIsolator::step(const StepIO& io) noexcept {
+  const auto x = io.in(kSignal);
+  const auto e = io.in(kSumResidual);
+  const auto alarm = io.in(kAlarm);
+  const auto fault = io.out(kFault);
+  const auto fault_type = io.out(kFaultType);
+  if (substituted_) {
+    const auto substituted = io.in(kSubstituted);
+    // Not finite counts as standing for nothing.
+    for (std::size_t j = 0; j < channels_; ++j) substituted_now_[j] |= !(substituted[j] < 0.5) ? 1 : 0;
+  }
+  for (std::size_t g = 0; g < groups_; ++g) {
+    bool finite = std::isfinite(e[g]);
+    for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) finite = finite && std::isfinite(x[j]);
+    if (!finite) continue;
+    sum_e_[g] += e[g];
+    for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) sum_x_[j] += x[j];
+    ++usable_ticks_[g];
+  }
+  const bool block_ends = ++tick_in_block_ == ticks_per_block_;
+  if (block_ends) {
+    const std::size_t slot = blocks_ % capacity_;
+    for (std::size_t g = 0; g < groups_; ++g) {
+      const int used = usable_ticks_[g];
+      const bool usable = 2 * used >= ticks_per_block_;
+      block_usable_[g * capacity_ + slot] = usable ? 1 : 0;
+      if (usable) {
+        block_e_[g * capacity_ + slot] = sum_e_[g] / used;
+        for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {
+          block_x_[j * capacity_ + slot] = sum_x_[j] / used;
+        }
+      }
+      for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {
+        block_substituted_[j * capacity_ + slot] = substituted_now_[j];
+        substituted_now_[j] = 0;
+      }
+      sum_e_[g] = 0.0;
+      for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) sum_x_[j] = 0.0;
+      usable_ticks_[g] = 0;
+    }
+    ++blocks_;
+    tick_in_block_ = 0;
+  }
+  for (std::size_t g = 0; g < groups_; ++g) {
+    bool raised = false;
+    for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) raised = raised || alarm[j] >= 0.5;
+    if (!raised) {
+      named_[g] = -1;
+    } else if (block_ends) {
+      named_[g] = judge(g);
+    }
+    for (std::size_t j = 0; j < group_size_; ++j) {
+      const bool named = named_[g] == static_cast<long>(j);
+      fault[g * group_size_ + j] = named ? 1.0 : 0.0;
+      fault_type[g * group_size_ + j] = fault_code(named ? FaultType::gain : FaultType::none);
+    }
+  }
+}
+
+}  // namespace ftsense::generic
