@@ -46,6 +46,9 @@ struct GainTrace {
   int alarm_from = 2000, alarm_to = 1000000;
   double gain = 2.0, offset = 0.0, drift_per_s = 0.0;
   double phase_step = 2.0 * M_PI / 3.0;
+  int steady_channel = -1;    // this channel's load stays at 100 N (its reading still)
+  double steady_loadable = 1.0;  // its loadable input (with check_still)
+  bool check_still = false;  // the isolator takes loadable (every other channel can carry load)
   double noise = 0.0;  // white noise on each reading [N]
   unsigned seed = 0;
   int ticks = 4000;
@@ -54,10 +57,13 @@ struct GainTrace {
 // Runs the isolator over the trace; returns per tick the channel named (-1: none, -2: several).
 std::vector<int> run_gain_trace(const GainTrace& t, GainIsolator::Params p = {}) {
   p.residual_noise_density = {1.0};
+  p.loadable = t.check_still;
   GainIsolator isolator(p, StageContext(kGainPeriod, "gains", {{"signal", 3}, {"sum_residual", 1}, {"alarm", 3}}));
   isolator.reset();
-  std::vector<double> x(3), e(1), alarm(3), fault(3), type(3);
-  const std::span<const double> ins[] = {x, e, alarm};
+  std::vector<double> x(3), e(1), alarm(3), loadable(3, 1.0), fault(3), type(3);
+  if (t.steady_channel >= 0) loadable[static_cast<std::size_t>(t.steady_channel)] = t.steady_loadable;
+  std::vector<std::span<const double>> ins{x, e, alarm};
+  if (t.check_still) ins.emplace_back(loadable);
   const std::span<double> outs[] = {fault, type};
   std::mt19937 rng(t.seed);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -65,7 +71,7 @@ std::vector<int> run_gain_trace(const GainTrace& t, GainIsolator::Params p = {})
   for (int k = 0; k < t.ticks; ++k) {
     double reference = 0.0;
     for (std::size_t j = 0; j < 3; ++j) {
-      const double l = swaying_pad_load(j, k, t.phase_step);
+      const double l = static_cast<int>(j) == t.steady_channel ? 100.0 : swaying_pad_load(j, k, t.phase_step);
       reference += l;
       x[j] = l + t.noise * noise(rng);
       if (j == t.channel && k >= t.onset) {
@@ -97,6 +103,20 @@ TEST(GainIsolator, AGainIsNamedOnItsChannelOnceMinFaultSOfBlocksFollowItsOnset) 
   // Blocks 20, 21 and 22 (min_fault_s = 0.3 s) complete on tick 2299; the name then holds.
   EXPECT_EQ(first_gain_named(named), 2299);
   for (int k = 2299; k < 4000; ++k) ASSERT_EQ(named[k], 1) << "tick " << k;
+}
+
+TEST(GainIsolator, AStillLoadedNeighbourCouldBeTheCauseSoNobodyIsNamed) {
+  // Channel 0 carries a steady 100 N: its reading stays while channel 1's gain moves e. With
+  // loadable it could be a stuck reading whose own load moves e, so nobody is named; off the
+  // ground (loadable 0) it is no candidate, and the gain is named as without the input.
+  GainTrace t;
+  t.steady_channel = 0;
+  t.check_still = true;
+  EXPECT_EQ(first_gain_named(run_gain_trace(t)), -1);
+  t.steady_loadable = 0.0;
+  EXPECT_EQ(first_gain_named(run_gain_trace(t)), 2299);
+  t.check_still = false;
+  EXPECT_EQ(first_gain_named(run_gain_trace(t)), 2299);
 }
 
 TEST(GainIsolator, ASignFlipIsAGainToo) {

@@ -50,9 +50,19 @@ void GainIsolator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("substituted", &Params::substituted,
              "adds input substituted (1 where a reading stands for nothing, a recovery's substituted one tick "
              "late): while one other than the named channel is in the window nobody is judged");
+  schema.add("loadable", &Params::loadable,
+             "adds input loadable (1 while a channel can carry load, by kinematics): nobody is named while "
+             "another channel's reading stood still while loaded (a stuck reading's own load moves e)");
+  schema
+      .add("follow_ratio", &Params::follow_ratio,
+           "with loadable: a loaded reading that moved by less than this share of what the sum residual moved "
+           "(RMS, over the blocks after the onset) could be a stuck one, and then nobody is named")
+      .greater_than(0.0)
+      .less_than(1.0);
 }
 
-GainIsolator::GainIsolator(const Params& params, const StageContext& context) : substituted_(params.substituted) {
+GainIsolator::GainIsolator(const Params& params, const StageContext& context)
+    : substituted_(params.substituted), loadable_(params.loadable), follow_ratio_(params.follow_ratio) {
   const double period = context.sample_period_s();
   channels_ = context.wired_dim("signal", params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : 2);
   group_size_ = params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : channels_;
@@ -104,10 +114,19 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context) : 
                             "1 while a detector flags the channel's residual; a group is judged while any of its "
                             "channels is flagged"}
                        .sized_by("as `signal`"));
+  std::size_t next_input = kSubstituted;
   if (substituted_) {
+    substituted_input_ = next_input++;
     // A virtual estimate for the independence rule: fed back from the readings' recovery.
     ports_.add_input(PortSpec{"substituted", channels_, std::string(kDimensionless),
                               "1 where reading i stands for nothing (its recovery is a virtual value)",
+                              PortRole::virtual_estimate}
+                         .sized_by("as `signal`"));
+  }
+  if (loadable_) {
+    loadable_input_ = next_input++;
+    ports_.add_input(PortSpec{"loadable", channels_, std::string(kDimensionless),
+                              "1 while channel j can carry load, 0 while it cannot (below 1/2: cannot; NaN: can)",
                               PortRole::virtual_estimate}
                          .sized_by("as `signal`"));
   }
@@ -125,6 +144,10 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context) : 
   block_x_.assign(channels_ * capacity_, 0.0);
   block_usable_.assign(groups_ * capacity_, 0);
   block_substituted_.assign(channels_ * capacity_, 0);
+  loaded_now_.assign(channels_, 1);
+  block_loaded_.assign(channels_ * capacity_, 0);
+  window_loaded_.assign(group_size_ * capacity_, 0);
+  onset_.assign(group_size_, 0);
   substituted_now_.assign(channels_, 0);
   named_.assign(groups_, -1);
   window_e_.assign(capacity_, 0.0);
@@ -137,6 +160,8 @@ void GainIsolator::reset() noexcept {
   std::fill(usable_ticks_.begin(), usable_ticks_.end(), 0);
   std::fill(block_usable_.begin(), block_usable_.end(), 0);
   std::fill(block_substituted_.begin(), block_substituted_.end(), 0);
+  std::fill(loaded_now_.begin(), loaded_now_.end(), 1);
+  std::fill(block_loaded_.begin(), block_loaded_.end(), 0);
   std::fill(substituted_now_.begin(), substituted_now_.end(), 0);
   std::fill(named_.begin(), named_.end(), -1);
   tick_in_block_ = 0;
@@ -153,6 +178,7 @@ long GainIsolator::judge(std::size_t group) noexcept {
     window_e_[n] = block_e_[group * capacity_ + slot];
     for (std::size_t j = 0; j < group_size_; ++j) {
       window_x_[j * capacity_ + n] = block_x_[(group * group_size_ + j) * capacity_ + slot];
+      window_loaded_[j * capacity_ + n] = block_loaded_[(group * group_size_ + j) * capacity_ + slot];
     }
     ++n;
   }
@@ -202,12 +228,17 @@ long GainIsolator::judge(std::size_t group) noexcept {
     const double* x = window_x_.data() + j * capacity_;
     // Onsets from the latest allowed back to the window's start: suffix sums of z = x [b >= o].
     double s_z = 0.0, s_zz = 0.0, s_ez = 0.0, best_j = 0.0;
+    onset_[j] = 0;
     for (std::size_t o = n; o-- > 0;) {
       s_z += x[o];
       s_zz += x[o] * x[o];
       s_ez += window_e_[o] * x[o];
       if (n - o < min_fault_blocks_) continue;
-      best_j = std::max(best_j, explained(s_z, s_zz, s_ez));
+      const double explained_o = explained(s_z, s_zz, s_ez);
+      if (explained_o > best_j) {
+        best_j = explained_o;
+        onset_[j] = o;
+      }
     }
     if (best_j > best) {
       runner_up = std::max(runner_up, best);
@@ -220,7 +251,31 @@ long GainIsolator::judge(std::size_t group) noexcept {
   // In units of the block mean's variance: GLRs, and what the fit leaves, a chi^2_{N-3}.
   const double left = std::max(0.0, centred_ee - best) * w;
   const bool explains = best * w >= margin_ && (best - runner_up) * w >= margin_ && left <= fit_bound_[n];
-  return explains ? best_channel : -1;
+  if (!explains) return -1;
+  if (loadable_ && stuck_neighbour(best_channel, n)) return -1;
+  return best_channel;
+}
+
+bool GainIsolator::stuck_neighbour(long named, std::size_t n) const noexcept {
+  const std::size_t onset = onset_[static_cast<std::size_t>(named)];
+  for (std::size_t j = 0; j < group_size_; ++j) {
+    if (static_cast<long>(j) == named) continue;
+    // Over the blocks from the onset on which j could carry load: how x_j and e moved.
+    double count = 0.0, s_x = 0.0, s_xx = 0.0, s_e = 0.0, s_ee = 0.0;
+    for (std::size_t b = onset; b < n; ++b) {
+      if (!window_loaded_[j * capacity_ + b]) continue;
+      const double x = window_x_[j * capacity_ + b], e = window_e_[b];
+      count += 1.0;
+      s_x += x;
+      s_xx += x * x;
+      s_e += e;
+      s_ee += e * e;
+    }
+    if (count < static_cast<double>(min_fault_blocks_)) continue;
+    const double spread_x = s_xx - s_x * s_x / count, spread_e = s_ee - s_e * s_e / count;
+    if (spread_x < follow_ratio_ * follow_ratio_ * spread_e) return true;
+  }
+  return false;
 }
 
 void GainIsolator::step(const StepIO& io) noexcept {
@@ -229,8 +284,12 @@ void GainIsolator::step(const StepIO& io) noexcept {
   const auto alarm = io.in(kAlarm);
   const auto fault = io.out(kFault);
   const auto fault_type = io.out(kFaultType);
+  if (loadable_) {
+    const auto loadable = io.in(loadable_input_);
+    for (std::size_t j = 0; j < channels_; ++j) loaded_now_[j] &= loadable[j] < 0.5 ? 0 : 1;  // NaN: can
+  }
   if (substituted_) {
-    const auto substituted = io.in(kSubstituted);
+    const auto substituted = io.in(substituted_input_);
     // Not finite counts as standing for nothing.
     for (std::size_t j = 0; j < channels_; ++j) substituted_now_[j] |= !(substituted[j] < 0.5) ? 1 : 0;
   }
@@ -258,6 +317,8 @@ void GainIsolator::step(const StepIO& io) noexcept {
       for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {
         block_substituted_[j * capacity_ + slot] = substituted_now_[j];
         substituted_now_[j] = 0;
+        block_loaded_[j * capacity_ + slot] = loaded_now_[j];
+        loaded_now_[j] = 1;
       }
       sum_e_[g] = 0.0;
       for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) sum_x_[j] = 0.0;

@@ -38,6 +38,13 @@
 // substituted on any tick of the window's blocks (frozen, clipped, invalid: its reading is not its
 // load) leaves an unknown course in e, which its neighbours' loads follow: nobody is judged then,
 // except the channel this part has named, whose recovery stands for nothing while it is typed.
+// With `loadable` on (input `loadable`, 1 while a channel can carry load, by kinematics), a
+// reading stuck while its channel is loaded is ruled out as the cause first: it makes e follow its
+// own load (e = x_j(t0) - L_j(t)), which a co-loaded neighbour's reading explains as a gain. So
+// nobody is named while another channel's reading, over the blocks after the named onset on which
+// it could carry load (min_fault_s of them at least), moved by less than `follow_ratio` of what e
+// moved over those blocks (root mean square about the mean of each: signal_validator's follow
+// test, on the sum residual).
 // The name holds while the group's alarm holds (re-judged at every block's end), and drops with
 // it: the detector's state, not this part's, says when the fault is over. A block is usable when
 // at least half its ticks have e and every reading of the group finite.
@@ -66,7 +73,7 @@ class GainIsolator {
       "names the channel whose reading explains a shared sum residual's course (a gain or a sign flip)";
   // For the config reference's port table and the schema (plugin.hpp): input substituted is optional.
   static constexpr std::string_view example_params =
-      R"([{"residual_noise_density": [1.0]}, {"residual_noise_density": [1.0], "substituted": true}])";
+      R"([{"residual_noise_density": [1.0]}, {"residual_noise_density": [1.0], "substituted": true, "loadable": true}])";
 
   // `ftsense calibrate` measures the noise density of the fault-free sum residual.
   static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
@@ -81,9 +88,12 @@ class GainIsolator {
     double min_fault_s = 0.3;
     double false_alarm_interval_s = 86400.0;
     bool substituted = false;
+    bool loadable = false;
+    double follow_ratio = 0.25;
     static void describe(ParamSchema<Params>& schema);
   };
 
+  // Inputs substituted and loadable follow the three, in that order, when their params are on.
   enum Input : std::size_t { kSignal, kSumResidual, kAlarm, kSubstituted };
   enum Output : std::size_t { kFault, kFaultType };
 
@@ -98,6 +108,9 @@ class GainIsolator {
  private:
   // Judges group `group` on the window of blocks; returns the named channel (in the group), or -1.
   [[nodiscard]] long judge(std::size_t group) noexcept;
+  // Whether a channel other than `named` read still while loaded from the named onset on (over
+  // the window's n blocks), by follow_ratio of e's move: a stuck reading could be e's cause.
+  [[nodiscard]] bool stuck_neighbour(long named, std::size_t n) const noexcept;
 
   Ports ports_;
   std::size_t channels_ = 0;
@@ -120,6 +133,13 @@ class GainIsolator {
   std::vector<char> block_usable_;
   std::vector<char> block_substituted_;  // [channel * capacity + slot]
   bool substituted_ = false;
+  bool loadable_ = false;
+  double follow_ratio_ = 0.25;
+  std::size_t substituted_input_ = kSubstituted, loadable_input_ = kSubstituted;
+  std::vector<char> loaded_now_;        // channels: loadable on every tick of the block so far
+  std::vector<char> block_loaded_;      // [channel * capacity + slot]
+  std::vector<char> window_loaded_;     // [j * capacity + n]
+  std::vector<std::size_t> onset_;      // per channel of the group judged: its best onset
   std::size_t blocks_ = 0;  // blocks completed
   std::vector<long> named_;  // per group: the named channel in the group, -1 none
   // Scratch for a decision (sized once): the window's usable blocks in order.
