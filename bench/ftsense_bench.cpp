@@ -300,8 +300,8 @@ void bench_step_isolator(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
-// gain_isolator on 8 channels at 1 kHz with the alarm up throughout (its worst case: a decision
-// at every block's end, 0.1 s blocks over 3 s, each of 8 channels fitted with its onset searched).
+// gain_isolator on 8 channels at 1 kHz with the alarm up throughout (a decision at every block's
+// end; loadable and substituted off, 0.1 s blocks over 3 s, each of 8 channels fitted with its onset searched).
 // Inputs: the step_isolator bench's swaying loads and noise (seed 1), channel 3 reading twice its
 // load; precomputed. The time is the mean over ticks: a decision falls on one tick in 100.
 void bench_gain_isolator(benchmark::State& state) {

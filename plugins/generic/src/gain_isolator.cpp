@@ -26,6 +26,7 @@ void GainIsolator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("block_s", &Params::block_s, "length of the blocks whose means are fitted (a whole number of ticks)")
       .unit("s")
       .greater_than(0.0)
+      .at_most(60.0)
       .plausible(0.001, 2.0, "from a tick to a couple of seconds");
   schema
       .add("history_s", &Params::history_s,
@@ -66,14 +67,14 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   const double period = context.sample_period_s();
   channels_ = context.wired_dim("signal", params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : 2);
   group_size_ = params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : channels_;
-  if (channels_ % group_size_ != 0) {
-    throw ConfigError("/params/group_size", " = " + std::to_string(group_size_) + " does not divide the " +
-                                                std::to_string(channels_) + " wired channels into whole groups");
-  }
   if (group_size_ < 2) {
     throw ConfigError("/params/group_size", ": a group of " + std::to_string(group_size_) +
                                                 " channel shares its residual with nobody; there is nothing to "
                                                 "isolate, give 2 or more");
+  }
+  if (channels_ % group_size_ != 0) {
+    throw ConfigError("/params/group_size", " = " + std::to_string(group_size_) + " does not divide the " +
+                                                std::to_string(channels_) + " wired channels into whole groups");
   }
   groups_ = channels_ / group_size_;
   ticks_per_block_ = std::max(1, static_cast<int>(std::lround(params.block_s / period)));
@@ -95,7 +96,10 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   capacity_ = static_cast<std::size_t>(blocks_in_history);
   min_fault_blocks_ = static_cast<std::size_t>(std::max(1.0, min_fault_blocks));
   const double alpha = std::clamp(block_s / params.false_alarm_interval_s, 1e-15, 0.5);
-  margin_ = chi_square_quantile(1.0, 1.0 - alpha);
+  // A decision takes the best of g channels at up to capacity - min_fault_blocks + 1 onsets each:
+  // the margin holds alpha over all of them (Bonferroni), the fit test is one test.
+  const double tries = static_cast<double>(group_size_) * (blocks_in_history - std::max(1.0, min_fault_blocks) + 1.0);
+  margin_ = chi_square_quantile(1.0, 1.0 - alpha / tries);
   fit_bound_.assign(capacity_ + 1, 0.0);
   for (std::size_t n = 4; n <= capacity_; ++n) {
     fit_bound_[n] = chi_square_quantile(static_cast<double>(n - 3), 1.0 - alpha);
@@ -150,7 +154,9 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   onset_.assign(group_size_, 0);
   substituted_now_.assign(channels_, 0);
   named_.assign(groups_, -1);
+  last_named_.assign(groups_, -1);
   window_e_.assign(capacity_, 0.0);
+  window_t_.assign(capacity_, 0.0);
   window_x_.assign(group_size_ * capacity_, 0.0);
 }
 
@@ -164,6 +170,7 @@ void GainIsolator::reset() noexcept {
   std::fill(block_loaded_.begin(), block_loaded_.end(), 0);
   std::fill(substituted_now_.begin(), substituted_now_.end(), 0);
   std::fill(named_.begin(), named_.end(), -1);
+  std::fill(last_named_.begin(), last_named_.end(), -1);
   tick_in_block_ = 0;
   blocks_ = 0;
 }
@@ -176,6 +183,7 @@ long GainIsolator::judge(std::size_t group) noexcept {
     const std::size_t slot = (blocks_ - 1 - age) % capacity_;
     if (!block_usable_[group * capacity_ + slot]) continue;
     window_e_[n] = block_e_[group * capacity_ + slot];
+    window_t_[n] = static_cast<double>(blocks_ - 1 - age);  // the block's index: a ramp is in time
     for (std::size_t j = 0; j < group_size_; ++j) {
       window_x_[j * capacity_ + n] = block_x_[(group * group_size_ + j) * capacity_ + slot];
       window_loaded_[j * capacity_ + n] = block_loaded_[(group * group_size_ + j) * capacity_ + slot];
@@ -185,9 +193,9 @@ long GainIsolator::judge(std::size_t group) noexcept {
   if (n < min_fault_blocks_ + 3) return -1;
   // A reading that stood for nothing in the window (frozen, clipped, invalid) left an unknown
   // course in e that its neighbours' loads follow: nobody is judged, except that the channel
-  // named here stands for nothing while it is typed (its own course is the gain's).
+  // named last stands for nothing while it is typed (its own course is the gain's).
   for (std::size_t j = 0; j < group_size_; ++j) {
-    if (named_[group] == static_cast<long>(j)) continue;
+    if (last_named_[group] == static_cast<long>(j)) continue;
     const char* flags = block_substituted_.data() + (group * group_size_ + j) * capacity_;
     if (std::any_of(flags, flags + std::min(blocks_, capacity_), [](char f) { return f != 0; })) return -1;
   }
@@ -211,15 +219,19 @@ long GainIsolator::judge(std::size_t group) noexcept {
   // reference's own move), whichever channel carries them.
   double nobody = 0.0;
   {
-    double s_e = 0.0, s_eb = 0.0;  // suffix sums of e_b and b e_b
+    // Suffix sums of e_b, t_b, t_b^2 and t_b e_b, t_b the block's index (blocks that were not
+    // usable leave gaps: the ramp z_b = t_b - t_o is in time, not in usable blocks).
+    double s_e = 0.0, s_t = 0.0, s_tt = 0.0, s_te = 0.0;
     for (std::size_t o = n; o-- > 0;) {
+      const double t = window_t_[o];
       s_e += window_e_[o];
-      s_eb += static_cast<double>(o) * window_e_[o];
+      s_t += t;
+      s_tt += t * t;
+      s_te += t * window_e_[o];
       const double m = static_cast<double>(n - o);
       if (n - o < min_fault_blocks_) continue;
       nobody = std::max(nobody, explained(m, m, s_e));
-      const double ramp_ez = s_eb - static_cast<double>(o) * s_e;  // sum of (b - o) e_b
-      nobody = std::max(nobody, explained(m * (m - 1.0) / 2.0, (m - 1.0) * m * (2.0 * m - 1.0) / 6.0, ramp_ez));
+      nobody = std::max(nobody, explained(s_t - m * t, s_tt - 2.0 * t * s_t + m * t * t, s_te - t * s_e));
     }
   }
   double best = 0.0, runner_up = nobody;
@@ -329,11 +341,14 @@ void GainIsolator::step(const StepIO& io) noexcept {
   }
   for (std::size_t g = 0; g < groups_; ++g) {
     bool raised = false;
-    for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) raised = raised || alarm[j] >= 0.5;
+    for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {
+      raised = raised || (std::isfinite(alarm[j]) && alarm[j] != 0.0);  // as the other isolators read it
+    }
     if (!raised) {
       named_[g] = -1;
     } else if (block_ends) {
       named_[g] = judge(g);
+      if (named_[g] >= 0) last_named_[g] = named_[g];
     }
     for (std::size_t j = 0; j < group_size_; ++j) {
       const bool named = named_[g] == static_cast<long>(j);

@@ -24,8 +24,9 @@
 //
 // sums over the window's N usable blocks, s^2 = q^2 / b the variance of a block mean of fault-free
 // e (q its noise density, `residual_noise_density`, which `ftsense calibrate` measures). Channel j
-// is named (output `fault` 1, `fault_type` gain) when all of these hold, with m = chi^2_1(1 - alpha)
-// and alpha = b / false_alarm_interval_s (one decision per block):
+// is named (output `fault` 1, `fault_type` gain) when all of these hold, with alpha =
+// b / false_alarm_interval_s (one decision per block) and m = chi^2_1(1 - alpha / (g K)), K the
+// onsets searched (the decision takes the best of g K fits: Bonferroni):
 //   - GLR_j >= m                  (the gain explains more of e than its noise would by chance);
 //   - GLR_j - GLR_i >= m, i != j  (no other channel's reading explains it nearly as well: the
 //                                  runner-up, as signature_isolator's margin);
@@ -37,7 +38,7 @@
 // fault_recovery's output of that name, one tick late through previous_tick), a channel
 // substituted on any tick of the window's blocks (frozen, clipped, invalid: its reading is not its
 // load) leaves an unknown course in e, which its neighbours' loads follow: nobody is judged then,
-// except the channel this part has named, whose recovery stands for nothing while it is typed.
+// except the channel this part named last, whose recovery stands for nothing while it is typed.
 // With `loadable` on (input `loadable`, 1 while a channel can carry load, by kinematics), a
 // reading stuck while its channel is loaded is ruled out as the cause first: it makes e follow its
 // own load (e = x_j(t0) - L_j(t)), which a co-loaded neighbour's reading explains as a gain. So
@@ -142,8 +143,11 @@ class GainIsolator {
   std::vector<std::size_t> onset_;      // per channel of the group judged: its best onset
   std::size_t blocks_ = 0;  // blocks completed
   std::vector<long> named_;  // per group: the named channel in the group, -1 none
+  // Per group: the channel last named (its own substituted blocks judge on after a decision
+  // named nobody), -1 none yet.
+  std::vector<long> last_named_;
   // Scratch for a decision (sized once): the window's usable blocks in order.
-  std::vector<double> window_e_, window_x_;
+  std::vector<double> window_e_, window_t_, window_x_;
 };
 
 }  // namespace ftsense::generic
