@@ -259,6 +259,31 @@ void bench_classifier_all_flagged(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// The isolators' synthetic inputs: per tick, channel c's load 140 N swaying by 100 N at 1 Hz (its
+// phase c / 8 of a period), read with white noise of 2 N (seed 1) and, on gain_channel, times
+// gain; and the readings' sum less the true total (the sum residual). Row-major x.
+struct SwayingLoads {
+  std::vector<double> x;
+  std::vector<double> sum_residual;
+};
+SwayingLoads swaying_loads(std::size_t ticks, std::size_t channels, double period,
+                           std::size_t gain_channel = static_cast<std::size_t>(-1), double gain = 1.0) {
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  SwayingLoads out{std::vector<double>(ticks * channels), std::vector<double>(ticks)};
+  for (std::size_t k = 0; k < ticks; ++k) {
+    double measured_sum = 0.0, true_sum = 0.0;
+    for (std::size_t c = 0; c < channels; ++c) {
+      const double load = 140.0 + 100.0 * std::sin(2.0 * M_PI * (static_cast<double>(k) * period + 0.125 * c));
+      out.x[k * channels + c] = (c == gain_channel ? gain : 1.0) * load + noise(rng);
+      measured_sum += out.x[k * channels + c];
+      true_sum += load;
+    }
+    out.sum_residual[k] = measured_sum - true_sum;
+  }
+  return out;
+}
+
 // step_isolator on 8 loaded channels at 1 kHz (W = 10): every row judged every tick, the 2 x 10
 // window sums per channel its whole cost. Inputs: loads swaying about 140 N (+-100 N, 1 Hz, each
 // channel's phase its own) plus white noise of 2 N (seed 1), the rows their sum residual against
@@ -272,18 +297,11 @@ void bench_step_isolator(benchmark::State& state) {
   params.residual_step_std = {2.5};
   params.virtual_step_std = {4.5};
   ftsense::generic::StepIsolator isolator(params, ftsense::StageContext(kPeriod, "step", {{"signal", kChannels}}));
-  std::mt19937 rng(1);
-  std::normal_distribution<double> noise(0.0, 2.0);
-  std::vector<double> x(kTicks * kChannels), r(kTicks * kChannels);
+  const SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod);
+  const std::vector<double>& x = loads.x;
+  std::vector<double> r(kTicks * kChannels);
   for (std::size_t k = 0; k < kTicks; ++k) {
-    double measured_sum = 0.0, true_sum = 0.0;
-    for (std::size_t c = 0; c < kChannels; ++c) {
-      const double load = 140.0 + 100.0 * std::sin(2.0 * M_PI * (static_cast<double>(k) * kPeriod + 0.125 * c));
-      x[k * kChannels + c] = load + noise(rng);
-      measured_sum += x[k * kChannels + c];
-      true_sum += load;
-    }
-    for (std::size_t c = 0; c < kChannels; ++c) r[k * kChannels + c] = measured_sum - true_sum;
+    for (std::size_t c = 0; c < kChannels; ++c) r[k * kChannels + c] = loads.sum_residual[k];
   }
   const std::vector<double> alarm(kChannels, 0.0);
   std::vector<double> fault(kChannels), type(kChannels), estimate(kChannels);
@@ -311,19 +329,9 @@ void bench_gain_isolator(benchmark::State& state) {
   ftsense::generic::GainIsolator::Params params;
   params.residual_noise_density = {5.0};
   ftsense::generic::GainIsolator isolator(params, ftsense::StageContext(kPeriod, "gains", {{"signal", kChannels}}));
-  std::mt19937 rng(1);
-  std::normal_distribution<double> noise(0.0, 2.0);
-  std::vector<double> x(kTicks * kChannels), e(kTicks);
-  for (std::size_t k = 0; k < kTicks; ++k) {
-    double measured_sum = 0.0, true_sum = 0.0;
-    for (std::size_t c = 0; c < kChannels; ++c) {
-      const double load = 140.0 + 100.0 * std::sin(2.0 * M_PI * (static_cast<double>(k) * kPeriod + 0.125 * c));
-      x[k * kChannels + c] = (c == 3 ? 2.0 : 1.0) * load + noise(rng);
-      measured_sum += x[k * kChannels + c];
-      true_sum += load;
-    }
-    e[k] = measured_sum - true_sum;
-  }
+  const SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod, /*gain_channel=*/3, /*gain=*/2.0);
+  const std::vector<double>& x = loads.x;
+  const std::vector<double>& e = loads.sum_residual;
   const std::vector<double> alarm(kChannels, 1.0);
   std::vector<double> fault(kChannels), type(kChannels);
   isolator.reset();

@@ -30,6 +30,8 @@
 //   - GLR_j >= m                  (the gain explains more of e than its noise would by chance);
 //   - GLR_j - GLR_i >= m, i != j  (no other channel's reading explains it nearly as well: the
 //                                  runner-up, as signature_isolator's margin);
+//   - GLR_j - GLR_0 >= m          (GLR_0 the best of a step and a ramp from an onset, fitted the
+//                                  same way: an offset's or a drift's course, nobody's gain);
 //   - SSE_j / s^2 <= chi^2_{N-3}(1 - alpha)  (what the fit leaves is noise: a drift, a second
 //                                  fault or a gain that ended leaves more, and nobody is named);
 //   - the onset leaves at least `min_fault_s` of blocks after it (a fit on one or two blocks
