@@ -32,6 +32,8 @@
 #include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/generic/gain_isolator.hpp"
 #include "ftsense/generic/step_isolator.hpp"
+#include "ftsense/generic/stuck_hold.hpp"
+#include "ftsense/generic/unread_load_isolator.hpp"
 #include "ftsense/io/csv_log.hpp"
 #include "ftsense/pipeline.hpp"
 #include "ftsense/reference_plugins.hpp"
@@ -347,6 +349,78 @@ void bench_gain_isolator(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// stuck_hold on 8 channels at 1 kHz: channel 3 typed frozen on the first tick, then held (its
+// reading stuck at 140 N with its 2 N noise), the others healthy (the swaying loads, seed 1);
+// every channel's two low-passes run every tick. Precomputed inputs.
+void bench_stuck_hold(benchmark::State& state) {
+  constexpr std::size_t kChannels = 8;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 20000;
+  ftsense::generic::StuckHold::Params params;
+  params.noise_std = {2.0};
+  ftsense::generic::StuckHold hold(params, ftsense::StageContext(kPeriod, "hold", {{"signal", kChannels}}));
+  SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod);
+  std::mt19937 rng(2);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  for (std::size_t k = 0; k < kTicks; ++k) loads.x[k * kChannels + 3] = 140.0 + noise(rng);
+  std::vector<double> flag(kChannels, 0.0), code(kChannels, 0.0);
+  std::vector<double> fault(kChannels), type(kChannels), held(kChannels);
+  hold.reset();
+  flag[3] = 1.0;
+  code[3] = ftsense::fault_code(ftsense::FaultType::frozen);
+  {
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(0, kChannels), flag, code};
+    const std::span<double> outs[] = {fault, type, held};
+    hold.step(ftsense::StepIO{0.0, ins, outs});
+  }
+  flag[3] = 0.0;
+  code[3] = 0.0;
+  std::size_t k = 1;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(k * kChannels, kChannels), flag,
+                                           code};
+    const std::span<double> outs[] = {fault, type, held};
+    hold.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    if (++k == kTicks) k = 1;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+// unread_load_isolator on 8 channels (two contact groups of 4) at 1 kHz, every channel loadable,
+// after one tick in the air, the alarm up and the sum short (-100 N) throughout: every channel's
+// state and every candidate test run every tick.
+// Inputs: the swaying loads (seed 1); precomputed.
+void bench_unread_load_isolator(benchmark::State& state) {
+  constexpr std::size_t kChannels = 8;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 20000;
+  ftsense::generic::UnreadLoadIsolator::Params params;
+  params.contact_group_size = 4;
+  params.noise_std = {2.0};
+  params.residual_noise_std = {10.0};
+  ftsense::generic::UnreadLoadIsolator isolator(params, ftsense::StageContext(kPeriod, "unread", {{"signal", kChannels}}));
+  const SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod);
+  const std::vector<double> e(1, -100.0), alarm(kChannels, 1.0), loadable(kChannels, 1.0), air(kChannels, 0.0);
+  std::vector<double> fault(kChannels), type(kChannels);
+  isolator.reset();
+  {  // one tick in the air first, so that every channel has an air level
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(0, kChannels), e, alarm, air};
+    const std::span<double> outs[] = {fault, type};
+    isolator.step(ftsense::StepIO{0.0, ins, outs});
+  }
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(k * kChannels, kChannels), e,
+                                           alarm, loadable};
+    const std::span<double> outs[] = {fault, type};
+    isolator.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    if (++k == kTicks) k = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void register_benchmarks() {
   const std::pair<const char*, const char*> stages[] = {
       {"com", "lipm_com_estimator"},        {"split", "leg_force_split"},
@@ -373,6 +447,9 @@ void register_benchmarks() {
                                bench_step_isolator);
   benchmark::RegisterBenchmark("stage/gains [gain_isolator, 8 channels, alarm up, 1 kHz, synthetic]",
                                bench_gain_isolator);
+  benchmark::RegisterBenchmark("stage/hold [stuck_hold, 8 channels, one held, 1 kHz, synthetic]", bench_stuck_hold);
+  benchmark::RegisterBenchmark("stage/unread [unread_load_isolator, 8 channels, alarm up, 1 kHz, synthetic]",
+                               bench_unread_load_isolator);
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",
                                [](benchmark::State& s) { bench_tick_config(s, suralp_config("active_set")); });
   benchmark::RegisterBenchmark("tick/suralp.json [ceres solver]",

@@ -15,9 +15,11 @@
 #include "ftsense/generic/signal_validator.hpp"
 #include "ftsense/generic/signature_isolator.hpp"
 #include "ftsense/generic/step_isolator.hpp"
+#include "ftsense/generic/stuck_hold.hpp"
 #include "ftsense/generic/sum_constraint_residual.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
 #include "ftsense/generic/unloaded_reading_residual.hpp"
+#include "ftsense/generic/unread_load_isolator.hpp"
 #include "ftsense/plugin_set.hpp"
 
 namespace ftsense::generic {
@@ -25,6 +27,6 @@ namespace ftsense::generic {
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
                                   UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge,
-                                  ChangeGuard, StepIsolator, GainIsolator>;
+                                  ChangeGuard, StepIsolator, GainIsolator, StuckHold, UnreadLoadIsolator>;
 
 }  // namespace ftsense::generic
