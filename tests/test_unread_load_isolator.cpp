@@ -47,6 +47,7 @@ struct UnreadTrace {
   bool neighbour_reads = true;  // pad 0 reads its load (false: dead too, or not loaded)
   double noise = 0.0;
   unsigned seed = 0;
+  int over_from = 0, over_to = 0;  // ticks where e is +50 N instead
   int ticks = 1600;
 };
 
@@ -76,6 +77,7 @@ std::vector<int> run_unread(const UnreadTrace& t, UnreadLoadIsolator::Params p =
       sum += x[j];
     }
     e[0] = t.short_readings ? sum - reference : reference - sum;
+    if (k >= t.over_from && k < t.over_to) e[0] = 50.0;
     for (double& a : alarm) a = k >= t.alarm_from ? 1.0 : 0.0;
     loadable[0] = loadable[1] = landed ? 1.0 : 0.0;
     loadable[2] = loadable[3] = 1.0;
@@ -126,6 +128,18 @@ TEST(UnreadLoadIsolator, ReadingsAboveTheReferenceNameNobody) {
   UnreadTrace t;
   t.short_readings = false;
   EXPECT_EQ(first_unread_named(run_unread(t)), -1);
+}
+
+TEST(UnreadLoadIsolator, ASumOverItsReferenceSinceTheFootLoadedNamesNobodyAfter) {
+  // The dead pad's trace, but the readings exceed the reference by 50 N for ticks [1010, 1030)
+  // after the foot carried load (another fault, a noise burst): a pad read as nothing only takes
+  // load away, so the shortfall after it names nobody on this landing.
+  UnreadTrace t;
+  t.over_from = 1010;
+  t.over_to = 1030;
+  EXPECT_EQ(first_unread_named(run_unread(t)), -1);
+  t.over_from = t.over_to = 0;  // the same trace without it: named on tick 1100
+  EXPECT_EQ(first_unread_named(run_unread(t)), 1100);
 }
 
 TEST(UnreadLoadIsolator, AFootWhosePadsAllReadNothingNamesNobody) {

@@ -649,7 +649,8 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   doc.table(std::move(quadruped_faults));
   doc.paragraph("The same logs through the generic FDI parts alone (`configs/quadruped_generic.json`: "
                 "`sum_constraint_residual` -> `cusum_detector` -> `signature_isolator` and `step_isolator` -> "
-                "`fault_classifier`, and `signal_validator`, merged by `fault_merge` -> `fault_recovery`; calibrated "
+                "`fault_classifier`, and `signal_validator`, merged by `fault_merge` -> `stuck_hold` (a foot typed frozen "
+                "stays flagged until its reading moves) -> `fault_recovery`; calibrated "
                 "on the clean crawl by `ftsense calibrate`, at 200 Hz on a clean crawl logged at 200 Hz; per scenario, "
                 "`quadruped_generic_<scenario>/report.md`). A fault that begins as a step is isolated on that step "
                 "(the one foot whose reading and residual stepped while its virtual sensor did not); any other "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "ftsense/channel_values.hpp"
@@ -130,10 +131,11 @@ double StuckHold::moved_bound(std::size_t j, double n) const noexcept {
 
 double StuckHold::noise_bound(std::size_t j, double s, double n) const noexcept {
   const double draws = n / 1.5;
-  // Too few differences to say what the episode's noise is: only the floor.
-  if (!(draws >= 2.0)) return noise_floor_[j];
-  const double low = chi_square_quantile_at_z(draws, -z_) / draws;
-  return std::max(noise_ratio_ * s / std::max(low, 1e-3), noise_floor_[j]);
+  // Too few differences to bound the episode's own noise from below (L = 0 at this z): the noise
+  // test cannot judge, and only the level releases.
+  const double low = draws >= 2.0 ? chi_square_quantile_at_z(draws, -z_) / draws : 0.0;
+  if (!(low > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::max(noise_ratio_ * s / low, noise_floor_[j]);
 }
 
 void StuckHold::step(const StepIO& io) noexcept {
@@ -186,7 +188,9 @@ void StuckHold::step(const StepIO& io) noexcept {
     if (c.in_episode && finite) {
       c.count += 1.0;
       c.mean += (x[j] - c.mean) / c.count;
-      if (has_d2) {
+      // s is the episode's noise while the input flagged it; held, a returning noise must not
+      // raise the bound it is judged against.
+      if (has_d2 && flagged) {
         c.d2_count += 1.0;
         c.d2_mean += (d2 - c.d2_mean) / c.d2_count;
       }

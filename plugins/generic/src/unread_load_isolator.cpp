@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "ftsense/channel_values.hpp"
@@ -135,7 +136,7 @@ void UnreadLoadIsolator::reset() noexcept {
 
 bool UnreadLoadIsolator::candidate(std::size_t j, std::size_t group) const noexcept {
   const Channel& c = state_[j];
-  if (!(c.loadable && c.air_known && !c.moved && c.clear_since && !c.sum_over &&
+  if (!(c.loadable && c.air_known && c.finite_now && !c.moved && c.clear_since && !c.sum_over &&
         c.foot_loaded_ticks >= min_loaded_ticks_)) {
     return false;
   }
@@ -166,7 +167,8 @@ void UnreadLoadIsolator::step(const StepIO& io) noexcept {
     }
     for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {
       Channel& c = state_[j];
-      if (std::isfinite(x[j])) {
+      c.finite_now = std::isfinite(x[j]);  // a reading not seen is no candidate: it read nothing we know of
+      if (c.finite_now) {
         c.lp = c.lp_started ? c.lp + lp_gain_ * (x[j] - c.lp) : x[j];
         c.lp_started = true;
       }
@@ -200,15 +202,16 @@ void UnreadLoadIsolator::step(const StepIO& io) noexcept {
       for (std::size_t k = first; k < first + contact_size_; ++k) {
         Channel& c = state_[k];
         if (!(c.loadable && foot_loaded)) continue;
-        c.foot_loaded_ticks = std::min(c.foot_loaded_ticks + 1, 1L << 40);
+        c.foot_loaded_ticks = std::min<std::int64_t>(c.foot_loaded_ticks + 1, std::int64_t{1} << 40);
         c.sum_over = c.sum_over || e_lp_[g] > shortfall_bound_[g];
       }
     }
     long& named = named_[g];
-    if (!raised) {
-      named = -1;
-    } else if (named < 0 || !candidate(static_cast<std::size_t>(named), g)) {
-      named = -1;
+    if (named >= 0) {
+      // A name holds while the alarm stays up and the channel, still on the ground, reads nothing.
+      const Channel& c = state_[static_cast<std::size_t>(named)];
+      if (!(raised && c.loadable && !c.moved)) named = -1;
+    } else if (raised && std::isfinite(e[g])) {
       long found = -1;
       int count = 0;
       for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {

@@ -29,13 +29,17 @@
 // read its load near where it stuck (a pad stuck at its air level, back in the air), but its
 // noise comes back. So the reading has also moved when the low-pass v of its squared tick-to-tick
 // difference d^2 (d = x_t - x_{t-1}; E d^2 = 2 sigma_s^2 for a noise sigma_s) passes what the
-// episode's own mean s of d^2 (over its n differences) allows:
+// episode's own mean s of d^2 (over its n differences while the input flagged it) allows:
 //
-//   v > max(F s / L, 2 (sigma / m)^2 / F),   F = chi^2_nu(1 - alpha) / nu, L = chi^2_{n'}(alpha) / n',
+//   v > max(F s / L, 2 (sigma / m)^2 / F),   F = chi^2_nu(1 - alpha/2) / nu, L = chi^2_{n'}(alpha/2) / n',
 //
-// nu = (2 - a) / (1.5 a) and n' = n / 1.5 the independent draws in v and in s (successive d share a
-// reading: their squares correlate by 1/4), L the low end of the episode's own estimate; the
-// second term keeps a noiseless stuck reading from being let go by the last bit of its quantiser.
+// (the quantiles at the same two-sided z; chi-square by Wilson-Hilferty), nu = (2 - a) / (1.5 a)
+// and n' = n / 1.5 the independent draws in v and in s (successive d share a reading: their
+// squares correlate by 1/4), L the low end of the episode's own estimate; the second term keeps a
+// noiseless stuck reading from being let go by the last bit of its quantiser. Until the episode
+// has enough differences for L > 0 (n' above about 12 at z = 5.7), its noise is not known from
+// below, and only the level test releases. s is not updated while held: a noise that comes back
+// must not raise the bound it is judged against.
 //
 //   input flags j with a type in `types`      passed on; the episode goes on (mu takes x_t)
 //   input flags j with another type           passed on; any episode ends (another fault now)
@@ -44,7 +48,7 @@
 //                                             episode ends and the channel is re-admitted
 //   else                                      passed on (0)
 //
-// While held, mu and s keep taking the readings (a stuck reading's mean only gets surer; a slow drift
+// While held, mu keeps taking the readings (a stuck reading's mean only gets surer; a slow drift
 // leaves l behind the mean and is let go). A non-finite reading is no evidence either way: it
 // leaves mu and l as they were. The episode's type is the last held type the input gave.
 // What it costs: a healthy channel wrongly flagged with a held type stays flagged until its

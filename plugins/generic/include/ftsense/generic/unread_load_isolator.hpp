@@ -36,14 +36,18 @@
 //     readings are short of the reference by more than its error, as a load read as nothing leaves
 //     them), and it has not been above +z s_e since the contact group carried load (a pad read as
 //     nothing only takes load away: a sum over its reference is another fault's, a noise burst's).
-// The one candidate of a group is named (`fault` 1, `fault_type` frozen); two or more name nobody. The name holds while the alarm
-// stays up and the channel has read no load, and drops with either; the type a stuck reading has
-// is for a downstream part (stuck_hold) to keep.
+// The one candidate of a group is named (`fault` 1, `fault_type` frozen), on a tick whose sum
+// residual is a number and whose reading is; two or more name nobody. A name then holds while
+// the alarm stays up and the channel, still able to carry load, has not left its air level, and
+// drops with the first of those that fails (a second candidate does not take it away); the type
+// a stuck reading has is for a downstream part (stuck_hold) to keep. The first tick a contact
+// carries load counts as one tick of min_loaded_s.
 // What it cannot tell: a healthy pad that carries nothing through a stance (a sole rolled on its
 // edge) while another fault of the group leaves the readings short, beside neighbours that all
 // read load. Allocation-free: per-channel state sized at construction.
 
 #include <array>
+#include <cstdint>
 #include <string_view>
 #include <vector>
 
@@ -93,10 +97,11 @@ class UnreadLoadIsolator {
   struct Channel {
     double lp = 0.0;
     bool lp_started = false;
+    bool finite_now = false;    // this tick's reading is a number
     double air_level = 0.0;
     bool air_known = false;     // it has been seen unable to carry load
     bool loadable = false;
-    long foot_loaded_ticks = 0;  // since its landing, ticks its contact group carried load
+    std::int64_t foot_loaded_ticks = 0;  // since its landing, ticks its contact group carried load
     bool read_load = false;     // since its landing, its reading rose past the band
     bool moved = false;         // since its landing, its reading left the band either way
     bool clear_since = false;   // the group's alarm was down on some tick since its landing
