@@ -105,6 +105,28 @@ TEST(SignatureIsolator, HoldsItsVerdictWhileTheGroupIsRaisedAndFreesItAfter) {
   EXPECT_NEAR(g.estimate[2], -30.0, 1e-12);
 }
 
+TEST(SignatureIsolator, ABlamedChannelWhoseOwnRowClearsIsReleasedWhileTheGroupStaysRaised) {
+  // Channel 1 blamed under the leave-one-out relations. Then its relation changes so that its row
+  // sees only its own reading (a foot in the air: S row 1 = e_1), and that row is at 0 with its
+  // detector down while channel 2's row stays raised (another fault): channel 1 is released on
+  // that tick. With its row still seeing the others (the relations unchanged), it is held.
+  for (const bool own_row : {true, false}) {
+    Group g(kLeaveOneOut);
+    g.fault_on(1, 40.0);
+    ASSERT_EQ(g.fault[1], 1.0);
+    if (own_row) g.signature = {1.0, -0.5, -0.5, 0.0, 1.0, 0.0, -0.5, -0.5, 1.0};
+    g.r = {0.0, 0.0, 30.0};
+    g.alarm = {0.0, 0.0, 1.0};
+    const std::span<const double> ins[] = {g.r, g.alarm, g.signature};
+    const std::span<double> outs[] = {g.fault, g.type, g.estimate, g.cannot};
+    g.isolator.step(StepIO{0.01, ins, outs});
+    EXPECT_EQ(g.fault[1], own_row ? 0.0 : 1.0) << (own_row ? "own row" : "shared row");
+    if (own_row) {
+      EXPECT_EQ(g.estimate[1], 0.0);
+    }
+  }
+}
+
 TEST(SignatureIsolator, ParallelSignaturesCannotBeJudged) {
   // Channels 0 and 1 move the residuals alike (two sensors that always load together): a fault
   // on either is raised, nobody is blamed, the group says it cannot judge.

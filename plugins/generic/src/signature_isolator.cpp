@@ -223,6 +223,23 @@ void SignatureIsolator::step(const StepIO& io) noexcept {
         column_sq_[j] = sq;
         usable_[j] = finite && std::isfinite(sq) && sq > kMinColumnNorm ? 1 : 0;
       }
+      // A blamed channel whose own residual row sees no other channel (a foot in the air: its row
+      // is its own reading) and whose own detector is down has its evidence cleared: released,
+      // whatever keeps the rest of the group raised.
+      for (std::size_t k = 0; k < count;) {
+        const std::size_t j = order[k];
+        bool own_row = usable_[j] != 0 && std::isfinite(alarm[first + j]) && alarm[first + j] == 0.0;
+        for (std::size_t other = 0; other < g && own_row; ++other) {
+          if (other != j) own_row = columns_[j * g + other] == 0.0;
+        }
+        if (!own_row) {
+          ++k;
+          continue;
+        }
+        estimate_[first + j] = 0.0;
+        std::copy(order + k + 1, order + count, order + k);
+        --count;
+      }
       // The blamed channels seen this tick, fitted jointly.
       std::size_t n = 0;
       for (std::size_t k = 0; k < count; ++k) {

@@ -32,7 +32,11 @@
 // blamed and every blamed channel is seen; a leftover that only spanned columns could explain is
 // not reported). A column that the blamed columns span this tick (|t_j|^2 - <c, G^-1 c> at most
 // 1e-9 |t_j|^2) is no candidate: its fault would be theirs. Blamed channels stay blamed while any
-// residual of the group is raised, and are released when none is. With one fault a group, the
+// residual of the group is raised, and are released when none is; and a blamed channel j whose
+// own row sees no other channel this tick (S_jk = 0 for k != j: a foot in the air, whose row is
+// its own reading) while its own detector is down is released then, whatever keeps the rest of
+// the group raised: its own evidence has cleared (without it, an offset that ended in the air
+// stayed blamed for 9 s beside another foot's faults, its correction poisoning the recovery). With one fault a group, the
 // healthy neighbours whose residuals a fault excites are never blamed for it; with several, that
 // holds as far as the signature is exact: a relative error e in S leaves about e f of a blamed
 // fault f on the neighbours' rows, blamed once (e f / sigma)^2 clears the margin. Columns with
