@@ -5,7 +5,10 @@
 //   a = 1 - exp(-2 pi f_c T)
 //
 // f_c at or above the Nyquist frequency 1 / (2 T) is a ConfigError at /params/<parameter>, the
-// name of the plugin's parameter that states f_c.
+// name of the plugin's parameter that states f_c. Stated by its time constant tau [s] instead:
+// a = 1 - exp(-T / tau), tau shorter than a tick a ConfigError (a low-pass that does not smooth).
+// White noise of standard deviation sigma leaves the low-pass with sigma sqrt(a / (2 - a))
+// (low_pass_noise_ratio).
 
 #include <cmath>
 #include <numbers>
@@ -26,5 +29,17 @@ namespace ftsense {
   }
   return -std::expm1(-2.0 * std::numbers::pi * cutoff_hz * period_s);
 }
+
+[[nodiscard]] inline double low_pass_gain_from_time_constant(double time_constant_s, double period_s,
+                                                             std::string_view parameter) {
+  if (!(time_constant_s >= period_s)) {
+    throw ConfigError("/params/" + std::string(parameter), " = " + format_number(time_constant_s) +
+                                                               " s is shorter than a tick (" + format_number(period_s) +
+                                                               " s): a low-pass that does not smooth");
+  }
+  return -std::expm1(-period_s / time_constant_s);
+}
+
+[[nodiscard]] inline double low_pass_noise_ratio(double gain) { return std::sqrt(gain / (2.0 - gain)); }
 
 }  // namespace ftsense

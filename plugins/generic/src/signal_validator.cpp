@@ -9,6 +9,7 @@
 #include "ftsense/channel_values.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/false_alarm_target.hpp"
 
 namespace ftsense::generic {
 
@@ -134,15 +135,8 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
   window_ = static_cast<std::size_t>(ticks);
   spike_hold_max_ticks_ = std::max(std::round(params.spike_hold_s / sample_period_s_), ticks);
   spike_rule_ = {spike_hold_max_ticks_, ticks, -std::log(params.spike_gap_probability)};
-  if (!(params.noise_margin >= 1.0 && std::isfinite(params.noise_margin))) {
-    throw ConfigError("/params/noise_margin",
-                      " = " + format_number(params.noise_margin) + " is not a factor of at least 1");
-  }
-  const double alpha = sample_period_s_ / params.false_alarm_interval_s;
-  if (!(alpha < 0.5)) {
-    throw ConfigError("/params/false_alarm_interval_s",
-                      " = " + format_number(params.false_alarm_interval_s) + " s is not longer than two ticks");
-  }
+  check_noise_margin(params.noise_margin);
+  const double alpha = false_alarm_per_tick(sample_period_s_, params.false_alarm_interval_s);
   // Overlapping second differences: nu = 36 n / 70 degrees of freedom (Satterthwaite).
   const double nu = 36.0 * static_cast<double>(window_) / 70.0;
   const double low_quantile = chi_square_quantile(nu, alpha) / nu;

@@ -7,6 +7,8 @@
 
 #include "ftsense/channel_values.hpp"
 #include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/false_alarm_target.hpp"
+#include "ftsense/low_pass_gain.hpp"
 
 namespace ftsense::generic {
 
@@ -60,23 +62,11 @@ StuckHold::StuckHold(const Params& params, const StageContext& context) : cannot
   const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
   const auto noise_std = channel_values(params.noise_std, dim, "noise_std");
   const auto resolution = channel_values(params.resolution, dim, "resolution");
-  if (!(params.noise_margin >= 1.0 && std::isfinite(params.noise_margin))) {
-    throw ConfigError("/params/noise_margin",
-                      " = " + format_number(params.noise_margin) + " is not a factor of at least 1");
-  }
-  const double alpha = period / params.false_alarm_interval_s;
-  if (!(alpha < 0.5)) {
-    throw ConfigError("/params/false_alarm_interval_s",
-                      " = " + format_number(params.false_alarm_interval_s) + " s is not longer than two ticks");
-  }
-  if (!(params.smoothing_s >= period)) {
-    throw ConfigError("/params/smoothing_s", " = " + format_number(params.smoothing_s) +
-                                                 " s is shorter than a tick (" + format_number(period) +
-                                                 " s): a low-pass that does not smooth leaves the bound to one reading's noise");
-  }
+  check_noise_margin(params.noise_margin);
+  const double alpha = false_alarm_per_tick(period, params.false_alarm_interval_s);
   const double z = -normal_quantile(0.5 * alpha);
-  lp_gain_ = -std::expm1(-period / params.smoothing_s);
-  lp_noise_ = std::sqrt(lp_gain_ / (2.0 - lp_gain_));
+  lp_gain_ = low_pass_gain_from_time_constant(params.smoothing_s, period, "smoothing_s");
+  lp_noise_ = low_pass_noise_ratio(lp_gain_);
   z_ = z;
   // v's independent draws: a low-pass of gain a averages (2 - a) / a values, and successive d^2
   // correlate by 1/4, which takes a factor 1 + 2 / 4 off.
@@ -174,15 +164,20 @@ void StuckHold::step(const StepIO& io) noexcept {
           c.d2_count = 0.0;
         }
         c.type_code = code[j];
+        c.noise_limit_set = false;  // s takes this tick's difference: its bound is judged anew
       } else {
         c.in_episode = false;
       }
     } else if (c.in_episode) {
       // The input let the channel go: held while the reading has not moved from the episode's mean.
-      // A non-finite reading is no evidence; nor is an episode without a reading yet.
+      // A non-finite reading is no evidence; nor is an episode without a reading yet. s and its
+      // count are fixed while held, so their bound is taken once.
+      if (!c.noise_limit_set) {
+        c.noise_limit = noise_bound(j, c.d2_mean, c.d2_count);
+        c.noise_limit_set = true;
+      }
       hold = c.count == 0.0 || !finite ||
-             (std::abs(c.lp - c.mean) <= moved_bound(j, c.count) &&
-              !(c.lp_d2_started && c.lp_d2 > noise_bound(j, c.d2_mean, c.d2_count)));
+             (std::abs(c.lp - c.mean) <= moved_bound(j, c.count) && !(c.lp_d2_started && c.lp_d2 > c.noise_limit));
       c.in_episode = hold;
     }
     if (c.in_episode && finite) {

@@ -8,6 +8,8 @@
 #include "ftsense/channel_values.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/false_alarm_target.hpp"
+#include "ftsense/low_pass_gain.hpp"
 
 namespace ftsense::generic {
 
@@ -72,30 +74,19 @@ UnreadLoadIsolator::UnreadLoadIsolator(const Params& params, const StageContext&
                           std::to_string(group_size_) +
                           " into contact groups of 2 or more (a channel alone has no neighbour to show its landing)");
   }
-  if (!(params.noise_margin >= 1.0 && std::isfinite(params.noise_margin))) {
-    throw ConfigError("/params/noise_margin",
-                      " = " + format_number(params.noise_margin) + " is not a factor of at least 1");
-  }
-  const double alpha = period / params.false_alarm_interval_s;
-  if (!(alpha < 0.5)) {
-    throw ConfigError("/params/false_alarm_interval_s",
-                      " = " + format_number(params.false_alarm_interval_s) + " s is not longer than two ticks");
-  }
-  if (!(params.smoothing_s >= period)) {
-    throw ConfigError("/params/smoothing_s", " = " + format_number(params.smoothing_s) +
-                                                 " s is shorter than a tick (" + format_number(period) + " s)");
-  }
+  check_noise_margin(params.noise_margin);
+  const double alpha = false_alarm_per_tick(period, params.false_alarm_interval_s);
   if (!(params.min_loaded_s <= 1e6)) {
     throw ConfigError("/params/min_loaded_s", " = " + format_number(params.min_loaded_s) + " s is not a time to wait");
   }
-  lp_gain_ = -std::expm1(-period / params.smoothing_s);
+  lp_gain_ = low_pass_gain_from_time_constant(params.smoothing_s, period, "smoothing_s");
   min_loaded_ticks_ = std::lround(params.min_loaded_s / period);
   const double z = -normal_quantile(0.5 * alpha);
   const auto noise_std = channel_values(params.noise_std, channels_, "noise_std");
   const auto resolution = channel_values(params.resolution, channels_, "resolution");
   band_.resize(channels_);
   for (std::size_t j = 0; j < channels_; ++j) {
-    band_[j] = resolution[j] + 2.0 * z * params.noise_margin * noise_std[j] * std::sqrt(lp_gain_ / (2.0 - lp_gain_));
+    band_[j] = resolution[j] + 2.0 * z * params.noise_margin * noise_std[j] * low_pass_noise_ratio(lp_gain_);
   }
   const auto residual_noise = channel_values(params.residual_noise_std, groups_, "residual_noise_std");
   shortfall_bound_.resize(groups_);

@@ -121,6 +121,8 @@ class StuckHold {
     double count = 0.0;     // n
     double d2_mean = 0.0;   // s over the episode's differences
     double d2_count = 0.0;
+    double noise_limit = 0.0;     // noise_bound(s, its count), taken when the input lets go
+    bool noise_limit_set = false;
     double type_code = 0.0;  // the episode's type
   };
 
