@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -19,11 +20,18 @@
 namespace ftsense::testing {
 template <>
 struct ContractSetup<generic::FaultClassifier> {
-  static Json params() { return Json{{"residual_noise_density", {1.0}}, {"history_s", 1.0}}; }
+  static Json params() {
+    return Json{{"residual_noise_density", {1.0}}, {"history_s", 1.0}, {"exact_residual", true}};
+  }
   static std::size_t input_dim(std::string_view) { return 3; }
   static double sample_period_s() { return 0.01; }
   static void nominal_input(std::string_view port, std::span<double> v) {
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = port == "fault" ? 0.0 : 10.0 * static_cast<double>(i);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      // The exact reference holds on the first channel only (say, an unloaded one).
+      if (port == "exact_residual") v[i] = i == 0 ? 0.5 : nan;
+      else v[i] = port == "fault" ? 0.0 : 10.0 * static_cast<double>(i);
+    }
   }
 };
 INSTANTIATE_TYPED_TEST_SUITE_P(FaultClassification, PluginContract, ::testing::Types<generic::FaultClassifier>);
@@ -278,6 +286,82 @@ TEST(FaultClassifier, SpreadsTheFitsOverTheBlocksTicks) {
   ASSERT_GE(named_at[0], 0);
   EXPECT_EQ(named_at[1], named_at[0] + 1);
   EXPECT_EQ(named_at[2], named_at[0] + 2);
+}
+
+// A pad that lifts every other 0.5 s (0-0.5 s air, 0.5-1 s ground, ...), an offset of 20 from
+// 5 s, flagged from 5.5 s, its ground reference 5 off after 5 s: 7 s of one channel, with `shake`
+// added to the faulty air samples; the exact residual (the reading in the air) is wired when
+// `exact_wired`.
+void run_lifting_pad(FaultClassifier& c, bool exact_wired, const std::function<double(long)>& shake) {
+  c.reset();
+  for (long k = 0; k < 700; ++k) {
+    const double t = static_cast<double>(k) * kPeriod;
+    const bool in_air = (k / 50) % 2 == 0;
+    const double load = in_air ? 0.0 : reference(t);
+    const double x = load + (after_onset(t) ? 20.0 + (in_air ? shake(k) : 0.0) : 0.0);
+    const double v = in_air ? 0.0 : load + (after_onset(t) ? 5.0 : 0.0);
+    const double exact = in_air ? x : std::numeric_limits<double>::quiet_NaN();
+    const double f = flagged_after_delay(t) ? 1.0 : 0.0;
+    const double flags[] = {f}, xs[] = {x}, vs[] = {v}, es[] = {exact};
+    double types[1], estimates[1];
+    const std::span<const double> ins[] = {flags, xs, vs, es};
+    const std::span<double> outs[] = {types, estimates};
+    c.step(StepIO{t, exact_wired ? std::span<const std::span<const double>>(ins)
+                                 : std::span<const std::span<const double>>(ins, 3),
+                  outs});
+  }
+}
+
+// A foot's pad: 0.5 s in the air (its reference 0, exact up to the sensor's noise), 0.5 s on the
+// ground (its reference, a leave-one-out force, 5 N off after 5 s); an offset of 20 from 5 s.
+// Without the exact input every block weighs alike and the offset is the mean of 20 and 15; with
+// it an air block weighs (q / q_e)^2 = 100 stance blocks. The onset's block (5.00 s, air) is
+// fitted by no model, so 99 air blocks and 100 ground blocks give b.
+TEST(FaultClassifier, WeighsBlocksWhoseReferenceIsExactByTheirOwnNoise) {
+  for (const bool exact_wired : {false, true}) {
+    FaultClassifier::Params p;
+    p.residual_noise_density = {1.0};
+    p.exact_noise_density = {0.1};
+    p.exact_residual = exact_wired;
+    p.block_s = kPeriod;
+    p.history_s = 10.0;
+    FaultClassifier c(p, StageContext(kPeriod, "classify", {{"measured", 1}}));
+    run_lifting_pad(c, exact_wired, [](long) { return 0.0; });
+    EXPECT_EQ(c.fit(0).type, FaultType::offset) << "exact wired: " << exact_wired;
+    EXPECT_NEAR(c.fit(0).onset_s, kOnset, 1e-9) << "exact wired: " << exact_wired;
+    const double air_weight = exact_wired ? 100.0 : 1.0;
+    const double expected = (100.0 * 15.0 + 99.0 * air_weight * 20.0) / (100.0 + 99.0 * air_weight);
+    EXPECT_NEAR(c.fit(0).size, expected, 1e-9) << "exact wired: " << exact_wired;
+  }
+}
+
+// A step of 20 that begins halfway through a block of 0.1 s: that block's mean is 10, a ramp's
+// first point, and no model is asked to explain it, so the offset is exactly 20 and its onset the
+// block's mean tick time.
+TEST(FaultClassifier, TheBlockAFaultBeginsInIsFittedByNoModel) {
+  Trace trace(1.0, 0.1);
+  trace.run(kEnd, [](double t, double v) { return v + (t >= 5.05 - 1e-9 ? 20.0 : 0.0); }, flagged_after_delay);
+  EXPECT_EQ(trace.named(), FaultType::offset);
+  EXPECT_NEAR(trace.classifier.fit(0).size, 20.0, 1e-9);
+  EXPECT_NEAR(trace.classifier.fit(0).onset_s, 5.045, 1e-9);
+}
+
+// The same pad as above, its air samples now shaken by a burst of +-5 around the offset of 20
+// (two-tick blocks: their sample variance is 2 x 5^2 = 50, against q_e^2 / T = 1). An air block
+// then weighs n^2 / (n 50) = 0.04, a ground block n T / q^2 = 0.02, instead of 2 for a quiet air
+// block: 49 air blocks and 50 ground blocks after the onset's.
+TEST(FaultClassifier, AnExactBlockThatSpreadsMoreThanItsNoiseWeighsAsItsSpread) {
+  FaultClassifier::Params p;
+  p.residual_noise_density = {1.0};
+  p.exact_noise_density = {0.1};
+  p.exact_residual = true;
+  p.block_s = 2.0 * kPeriod;
+  p.history_s = 10.0;
+  FaultClassifier c(p, StageContext(kPeriod, "classify", {{"measured", 1}}));
+  run_lifting_pad(c, true, [](long k) { return k % 2 == 0 ? 5.0 : -5.0; });
+  EXPECT_EQ(c.fit(0).type, FaultType::offset);
+  EXPECT_NEAR(c.fit(0).onset_s, kOnset + 0.5 * kPeriod, 1e-9);
+  EXPECT_NEAR(c.fit(0).size, (50.0 * 0.02 * 15.0 + 49.0 * 0.04 * 20.0) / (50.0 * 0.02 + 49.0 * 0.04), 1e-9);
 }
 
 TEST(FaultClassifier, RejectsAHistoryShorterThanFourBlocks) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "ftsense/channel_values.hpp"
@@ -22,13 +23,13 @@ enum Model : std::size_t { kOffset, kDrift, kGain, kFrozen };
 constexpr double kMinGain = 1e-9;
 
 struct ModelFit {
-  double rss = std::numeric_limits<double>::infinity();
+  double rss = std::numeric_limits<double>::infinity();  // weighted: in units of chi^2
   double size = 0.0;      // b, s, k or c
   double onset_s = 0.0;   // time of the onset block
-  double sum_vv = 0.0;    // gain only: sum v_i^2 after the onset (the uncertainty of k)
+  double sum_vv = 0.0;    // gain only: sum w_i v_i^2 after the onset (the uncertainty of k)
 };
 
-// Suffix sums over the blocks i >= i0 that hold a value.
+// Weighted suffix sums over the blocks i >= i0 that hold a value (each term times w_i).
 struct Sums {
   double n = 0.0, e = 0.0, ee = 0.0, x = 0.0, xx = 0.0, ev = 0.0, vv = 0.0, t = 0.0, tt = 0.0, et = 0.0;
 };
@@ -40,6 +41,16 @@ void FaultClassifier::Params::describe(ParamSchema<Params>& schema) {
       .add("residual_noise_density", &Params::residual_noise_density,
            "low-frequency noise density q of the fault-free e = measured - virtual, in its unit times sqrt(s): "
            "the mean of e over w seconds has standard deviation q / sqrt(w); one value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+  schema
+      .add("exact_residual", &Params::exact_residual,
+           "adds input exact_residual: measured minus a reference exact up to the sensor's own noise on the ticks "
+           "where it is finite (unloaded_reading_residual: a channel that carries no load reads zero)");
+  schema
+      .add("exact_noise_density", &Params::exact_noise_density,
+           "low-frequency noise density q_e of exact_residual's fault-free samples (unit times sqrt(s)); one value "
+           "applies to all; used when exact_residual is wired")
       .greater_than(0.0)
       .count_at_least(1);
   schema.add("block_s", &Params::block_s, "length of the blocks whose means are fitted (a whole number of ticks)")
@@ -63,8 +74,10 @@ void FaultClassifier::Params::describe(ParamSchema<Params>& schema) {
       .less_than(1.0);
 }
 
-FaultClassifier::FaultClassifier(const Params& params, const StageContext& context) {
+FaultClassifier::FaultClassifier(const Params& params, const StageContext& context)
+    : exact_wired_(params.exact_residual) {
   const double period = context.sample_period_s();
+  sample_period_s_ = period;
   channels_count_ = context.wired_dim("measured", 1);
   const std::vector<double> density =
       channel_values(params.residual_noise_density, channels_count_, "residual_noise_density");
@@ -85,8 +98,14 @@ FaultClassifier::FaultClassifier(const Params& params, const StageContext& conte
                    static_cast<std::size_t>(ticks_per_block_);
   const double z = normal_quantile(0.5 + 0.5 * params.confidence);
   margin_ = z * z;
-  weight_.resize(channels_count_);
-  for (std::size_t c = 0; c < channels_count_; ++c) weight_[c] = block_s_ / (density[c] * density[c]);
+  const std::vector<double> exact_density =
+      channel_values(params.exact_noise_density, channels_count_, "exact_noise_density");
+  density2_.resize(channels_count_);
+  exact_density2_.resize(channels_count_);
+  for (std::size_t c = 0; c < channels_count_; ++c) {
+    density2_[c] = density[c] * density[c];
+    exact_density2_[c] = exact_density[c] * exact_density[c];
+  }
   ports_.add_input(PortSpec{"fault", channels_count_, std::string(kDimensionless),
                             "1 while the channel is flagged (isolated) as faulty; 0 or NaN: not"}
                        .sized_by("as `measured`"));
@@ -97,6 +116,12 @@ FaultClassifier::FaultClassifier(const Params& params, const StageContext& conte
                             "the reference v: a virtual sensor's estimate of the same quantity",
                             PortRole::virtual_estimate}
                        .sized_by("as `measured`"));
+  if (exact_wired_) {
+    ports_.add_input(PortSpec{"exact_residual", channels_count_, std::string(kAnyUnit),
+                              "measured minus a reference exact up to the sensor's own noise (e.g. 0 for a "
+                              "channel that carries no load); NaN on the ticks where no such reference holds"}
+                         .sized_by("as `measured`"));
+  }
   ports_.add_output(PortSpec{"fault_type", channels_count_, std::string(kDimensionless),
                              "fault type code (fault_type.hpp): the named model while flagged (unclassified "
                              "until one is named), else none"}
@@ -107,6 +132,7 @@ FaultClassifier::FaultClassifier(const Params& params, const StageContext& conte
                         .sized_by("as `measured`"));
   block_x_.assign(channels_count_ * capacity_, 0.0);
   block_v_.assign(channels_count_ * capacity_, 0.0);
+  block_w_.assign(channels_count_ * capacity_, 0.0);
   block_time_.assign(capacity_, 0.0);
   channels_.assign(channels_count_, Channel{});
 }
@@ -114,6 +140,7 @@ FaultClassifier::FaultClassifier(const Params& params, const StageContext& conte
 void FaultClassifier::reset() noexcept {
   std::fill(block_x_.begin(), block_x_.end(), 0.0);
   std::fill(block_v_.begin(), block_v_.end(), 0.0);
+  std::fill(block_w_.begin(), block_w_.end(), 0.0);
   std::fill(block_time_.begin(), block_time_.end(), 0.0);
   std::fill(channels_.begin(), channels_.end(), Channel{});
   blocks_ = 0;
@@ -126,12 +153,21 @@ void FaultClassifier::step(const StepIO& io) noexcept {
   const auto fault = io.in(kFault);
   const auto x = io.in(kMeasured);
   const auto v = io.in(kVirtual);
+  const std::span<const double> exact = exact_wired_ ? io.in(kExactResidual) : std::span<const double>{};
   const auto type = io.out(kFaultType);
   const auto estimate = io.out(kFaultEstimate);
   block_time_sum_ += io.time_s;
   for (std::size_t c = 0; c < channels_count_; ++c) {
     Channel& ch = channels_[c];
-    if (std::isfinite(x[c]) && std::isfinite(v[c])) {
+    if (exact_wired_ && std::isfinite(x[c]) && std::isfinite(exact[c])) {
+      // The exact reference x - r_e stands in for v on this tick (v is then exact too, or NaN).
+      ch.sum_x += x[c];
+      ch.sum_v += x[c] - exact[c];
+      ++ch.count;
+      ++ch.exact_count;
+      ch.sum_exact += exact[c];
+      ch.sum_exact2 += exact[c] * exact[c];
+    } else if (std::isfinite(x[c]) && std::isfinite(v[c])) {
       ch.sum_x += x[c];
       ch.sum_v += v[c];
       ++ch.count;
@@ -158,8 +194,21 @@ void FaultClassifier::step(const StepIO& io) noexcept {
       const double nan = std::numeric_limits<double>::quiet_NaN();
       block_x_[c * capacity_ + slot] = ch.count > 0 ? ch.sum_x / ch.count : nan;
       block_v_[c * capacity_ + slot] = ch.count > 0 ? ch.sum_v / ch.count : nan;
+      // 1 / Var(mean e) = n^2 / (n_r q^2 / T + n_e s_e^2): the header's block weight, with the
+      // exact ticks' spread s_e^2 = max(q_e^2 / T, their own sample variance).
+      const double n = ch.count;
+      const double n_exact = ch.exact_count;
+      double exact_spread = exact_density2_[c] / sample_period_s_;
+      if (ch.exact_count >= 2) {
+        const double own = (ch.sum_exact2 - ch.sum_exact * ch.sum_exact / n_exact) / (n_exact - 1.0);
+        exact_spread = std::max(exact_spread, own);
+      }
+      const double spread = (n - n_exact) * density2_[c] / sample_period_s_ + n_exact * exact_spread;
+      block_w_[c * capacity_ + slot] = ch.count > 0 ? n * n / spread : 0.0;
       ch.sum_x = ch.sum_v = 0.0;
+      ch.sum_exact = ch.sum_exact2 = 0.0;
       ch.count = 0;
+      ch.exact_count = 0;
     }
     ++blocks_;
     tick_in_block_ = 0;
@@ -205,51 +254,60 @@ void FaultClassifier::classify(std::size_t c) noexcept {
   const long last_onset = std::clamp(ch.first_flagged, start, end - 1);
   const double* bx = block_x_.data() + c * capacity_;
   const double* bv = block_v_.data() + c * capacity_;
+  const double* bw = block_w_.data() + c * capacity_;
   const auto slot = [&](long i) { return static_cast<std::size_t>(i % static_cast<long>(capacity_)); };
   const double t_ref = block_time_[slot(start)];  // times relative to the window: well conditioned
 
   double total_ee = 0.0;
   for (long i = start; i < end; ++i) {
     const double e = bx[slot(i)] - bv[slot(i)];
-    if (std::isfinite(e)) total_ee += e * e;
+    if (std::isfinite(e)) total_ee += bw[slot(i)] * e * e;
   }
   std::array<ModelFit, 4> best{};
-  Sums s;
+  Sums s;  // over the blocks after i
   for (long i = end - 1; i >= start; --i) {
     const double xi = bx[slot(i)], vi = bv[slot(i)], ti = block_time_[slot(i)] - t_ref;
     const double e = xi - vi;
-    if (std::isfinite(e)) {
-      s.n += 1.0;
-      s.e += e;
-      s.ee += e * e;
-      s.x += xi;
-      s.xx += xi * xi;
-      s.ev += e * vi;
-      s.vv += vi * vi;
-      s.t += ti;
-      s.tt += ti * ti;
-      s.et += e * ti;
+    const double wi = std::isfinite(e) ? bw[slot(i)] : 0.0;
+    if (i <= last_onset && s.n > 0.0) {
+      // Onset within block i: e = 0 before it, the model after it; block i itself holds the
+      // fault for an unknown share of its ticks (a step there is a ramp's first point), so no
+      // model is asked to explain it.
+      const double before = std::max(0.0, total_ee - s.ee - wi * e * e);
+      const double onset_s = ti + t_ref;
+      const auto keep = [&](std::size_t m, double after, double size, double vv = 0.0) {
+        const double rss = before + std::max(0.0, after);
+        // A tie keeps the later onset: a fault that begins on a block's first tick also fits an
+        // onset within the block before (its share there is 0), which rounding must not pick.
+        const bool better =
+            std::isfinite(rss) && (!std::isfinite(best[m].rss) || rss < best[m].rss - 1e-12 * (1.0 + best[m].rss));
+        if (better) best[m] = ModelFit{rss, size, onset_s, vv};
+      };
+      keep(kOffset, s.ee - s.e * s.e / s.n, s.e / s.n);
+      const double dd = s.tt - 2.0 * ti * s.t + s.n * ti * ti;  // sum w (t - t_i0)^2
+      const double ed = s.et - ti * s.e;                         // sum w e (t - t_i0)
+      if (dd > 0.0) keep(kDrift, s.ee - ed * ed / dd, ed / dd);
+      // A reference at 0 throughout fits no gain.
+      if (s.vv > 0.0) keep(kGain, s.ee - s.ev * s.ev / s.vv, 1.0 + s.ev / s.vv, s.vv);
+      keep(kFrozen, s.xx - s.x * s.x / s.n, s.x / s.n);
     }
-    if (i > last_onset || s.n < 1.0) continue;
-    // Onset at block i: e = 0 before it, the model after it.
-    const double before = std::max(0.0, total_ee - s.ee);
-    const double onset_s = ti + t_ref;
-    const auto keep = [&](std::size_t m, double after, double size, double vv = 0.0) {
-      const double rss = before + std::max(0.0, after);
-      if (rss < best[m].rss) best[m] = ModelFit{rss, size, onset_s, vv};
-    };
-    keep(kOffset, s.ee - s.e * s.e / s.n, s.e / s.n);
-    const double dd = s.tt - 2.0 * ti * s.t + s.n * ti * ti;  // sum (t - t_i0)^2
-    const double ed = s.et - ti * s.e;                         // sum e (t - t_i0)
-    // One block after the onset fits no slope (dd = 0); a reference at 0 throughout, no gain.
-    if (dd > 0.0) keep(kDrift, s.ee - ed * ed / dd, ed / dd);
-    if (s.vv > 0.0) keep(kGain, s.ee - s.ev * s.ev / s.vv, 1.0 + s.ev / s.vv, s.vv);
-    keep(kFrozen, s.xx - s.x * s.x / s.n, s.x / s.n);
+    if (wi > 0.0) {
+      s.n += wi;
+      s.e += wi * e;
+      s.ee += wi * e * e;
+      s.x += wi * xi;
+      s.xx += wi * xi * xi;
+      s.ev += wi * e * vi;
+      s.vv += wi * vi * vi;
+      s.t += wi * ti;
+      s.tt += wi * ti * ti;
+      s.et += wi * e * ti;
+    }
   }
 
   // A gain whose k is not told from 0 is the frozen-at-zero explanation: one hypothesis.
   const ModelFit& gain = best[kGain];
-  const bool gain_is_dead = std::isfinite(gain.rss) && gain.size * gain.size * weight_[c] * gain.sum_vv < margin_;
+  const bool gain_is_dead = std::isfinite(gain.rss) && gain.size * gain.size * gain.sum_vv < margin_;
   if (gain_is_dead) {
     if (gain.rss < best[kFrozen].rss) best[kFrozen] = ModelFit{gain.rss, 0.0, gain.onset_s, 0.0};
     best[kGain].rss = std::numeric_limits<double>::infinity();
@@ -261,7 +319,7 @@ void FaultClassifier::classify(std::size_t c) noexcept {
   if (!std::isfinite(best[winner].rss)) return;
   bool named = true;
   for (std::size_t m = 0; m < kModels.size(); ++m) {
-    if (m != winner && (best[m].rss - best[winner].rss) * weight_[c] < margin_) named = false;
+    if (m != winner && best[m].rss - best[winner].rss < margin_) named = false;
   }
   if (named) ch.fit.type = kModels[winner];
   // The named model's latest fit (its size and onset follow the growing window).
