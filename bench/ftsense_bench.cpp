@@ -32,6 +32,7 @@
 #include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/generic/gain_isolator.hpp"
 #include "ftsense/generic/step_isolator.hpp"
+#include "ftsense/generic/rejoin_detector.hpp"
 #include "ftsense/generic/stuck_hold.hpp"
 #include "ftsense/generic/unread_load_isolator.hpp"
 #include "ftsense/io/csv_log.hpp"
@@ -391,6 +392,39 @@ void bench_stuck_hold(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// rejoin_detector on 8 channels at 1 kHz, every channel flagged with an offset of 60 N that goes
+// on (its recovered value the reading less 60): every channel judged every tick, none rejoins.
+// Inputs: the swaying loads (seed 1); precomputed.
+void bench_rejoin_detector(benchmark::State& state) {
+  constexpr std::size_t kChannels = 8;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 20000;
+  ftsense::generic::RejoinDetector::Params params;
+  params.noise_std = {2.0};
+  ftsense::generic::RejoinDetector rejoin(params, ftsense::StageContext(kPeriod, "rejoin", {{"signal", kChannels}}));
+  const SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod);
+  std::vector<double> recovered(loads.x.size());
+  for (std::size_t i = 0; i < loads.x.size(); ++i) recovered[i] = loads.x[i] - 60.0;
+  const std::vector<double> flagged(kChannels, 1.0);
+  std::vector<double> rejoined(kChannels), pulses(kChannels, 0.0);
+  rejoin.reset();
+  std::size_t k = 1;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(k * kChannels, kChannels),
+                                           std::span<const double>(recovered).subspan((k - 1) * kChannels, kChannels),
+                                           flagged};
+    const std::span<double> outs[] = {rejoined};
+    rejoin.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    for (std::size_t j = 0; j < kChannels; ++j) pulses[j] += rejoined[j];
+    if (++k == kTicks) k = 1;
+  }
+  for (double p : pulses) {
+    if (p != 0.0) state.SkipWithError("a channel rejoined: the loads' noise passed the bound");
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 // unread_load_isolator on 8 channels (two contact groups of 4) at 1 kHz, every channel loadable,
 // after one tick in the air, the alarm up and the sum short (-100 N) throughout: every channel's
 // state and every candidate test run every tick.
@@ -452,6 +486,8 @@ void register_benchmarks() {
   benchmark::RegisterBenchmark("stage/gains [gain_isolator, 8 channels, alarm up, 1 kHz, synthetic]",
                                bench_gain_isolator);
   benchmark::RegisterBenchmark("stage/hold [stuck_hold, 8 channels, one held, 1 kHz, synthetic]", bench_stuck_hold);
+  benchmark::RegisterBenchmark("stage/rejoin [rejoin_detector, 8 channels, all flagged, 1 kHz, synthetic]",
+                               bench_rejoin_detector);
   benchmark::RegisterBenchmark("stage/unread [unread_load_isolator, 8 channels, alarm up, 1 kHz, synthetic]",
                                bench_unread_load_isolator);
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",

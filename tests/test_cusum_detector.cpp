@@ -2,6 +2,7 @@
 // seeded Monte-Carlo checks of the false-alarm target, white and correlated, at two rates.
 
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <random>
 #include <vector>
@@ -443,6 +444,42 @@ TEST(ResidualStatistics, RecoversAFirstOrderProcess) {
   EXPECT_NEAR(stats.centre(), 40.0, 0.05 * 3.0);
   EXPECT_NEAR(stats.standard_deviation() / 3.0, 1.0, 0.05);
   EXPECT_NEAR(stats.correlation_time_s() / 0.02, 1.0, 0.05);
+}
+
+}  // namespace
+}  // namespace ftsense
+
+namespace ftsense {
+namespace {
+
+// A pad's air row: raised by a shift, then not a number (the foot down) so the flag holds, until
+// another test's reset drops it on the exact tick; without a reset the flag holds on.
+TEST(CusumDetector, AResetDropsAFlagHeldWhileTheResidualIsNotANumber) {
+  for (const bool send_reset : {false, true}) {
+    CusumDetector::Params p;
+    p.noise_std = {1.0};
+    p.min_change = {4.0};
+    p.false_alarm_interval_s = 100.0;
+    p.reset = true;
+    CusumDetector detector(p, StageContext(0.01, "cusum", {{"residual", 1}}));
+    detector.reset();
+    std::vector<double> r{0.0}, reset{0.0}, fault{0.0}, type{0.0}, statistic{0.0}, direction{0.0}, judged{0.0};
+    std::vector<double> flags;
+    for (int k = 0; k < 60; ++k) {
+      r[0] = k < 10 ? 0.0 : (k < 20 ? 10.0 : std::numeric_limits<double>::quiet_NaN());
+      reset[0] = send_reset && k == 40 ? 1.0 : 0.0;
+      const std::span<const double> ins[] = {r, reset};
+      const std::span<double> outs[] = {fault, type, statistic, direction, judged};
+      detector.step(StepIO{0.01 * k, ins, outs});
+      flags.push_back(fault[0]);
+    }
+    EXPECT_EQ(flags[19], 1.0) << "reset sent: " << send_reset;  // raised by the shift
+    EXPECT_EQ(flags[39], 1.0) << "reset sent: " << send_reset;  // held while not judged
+    for (int k = 40; k < 60; ++k) {
+      EXPECT_EQ(flags[static_cast<std::size_t>(k)], send_reset ? 0.0 : 1.0) << "tick " << k;
+    }
+    EXPECT_EQ(statistic[0], send_reset ? 0.0 : statistic[0]);
+  }
 }
 
 }  // namespace

@@ -91,7 +91,7 @@ TEST(ShippedConfigs, FedBackCorrectionsTripTheIndependenceRuleUnlessAllowed) {
   ASSERT_EQ(allowed.warnings().size(), 3u);
   EXPECT_EQ(allowed.warnings()[0].path, "/stages/3/inputs/correction");
   EXPECT_EQ(allowed.warnings()[1].path, "/stages/3/inputs/substituted");
-  EXPECT_EQ(allowed.warnings()[2].path, "/stages/6/inputs/substituted");  // gain_isolator's
+  EXPECT_EQ(allowed.warnings()[2].path, "/stages/9/inputs/substituted");  // gain_isolator's
   config["allow_dependent_virtual_sensor"] = false;
   try {
     (void)Pipeline::build(config, reference_plugins::registry(), std::filesystem::path(FTSENSE_SOURCE_DIR) / "configs");

@@ -47,10 +47,12 @@ void CusumDetector::Params::describe(ParamSchema<Params>& schema) {
       .unit("s")
       .at_least(0.0)
       .plausible(0.0, 600.0, "initial transients settle in seconds; ten minutes at most");
+  schema.add("reset", &Params::reset,
+             "adds input reset (one per channel; nonzero and finite: the change ended, S+ = S- = 0, the flag drops)");
 }
 
 CusumDetector::CusumDetector(const Params& params, const StageContext& context)
-    : sample_period_s_(context.sample_period_s()), warmup_s_(params.warmup_s) {
+    : sample_period_s_(context.sample_period_s()), warmup_s_(params.warmup_s), reset_wired_(params.reset) {
   const std::size_t dim = context.wired_dim("residual", params.noise_std.size());
   const std::vector<double> noise_std = channel_values(params.noise_std, dim, "noise_std");
   const std::vector<double> min_change = channel_values(params.min_change, dim, "min_change");
@@ -87,6 +89,11 @@ CusumDetector::CusumDetector(const Params& params, const StageContext& context)
   }
   ports_.add_input(PortSpec{"residual", dim, std::string(kAnyUnit), "the residual r (zero-mean when fault-free)"}
                        .sized_by("as wired"));
+  if (reset_wired_) {
+    ports_.add_input(PortSpec{"reset", dim, std::string(kDimensionless),
+                              "nonzero and finite: another test says the change ended (S+ = S- = 0, the flag drops)"}
+                         .sized_by("as `residual`"));
+  }
   ports_.add_output(PortSpec{"fault", dim, std::string(kDimensionless), "1 while the channel is raised, else 0"}
                         .sized_by("as `residual`"));
   ports_.add_output(PortSpec{"fault_type", dim, std::string(kDimensionless),
@@ -131,6 +138,13 @@ void CusumDetector::step(const StepIO& io) noexcept {
   const bool warming_up = io.time_s - start_time_s_ < warmup_s_ - 0.5 * sample_period_s_;
   for (std::size_t j = 0; j < threshold_.size(); ++j) {
     const double h = threshold_[j];
+    if (reset_wired_) {
+      const double reset = io.in(kReset)[j];
+      if (std::isfinite(reset) && reset != 0.0) {
+        upper_[j] = lower_[j] = 0.0;
+        raised_[j] = 0;
+      }
+    }
     if (!std::isfinite(r[j])) {
       judged[j] = 0.0;
       has_previous_[j] = 0;  // the whitening restarts with the next finite sample

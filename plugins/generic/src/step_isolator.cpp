@@ -8,23 +8,13 @@
 #include "ftsense/channel_values.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/jump_noise.hpp"
 #include "ftsense/generic/window_step_noise.hpp"
 
 namespace ftsense::generic {
 
 void StepIsolator::Params::describe(ParamSchema<Params>& schema) {
-  schema
-      .add("noise_std", &Params::noise_std,
-           "white noise sigma of each reading, in its unit (its second difference has variance 6 sigma^2); one "
-           "value applies to all")
-      .greater_than(0.0)
-      .count_at_least(1);
-  schema
-      .add("resolution", &Params::resolution,
-           "quantisation step q of each reading, in its unit (0: continuous; adds q^2 / 2 to the second "
-           "difference's variance); one value applies to all")
-      .at_least(0.0)
-      .count_at_least(1);
+  describe_jump_noise(schema);
   schema
       .add("residual_step_std", &Params::residual_step_std,
            "s_r: how much each fault-free residual row steps between two consecutive 10 ms windows (standard "
@@ -80,7 +70,7 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context) : 
   release_bound_.resize(dim);
   inv_virtual_step_.resize(dim);
   for (std::size_t j = 0; j < dim; ++j) {
-    const double jump_variance = 6.0 * noise[j] * noise[j] + 0.5 * resolution[j] * resolution[j];
+    const double jump_variance = second_difference_variance(noise[j], resolution[j]);
     jump_bound_[j] = z_ * std::sqrt(jump_variance);
     jump_match_bound_[j] = z_ * std::sqrt(jump_variance + residual_step[j] * residual_step[j]);
     residual_bound_[j] = z_ * residual_step[j];

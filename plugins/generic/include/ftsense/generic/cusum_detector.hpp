@@ -29,7 +29,9 @@
 // after the fault ends, however long it lasted.
 //
 // A non-finite residual (the reference not ready, a sensor flagged invalid upstream) is not
-// judged: S+ and S- hold, the flag holds, `judged` is 0; the next finite sample only restarts
+// judged: S+ and S- hold, the flag holds, `judged` is 0 (a pad's air row holds its flag through
+// the stance); with `reset` wired, a nonzero finite reset_j (another test's word that the change
+// ended, e.g. rejoin_detector's) sets S+ = S- = 0 and drops the flag before the tick is judged; the next finite sample only restarts
 // the whitening (z_prev), as does the first after reset. No flag is raised during the first
 // `warmup_s` after reset (S is held at 0). Types: a raised flag is unclassified (classification
 // is another stage's work).
@@ -47,6 +49,8 @@ class CusumDetector {
   static constexpr std::string_view name = "cusum_detector";
   static constexpr std::string_view summary =
       "two-sided CUSUM per channel with its threshold from a mean time between false alarms";
+  // For the config reference's port table and the schema (plugin.hpp): input reset is optional.
+  static constexpr std::string_view example_params = R"([{}, {"reset": true}])";
 
   // `ftsense calibrate` measures the fault-free residual's level, spread and memory.
   static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
@@ -62,10 +66,11 @@ class CusumDetector {
     double correlation_time_s = 0.0;
     double false_alarm_interval_s = 86400.0;
     double warmup_s = 0.0;
+    bool reset = false;
     static void describe(ParamSchema<Params>& schema);
   };
 
-  enum Input : std::size_t { kResidual };
+  enum Input : std::size_t { kResidual, kReset };
   enum Output : std::size_t { kFault, kFaultType, kStatistic, kDirection, kJudged };
 
   CusumDetector(const Params& params, const StageContext& context);
@@ -91,6 +96,7 @@ class CusumDetector {
   double inv_innovation_std_ = 1.0;  // 1 / sqrt(1 - rho^2)
   double sample_period_s_;
   double warmup_s_;
+  bool reset_wired_;
   double start_time_s_ = 0.0;
   bool started_ = false;
   std::vector<double> upper_;

@@ -12,6 +12,7 @@
 #include "ftsense/generic/low_pass.hpp"
 #include "ftsense/generic/orientation_to_rpy.hpp"
 #include "ftsense/generic/random_walk_fault_filter.hpp"
+#include "ftsense/generic/rejoin_detector.hpp"
 #include "ftsense/generic/signal_validator.hpp"
 #include "ftsense/generic/signature_isolator.hpp"
 #include "ftsense/generic/step_isolator.hpp"
@@ -27,6 +28,7 @@ namespace ftsense::generic {
 using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector, RandomWalkFaultFilter, FaultRecovery,
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
                                   UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge,
-                                  ChangeGuard, StepIsolator, GainIsolator, StuckHold, UnreadLoadIsolator>;
+                                  ChangeGuard, StepIsolator, GainIsolator, StuckHold, UnreadLoadIsolator,
+                                  RejoinDetector>;
 
 }  // namespace ftsense::generic

@@ -1,0 +1,79 @@
+#pragma once
+// The end of a flagged channel's fault, seen as its reading jumping onto its recovered value.
+//
+// Model. Channel j reads x_j (input `signal`); while it is flagged, the recovery hands on y_j
+// (input `recovered`, fed from the tick before: previous_tick), x_j less the fault's estimate
+// or the channel's virtual value. A fault that ends at tick t (an offset, a drift or a gain that
+// stops, a frozen output that moves again) returns the reading to the true value at once, so
+// x_j(t) leaves the line of its own last two samples and lands on the line of y_j's:
+//
+//   d0 = x(t) - 2 x(t-1) + x(t-2)     (H0: the fault goes on; white noise: variance 6 sigma^2 + q^2 / 2)
+//   d1 = x(t) - 2 y(t-1) + y(t-2)     (H1: the reading rejoined what the recovery said it should be)
+//
+//   rejoined_j(t) = 1   when |d0| > b and |d1| <= b,   b = z sqrt(6 sigma_j^2 + q_j^2 / 2),
+//
+// judged only when j was flagged (input `fault`, from the tick before) on ticks t-1 and t-2, the
+// five samples are finite, the tick is not guarded (input `guard`: a landing's transient, where
+// loads themselves jump), and the tick before's d0 was within b (the two ticks after a jump hold
+// it in their second differences, and y's line through it would match a jump that went on). z = Phi^-1(1 - alpha / 2), alpha = T / false_alarm_interval_s:
+// a fault that goes on is called ended by a jump of the noise alone at about that rate, and
+// only if the jump also lands on y's line. sigma and q are the reading's white noise and
+// quantisation step (`ftsense calibrate`). A fault whose estimate is smaller than b cannot be
+// told ended from a noise jump, and an end within a guard is not seen: those are left to the
+// tests that flagged the channel. The output is a one-tick pulse; a detector takes it as input
+// `reset` (cusum_detector) to drop a flag it would otherwise hold until it could judge again
+// (a pad's air row, held through its stance). Units: any, the reading's. Allocation-free.
+
+#include <array>
+#include <string_view>
+#include <vector>
+
+#include "ftsense/calibration.hpp"
+#include "ftsense/plugin.hpp"
+
+namespace ftsense::generic {
+
+class RejoinDetector {
+ public:
+  static constexpr std::string_view name = "rejoin_detector";
+  static constexpr std::string_view summary =
+      "a flagged channel whose reading jumps onto its recovered value: its fault has ended (a one-tick pulse)";
+  // For the config reference's port table and the schema (plugin.hpp): input guard is optional.
+  static constexpr std::string_view example_params = R"([{}, {"guard": true}])";
+
+  static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
+      {"noise_std", "signal", FaultFreeStatistic::tick_noise},
+      {"resolution", "signal", FaultFreeStatistic::resolution},
+  });
+
+  struct Params {
+    std::vector<double> noise_std{1.0};
+    std::vector<double> resolution{0.0};
+    double false_alarm_interval_s = 86400.0;
+    bool guard = false;
+    static void describe(ParamSchema<Params>& schema);
+  };
+
+  enum Input : std::size_t { kSignal, kRecovered, kFault, kGuard };
+  enum Output : std::size_t { kRejoined };
+
+  RejoinDetector(const Params& params, const StageContext& context);
+  [[nodiscard]] const Ports& ports() const noexcept { return ports_; }
+  void reset() noexcept;
+  void step(const StepIO& io) noexcept;
+
+  // b of the header, channel j.
+  [[nodiscard]] double jump_bound(std::size_t j) const noexcept { return bound_[j]; }
+
+ private:
+  Ports ports_;
+  bool guard_wired_;
+  std::vector<double> bound_;
+  // The tick before's reading and the one before it; the recovered value two ticks back; the
+  // flag two ticks back (1 flagged).
+  std::vector<double> x1_, x2_, y2_;
+  std::vector<char> flagged2_;
+  std::vector<char> smooth_before_;  // 1: the tick before's |d0| was within b
+};
+
+}  // namespace ftsense::generic

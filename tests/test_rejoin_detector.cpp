@@ -1,0 +1,144 @@
+// rejoin_detector: a flagged channel whose reading jumps onto its recovered value is called
+// rejoined on that exact tick, and on no other: not while the fault goes on (noisy, seeded), not
+// for a jump that lands elsewhere, not while unflagged or guarded.
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "ftsense/generic/rejoin_detector.hpp"
+#include "ftsense/testing/plugin_contract.hpp"
+
+namespace ftsense::testing {
+template <>
+struct ContractSetup<generic::RejoinDetector> {
+  static Json params() { return {{"guard", true}}; }
+  static std::size_t input_dim(std::string_view) { return 3; }
+  static void nominal_input(std::string_view port, std::span<double> v) {
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = port == "fault" || port == "guard" ? 0.0 : 100.0 + 10.0 * i;
+  }
+  static double sample_period_s() { return 1e-3; }
+};
+INSTANTIATE_TYPED_TEST_SUITE_P(Rejoin, PluginContract, ::testing::Types<generic::RejoinDetector>);
+}  // namespace ftsense::testing
+
+namespace ftsense {
+namespace {
+
+using generic::RejoinDetector;
+
+constexpr double kRejoinPeriod = 1e-3;
+
+// One channel: the true load moves as a gait's (200 + 100 sin), the reading carries `fault(k)`
+// and the noise `noise(k)`, flagged while `flagged(k)`; the recovered value is the reading less
+// the estimate `estimate(k)`, fed one tick late as previous_tick does. Returns the ticks rejoined.
+struct RejoinChannel {
+  RejoinDetector detector;
+  explicit RejoinChannel(const RejoinDetector::Params& p) : detector(p, StageContext(kRejoinPeriod, "rejoin", {{"signal", 1}})) {
+    detector.reset();
+  }
+  std::vector<long> run(long ticks, const std::function<double(long)>& fault, const std::function<double(long)>& estimate,
+                        const std::function<bool(long)>& flagged, const std::function<double(long)>& noise,
+                        const std::function<bool(long)>& guarded = [](long) { return false; }) {
+    std::vector<long> rejoined;
+    double y_before = std::numeric_limits<double>::quiet_NaN(), flag_before = 0.0;
+    for (long k = 0; k < ticks; ++k) {
+      const double load = 200.0 + 100.0 * std::sin(2.0 * M_PI * static_cast<double>(k) * kRejoinPeriod);
+      const double x = load + fault(k) + noise(k);
+      const double xs[] = {x}, ys[] = {y_before}, fs[] = {flag_before}, gs[] = {guarded(k) ? 1.0 : 0.0};
+      double out[1];
+      const std::span<const double> ins[] = {xs, ys, fs, gs};
+      const std::span<double> outs[] = {out};
+      detector.step(StepIO{static_cast<double>(k) * kRejoinPeriod, ins, outs});
+      if (out[0] != 0.0) rejoined.push_back(k);
+      y_before = flagged(k) ? x - estimate(k) : x;
+      flag_before = flagged(k) ? 1.0 : 0.0;
+    }
+    return rejoined;
+  }
+};
+
+RejoinDetector::Params rejoin_params(bool guard = false) {
+  RejoinDetector::Params p;
+  p.noise_std = {2.0};
+  p.guard = guard;
+  return p;
+}
+
+double no_noise(long) { return 0.0; }
+
+// An offset of 60 from tick 100 to tick 500, flagged from 150 on with its estimate.
+double offset_60(long k) { return k >= 100 && k < 500 ? 60.0 : 0.0; }
+double offset_60_estimate(long) { return 60.0; }
+bool rejoin_flagged_from_150(long k) { return k >= 150; }
+
+TEST(RejoinDetector, TheTickAnOffsetEndsIsTheTickTheReadingRejoins) {
+  RejoinChannel channel(rejoin_params());
+  EXPECT_EQ(channel.run(1000, offset_60, offset_60_estimate, rejoin_flagged_from_150, no_noise), std::vector<long>{500});
+}
+
+TEST(RejoinDetector, AFrozenOutputThatMovesAgainRejoinsItsVirtualValue) {
+  // Frozen at 150 from tick 100 to 500; the recovered value is the true load (a virtual sensor).
+  RejoinChannel channel(rejoin_params());
+  const auto frozen = [](long k) {
+    const double load = 200.0 + 100.0 * std::sin(2.0 * M_PI * static_cast<double>(k) * kRejoinPeriod);
+    return k >= 100 && k < 500 ? 150.0 - load : 0.0;
+  };
+  EXPECT_EQ(channel.run(1000, frozen, frozen, rejoin_flagged_from_150, no_noise), std::vector<long>{500});
+}
+
+TEST(RejoinDetector, NothingRejoinsUnflaggedGuardedOrElsewhere) {
+  {
+    RejoinChannel channel(rejoin_params());
+    EXPECT_TRUE(channel.run(1000, offset_60, offset_60_estimate, [](long) { return false; }, no_noise).empty());
+  }
+  {
+    RejoinChannel channel(rejoin_params(true));
+    EXPECT_TRUE(channel.run(1000, offset_60, offset_60_estimate, rejoin_flagged_from_150, no_noise, [](long k) {
+                  return k >= 495 && k < 510;
+                }).empty());
+  }
+  {
+    // The reading jumps up by 60 more at 500 instead of back: it lands on no recovered line.
+    RejoinChannel channel(rejoin_params());
+    const auto doubled = [](long k) { return k >= 100 ? (k < 500 ? 60.0 : 120.0) : 0.0; };
+    EXPECT_TRUE(channel.run(1000, doubled, offset_60_estimate, rejoin_flagged_from_150, no_noise).empty());
+  }
+  {
+    // The estimate is half the offset_60: the jump lands 30 off the recovered line, beyond the bound.
+    RejoinChannel channel(rejoin_params());
+    const double bound = channel.detector.jump_bound(0);
+    ASSERT_LT(bound, 30.0);
+    EXPECT_TRUE(channel.run(1000, offset_60, [](long) { return 30.0; }, rejoin_flagged_from_150, no_noise).empty());
+  }
+}
+
+TEST(RejoinDetector, ANoisyFaultThatGoesOnNeverRejoinsAndItsEndDoes) {
+  // 100 s of a 60 N offset_60 under white noise of 2 N (seed printed), flagged throughout, ended at
+  // 100 s: the bound is z sqrt(6) 2 with z for one false pulse a day, so none before the end.
+  const unsigned seed = 20261207;
+  std::printf("seed %u\n", seed);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> gauss(0.0, 2.0);
+  std::vector<double> noise(100100);
+  for (double& n : noise) n = gauss(rng);
+  RejoinChannel channel(rejoin_params());
+  const auto rejoined = channel.run(
+      100100, [](long k) { return k < 100000 ? 60.0 : 0.0; }, offset_60_estimate, [](long) { return true; },
+      [&](long k) { return noise[static_cast<std::size_t>(k)]; });
+  EXPECT_EQ(rejoined, std::vector<long>{100000});
+}
+
+TEST(RejoinDetector, RejectsAFalseAlarmIntervalOfTwoTicks) {
+  RejoinDetector::Params p = rejoin_params();
+  p.false_alarm_interval_s = 2.0 * kRejoinPeriod;
+  EXPECT_THROW(RejoinDetector(p, StageContext(kRejoinPeriod, "rejoin", {{"signal", 1}})), ConfigError);
+}
+
+}  // namespace
+}  // namespace ftsense
