@@ -478,7 +478,11 @@ TEST(CusumDetector, AResetDropsAFlagHeldWhileTheResidualIsNotANumber) {
     for (int k = 40; k < 60; ++k) {
       EXPECT_EQ(flags[static_cast<std::size_t>(k)], send_reset ? 0.0 : 1.0) << "tick " << k;
     }
-    EXPECT_EQ(statistic[0], send_reset ? 0.0 : statistic[0]);
+    if (send_reset) {
+      EXPECT_EQ(statistic[0], 0.0);
+    } else {
+      EXPECT_GT(statistic[0], 0.0);  // held at h while raised and not judged
+    }
   }
 }
 

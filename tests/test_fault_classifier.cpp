@@ -335,6 +335,33 @@ TEST(FaultClassifier, WeighsBlocksWhoseReferenceIsExactByTheirOwnNoise) {
   }
 }
 
+// An offset of 20 from 5 s (25 over 5.1-5.2 s), its reference not a number over 5.3-5.4 s (empty
+// blocks): an onset there must still pay for the faulty blocks before it. It would otherwise
+// fit everything after it exactly and beat the true onset, which pays for the bump.
+TEST(FaultClassifier, AnEmptyBlockGivesNoOnsetAFreeHistory) {
+  Trace trace;
+  const auto reading = [](double t, double v) {
+    const bool bump = t >= 5.1 - 1e-9 && t < 5.2 - 1e-9;
+    return v + (after_onset(t) ? (bump ? 25.0 : 20.0) : 0.0);
+  };
+  trace.run(5.3, reading, flagged_after_delay);
+  FaultClassifier& c = trace.classifier;
+  for (long k = 0; k < 10; ++k, ++trace.tick) {  // 5.3-5.4 s: the reference is missing
+    const double t = trace.time();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double f[] = {0.0}, m[] = {reference(t) + 20.0}, r[] = {nan};
+    double out_type[1], out_estimate[1];
+    const std::span<const double> ins[] = {f, m, r};
+    const std::span<double> outs[] = {out_type, out_estimate};
+    c.step(StepIO{t, ins, outs});
+  }
+  trace.run(kEnd, reading, flagged_after_delay);
+  EXPECT_EQ(trace.named(), FaultType::offset);
+  EXPECT_NEAR(c.fit(0).onset_s, kOnset, 1e-9);
+  // 10 blocks of 25 among the 189 after the onset's, every other at 20.
+  EXPECT_NEAR(c.fit(0).size, 20.0 + 5.0 * 10.0 / 189.0, 1e-9);
+}
+
 // A step of 20 that begins halfway through a block of 0.1 s: that block's mean is 10, a ramp's
 // first point, and no model is asked to explain it, so the offset is exactly 20 and its onset the
 // block's mean tick time.

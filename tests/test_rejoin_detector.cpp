@@ -39,6 +39,10 @@ constexpr double kRejoinPeriod = 1e-3;
 // the estimate `estimate(k)`, fed one tick late as previous_tick does. Returns the ticks rejoined.
 struct RejoinChannel {
   RejoinDetector detector;
+  // The true load: a gait's by default.
+  std::function<double(long)> load_of = [](long k) {
+    return 200.0 + 100.0 * std::sin(2.0 * M_PI * static_cast<double>(k) * kRejoinPeriod);
+  };
   explicit RejoinChannel(const RejoinDetector::Params& p) : detector(p, StageContext(kRejoinPeriod, "rejoin", {{"signal", 1}})) {
     detector.reset();
   }
@@ -48,7 +52,7 @@ struct RejoinChannel {
     std::vector<long> rejoined;
     double y_before = std::numeric_limits<double>::quiet_NaN(), flag_before = 0.0;
     for (long k = 0; k < ticks; ++k) {
-      const double load = 200.0 + 100.0 * std::sin(2.0 * M_PI * static_cast<double>(k) * kRejoinPeriod);
+      const double load = load_of(k);
       const double x = load + fault(k) + noise(k);
       const double xs[] = {x}, ys[] = {y_before}, fs[] = {flag_before}, gs[] = {guarded(k) ? 1.0 : 0.0};
       double out[1];
@@ -80,6 +84,22 @@ bool rejoin_flagged_from_150(long k) { return k >= 150; }
 TEST(RejoinDetector, TheTickAnOffsetEndsIsTheTickTheReadingRejoins) {
   RejoinChannel channel(rejoin_params());
   EXPECT_EQ(channel.run(1000, offset_60, offset_60_estimate, rejoin_flagged_from_150, no_noise), std::vector<long>{500});
+}
+
+// A load that ramps by 60 N a tick, more than the bound: the lines through the last two samples
+// must be the right ones (a sample a tick off would miss the line by 60).
+TEST(RejoinDetector, ALoadThatRampsFasterThanTheBoundRejoinsOnTheExactTick) {
+  RejoinChannel channel(rejoin_params());
+  ASSERT_LT(channel.detector.jump_bound(0), 60.0);
+  channel.load_of = [](long k) { return 60.0 * static_cast<double>(k); };
+  EXPECT_EQ(channel.run(1000, offset_60, offset_60_estimate, rejoin_flagged_from_150, no_noise), std::vector<long>{500});
+}
+
+// Flagged from tick 499 only: on tick 500 the channel was not flagged two ticks back, and the
+// ticks after hold the jump in their second differences, so nothing is judged to rejoin.
+TEST(RejoinDetector, AChannelFlaggedForOneTickOnlyIsNotJudged) {
+  RejoinChannel channel(rejoin_params());
+  EXPECT_TRUE(channel.run(1000, offset_60, offset_60_estimate, [](long k) { return k >= 499; }, no_noise).empty());
 }
 
 TEST(RejoinDetector, AFrozenOutputThatMovesAgainRejoinsItsVirtualValue) {

@@ -273,7 +273,8 @@ void FaultClassifier::classify(std::size_t c) noexcept {
       // Onset within block i: e = 0 before it, the model after it; block i itself holds the
       // fault for an unknown share of its ticks (a step there is a ramp's first point), so no
       // model is asked to explain it.
-      const double before = std::max(0.0, total_ee - s.ee - wi * e * e);
+      const double own = wi > 0.0 ? wi * e * e : 0.0;  // an empty block (e NaN) owns no misfit
+      const double before = std::max(0.0, total_ee - s.ee - own);
       const double onset_s = ti + t_ref;
       const auto keep = [&](std::size_t m, double after, double size, double vv = 0.0) {
         const double rss = before + std::max(0.0, after);

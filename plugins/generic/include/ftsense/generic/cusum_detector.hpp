@@ -30,10 +30,11 @@
 //
 // A non-finite residual (the reference not ready, a sensor flagged invalid upstream) is not
 // judged: S+ and S- hold, the flag holds, `judged` is 0 (a pad's air row holds its flag through
-// the stance); with `reset` wired, a nonzero finite reset_j (another test's word that the change
-// ended, e.g. rejoin_detector's) sets S+ = S- = 0 and drops the flag before the tick is judged; the next finite sample only restarts
-// the whitening (z_prev), as does the first after reset. No flag is raised during the first
-// `warmup_s` after reset (S is held at 0). Types: a raised flag is unclassified (classification
+// the stance); the next finite sample only restarts the whitening (z_prev), as does the first
+// after reset(). With input `reset` wired, a nonzero finite reset_j (another test's word that the
+// change ended, e.g. rejoin_detector's) sets S+ = S- = 0 and drops the flag before the tick is
+// judged; the whitening goes on. No flag is raised during the first `warmup_s` after reset()
+// (S is held at 0). Types: a raised flag is unclassified (classification
 // is another stage's work).
 
 #include <array>

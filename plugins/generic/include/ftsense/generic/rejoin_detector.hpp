@@ -18,7 +18,10 @@
 // it in their second differences, and y's line through it would match a jump that went on). z = Phi^-1(1 - alpha / 2), alpha = T / false_alarm_interval_s:
 // a fault that goes on is called ended by a jump of the noise alone at about that rate, and
 // only if the jump also lands on y's line. sigma and q are the reading's white noise and
-// quantisation step (`ftsense calibrate`). A fault whose estimate is smaller than b cannot be
+// quantisation step (`ftsense calibrate`). d1's bound is the reading's own, which holds when y
+// is the reading less a smooth estimate (an offset, a drift, a gain); where y is a virtual value
+// (a frozen or unclassified fault, substituted), its own tick noise widens d1 and an end may be
+// missed (left to the tests that flagged the channel: the conservative side). A fault whose estimate is smaller than b cannot be
 // told ended from a noise jump, and an end within a guard is not seen: those are left to the
 // tests that flagged the channel. The output is a one-tick pulse; a detector takes it as input
 // `reset` (cusum_detector) to drop a flag it would otherwise hold until it could judge again
