@@ -7,8 +7,8 @@
 
 #include "ftsense/channel_values.hpp"
 #include "ftsense/generic/chi_square.hpp"
-#include "ftsense/generic/jump_noise.hpp"
 #include "ftsense/generic/false_alarm_target.hpp"
+#include "ftsense/generic/jump_noise.hpp"
 
 namespace ftsense::generic {
 
@@ -26,7 +26,7 @@ void RejoinDetector::Params::describe(ParamSchema<Params>& schema) {
 RejoinDetector::RejoinDetector(const Params& params, const StageContext& context) : guard_wired_(params.guard) {
   const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
   const double alpha = false_alarm_per_tick(context.sample_period_s(), params.false_alarm_interval_s);
-  const double z = -normal_quantile(0.5 * alpha);  // the lower tail keeps its precision for a tiny alpha
+  const double z = two_sided_z(alpha);
   const auto noise = channel_values(params.noise_std, dim, "noise_std");
   const auto resolution = channel_values(params.resolution, dim, "resolution");
   bound_.resize(dim);

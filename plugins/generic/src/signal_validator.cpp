@@ -140,7 +140,7 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
   // Overlapping second differences: nu = 36 n / 70 degrees of freedom (Satterthwaite).
   const double nu = 36.0 * static_cast<double>(window_) / 70.0;
   const double low_quantile = chi_square_quantile(nu, alpha) / nu;
-  const double spike_z = -normal_quantile(0.5 * alpha);
+  const double spike_z = two_sided_z(alpha);
   // Noise: the count of |d2| > 2 sqrt(6) s in the window. Healthy, each is over with p0 =
   // P(|Z| > 2); overlapping d2 are correlated, so the count's spread is taken as that of n / 2
   // independent draws (normal approximation of the binomial), and 3 more are allowed: one spike

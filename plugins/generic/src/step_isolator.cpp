@@ -8,6 +8,7 @@
 #include "ftsense/channel_values.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/false_alarm_target.hpp"
 #include "ftsense/generic/jump_noise.hpp"
 #include "ftsense/generic/window_step_noise.hpp"
 
@@ -52,7 +53,7 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context) : 
     throw ConfigError("/params/false_alarm_interval_s", " = " + format_number(params.false_alarm_interval_s) +
                                                             " s must be longer than the sample period");
   }
-  z_ = -normal_quantile(0.5 * alpha);  // the lower tail keeps its precision for a tiny alpha
+  z_ = two_sided_z(alpha);
   const double confirm_ticks = std::round(params.confirm_s / period);
   if (!(confirm_ticks >= 1.0 && confirm_ticks <= 1e9)) {
     throw ConfigError("/params/confirm_s", " = " + format_number(params.confirm_s) + " s is " +

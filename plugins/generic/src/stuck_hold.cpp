@@ -64,7 +64,7 @@ StuckHold::StuckHold(const Params& params, const StageContext& context) : cannot
   const auto resolution = channel_values(params.resolution, dim, "resolution");
   check_noise_margin(params.noise_margin);
   const double alpha = false_alarm_per_tick(period, params.false_alarm_interval_s);
-  const double z = -normal_quantile(0.5 * alpha);
+  const double z = two_sided_z(alpha);
   lp_gain_ = low_pass_gain_from_time_constant(params.smoothing_s, period, "smoothing_s");
   lp_noise_ = low_pass_noise_ratio(lp_gain_);
   z_ = z;

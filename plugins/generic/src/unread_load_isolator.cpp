@@ -81,7 +81,7 @@ UnreadLoadIsolator::UnreadLoadIsolator(const Params& params, const StageContext&
   }
   lp_gain_ = low_pass_gain_from_time_constant(params.smoothing_s, period, "smoothing_s");
   min_loaded_ticks_ = std::lround(params.min_loaded_s / period);
-  const double z = -normal_quantile(0.5 * alpha);
+  const double z = two_sided_z(alpha);
   const auto noise_std = channel_values(params.noise_std, channels_, "noise_std");
   const auto resolution = channel_values(params.resolution, channels_, "resolution");
   band_.resize(channels_);

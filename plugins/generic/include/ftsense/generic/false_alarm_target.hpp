@@ -3,6 +3,7 @@
 //
 //   alpha = T / false_alarm_interval_s   the chance of a false alarm per tick of period T;
 //                                        an interval of two ticks or less is a ConfigError
+//   z = Phi^-1(1 - alpha / 2)            the two-sided bound in standard deviations
 //   m = noise_margin >= 1                a healthy (or stuck) noise known within a factor m;
 //                                        less than 1 or not finite is a ConfigError
 //
@@ -10,6 +11,7 @@
 
 #include <cmath>
 
+#include "ftsense/generic/chi_square.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::generic {
@@ -22,6 +24,10 @@ namespace ftsense::generic {
   }
   return alpha;
 }
+
+// z of a two-sided test at alpha per tick, from the lower tail, which keeps its precision for a
+// tiny alpha.
+[[nodiscard]] inline double two_sided_z(double alpha) noexcept { return -normal_quantile(0.5 * alpha); }
 
 inline void check_noise_margin(double noise_margin) {
   if (!(noise_margin >= 1.0 && std::isfinite(noise_margin))) {
