@@ -50,7 +50,8 @@ void GainIsolator::Params::describe(ParamSchema<Params>& schema) {
       .plausible(1.0, 1e9, "from a second (tests) to decades");
   schema.add("substituted", &Params::substituted,
              "adds input substituted (1 where a reading stands for nothing, a recovery's substituted one tick "
-             "late): while one other than the named channel is in the window nobody is judged");
+             "late): a block on which one other than the named channel stood for nothing is left out, or, with "
+             "loadable, taken with that channel at zero if it could carry load on none of the block's ticks");
   schema.add("loadable", &Params::loadable,
              "adds input loadable (1 while a channel can carry load, by kinematics): nobody is named while "
              "another channel's reading stood still while loaded (a stuck reading's own load moves e)");
@@ -153,6 +154,7 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   window_loaded_.assign(group_size_ * capacity_, 0);
   onset_.assign(group_size_, 0);
   substituted_now_.assign(channels_, 0);
+  unloaded_now_.assign(channels_, 1);
   named_.assign(groups_, -1);
   last_named_.assign(groups_, -1);
   window_e_.assign(capacity_, 0.0);
@@ -169,6 +171,7 @@ void GainIsolator::reset() noexcept {
   std::fill(loaded_now_.begin(), loaded_now_.end(), 1);
   std::fill(block_loaded_.begin(), block_loaded_.end(), 0);
   std::fill(substituted_now_.begin(), substituted_now_.end(), 0);
+  std::fill(unloaded_now_.begin(), unloaded_now_.end(), 1);
   std::fill(named_.begin(), named_.end(), -1);
   std::fill(last_named_.begin(), last_named_.end(), -1);
   tick_in_block_ = 0;
@@ -176,29 +179,33 @@ void GainIsolator::reset() noexcept {
 }
 
 long GainIsolator::judge(std::size_t group) noexcept {
-  // The window's usable blocks, oldest first.
+  // The window's usable blocks, oldest first. A reading that stood for nothing (frozen, clipped,
+  // invalid, not yet typed) has an unknown course in e, which its neighbours' loads follow: a block
+  // on which it could carry load is left out; a block it spent in the air takes it at its load
+  // there, zero (e less its reading). The channel named last is kept as it reads: it stands for
+  // nothing while it is typed, and its own course is the gain's.
   const std::size_t filled = std::min(blocks_, capacity_);
+  const long keep = last_named_[group];
   std::size_t n = 0;
   for (std::size_t age = filled; age-- > 0;) {
     const std::size_t slot = (blocks_ - 1 - age) % capacity_;
     if (!block_usable_[group * capacity_ + slot]) continue;
-    window_e_[n] = block_e_[group * capacity_ + slot];
-    window_t_[n] = static_cast<double>(blocks_ - 1 - age);  // the block's index: a ramp is in time
+    bool stood_for_nothing = false;
+    double e = block_e_[group * capacity_ + slot];
     for (std::size_t j = 0; j < group_size_; ++j) {
-      window_x_[j * capacity_ + n] = block_x_[(group * group_size_ + j) * capacity_ + slot];
-      window_loaded_[j * capacity_ + n] = block_loaded_[(group * group_size_ + j) * capacity_ + slot];
+      const std::size_t at = (group * group_size_ + j) * capacity_ + slot;
+      const char substituted = static_cast<long>(j) == keep ? kStoodForSomething : block_substituted_[at];
+      stood_for_nothing = stood_for_nothing || substituted == kStoodForNothing;
+      window_x_[j * capacity_ + n] = substituted == kStoodForNothingInAir ? 0.0 : block_x_[at];
+      if (substituted == kStoodForNothingInAir) e -= block_x_[at];
+      window_loaded_[j * capacity_ + n] = block_loaded_[at];
     }
+    if (stood_for_nothing) continue;
+    window_e_[n] = e;
+    window_t_[n] = static_cast<double>(blocks_ - 1 - age);  // the block's index: a ramp is in time
     ++n;
   }
   if (n < min_fault_blocks_ + 3) return -1;
-  // A reading that stood for nothing in the window (frozen, clipped, invalid) left an unknown
-  // course in e that its neighbours' loads follow: nobody is judged, except that the channel
-  // named last stands for nothing while it is typed (its own course is the gain's).
-  for (std::size_t j = 0; j < group_size_; ++j) {
-    if (last_named_[group] == static_cast<long>(j)) continue;
-    const char* flags = block_substituted_.data() + (group * group_size_ + j) * capacity_;
-    if (std::any_of(flags, flags + std::min(blocks_, capacity_), [](char f) { return f != 0; })) return -1;
-  }
   const double count = static_cast<double>(n);
   double sum_e = 0.0, sum_ee = 0.0;
   for (std::size_t b = 0; b < n; ++b) {
@@ -302,8 +309,11 @@ void GainIsolator::step(const StepIO& io) noexcept {
   }
   if (substituted_) {
     const auto substituted = io.in(substituted_input_);
-    // Not finite counts as standing for nothing.
-    for (std::size_t j = 0; j < channels_; ++j) substituted_now_[j] |= !(substituted[j] < 0.5) ? 1 : 0;
+    for (std::size_t j = 0; j < channels_; ++j) {
+      // Not finite counts as standing for nothing; so does loadable's NaN count as can carry load.
+      substituted_now_[j] |= !(substituted[j] < 0.5) ? 1 : 0;
+      unloaded_now_[j] &= (loadable_ && io.in(loadable_input_)[j] < 0.5) ? 1 : 0;
+    }
   }
   for (std::size_t g = 0; g < groups_; ++g) {
     bool finite = std::isfinite(e[g]);
@@ -327,8 +337,10 @@ void GainIsolator::step(const StepIO& io) noexcept {
         }
       }
       for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {
-        block_substituted_[j * capacity_ + slot] = substituted_now_[j];
+        block_substituted_[j * capacity_ + slot] =
+            !substituted_now_[j] ? kStoodForSomething : unloaded_now_[j] ? kStoodForNothingInAir : kStoodForNothing;
         substituted_now_[j] = 0;
+        unloaded_now_[j] = 1;
         block_loaded_[j * capacity_ + slot] = loaded_now_[j];
         loaded_now_[j] = 1;
       }

@@ -38,9 +38,17 @@
 //                                  would take a reading's noise in the air for a huge gain).
 // With `substituted` on (input `substituted`, 1 where a channel's reading stands for nothing:
 // fault_recovery's output of that name, one tick late through previous_tick), a channel
-// substituted on any tick of the window's blocks (frozen, clipped, invalid: its reading is not its
-// load) leaves an unknown course in e, which its neighbours' loads follow: nobody is judged then,
-// except the channel this part named last, whose recovery stands for nothing while it is typed.
+// substituted on any tick of a block (frozen, clipped, invalid, not yet typed: its reading is not
+// its load) leaves an unknown course in e there, which its neighbours' loads follow: the block is
+// left out of the fit. Except where, with `loadable` on, the channel could carry load on none of
+// the block's ticks: its load there is zero, so the block is kept with the channel taken at it
+// (e_b less its reading's mean x_jb, and x_jb = 0). Why not left out too: a gain's pad in the air
+// reads twice its noise, which a detector on the air rows may flag and the recovery substitute on
+// a few ticks of every swing, and then no block of its stances was judged; why not kept as read: a
+// pad frozen at 200 N reads it through its swings too, a step in e there that a loaded
+// neighbour's reading (zero in its own swing) explains as a gain. The channel this part named
+// last is kept as it reads: its recovery stands for nothing while it is typed, and its own course
+// is the gain's.
 // With `loadable` on (input `loadable`, 1 while a channel can carry load, by kinematics), a
 // reading stuck while its channel is loaded is ruled out as the cause first: it makes e follow its
 // own load (e = x_j(t0) - L_j(t)), which a co-loaded neighbour's reading explains as a gain. So
@@ -129,12 +137,16 @@ class GainIsolator {
   std::vector<double> sum_e_, sum_x_;  // groups; channels
   std::vector<int> usable_ticks_;      // groups
   std::vector<char> substituted_now_;  // channels: substituted on a tick of the block being filled
+  std::vector<char> unloaded_now_;     // channels: unable to carry load on every tick of it so far
+  // What a channel's reading was on a block: its load, nothing while it could carry load, or
+  // nothing while it spent the whole block in the air (its load zero there).
+  static constexpr char kStoodForSomething = 0, kStoodForNothing = 1, kStoodForNothingInAir = 2;
   int tick_in_block_ = 0;
   // The window: rings of block means, [group * capacity + slot] and [channel * capacity + slot];
   // a slot's usable flag per group.
   std::vector<double> block_e_, block_x_;
   std::vector<char> block_usable_;
-  std::vector<char> block_substituted_;  // [channel * capacity + slot]
+  std::vector<char> block_substituted_;  // [channel * capacity + slot]: kStoodFor...
   bool substituted_ = false;
   bool loadable_ = false;
   double follow_ratio_ = 0.25;
