@@ -32,6 +32,7 @@
 #include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/generic/gain_isolator.hpp"
 #include "ftsense/generic/step_isolator.hpp"
+#include "ftsense/generic/physical_range_detector.hpp"
 #include "ftsense/generic/rejoin_detector.hpp"
 #include "ftsense/generic/stuck_hold.hpp"
 #include "ftsense/generic/unread_load_isolator.hpp"
@@ -425,6 +426,35 @@ void bench_rejoin_detector(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// physical_range_detector on 8 channels at 1 kHz with a floor of 0 N: the swaying loads (all
+// above it) judged every tick, none flagged.
+// Inputs: the swaying loads (seed 1); precomputed.
+void bench_physical_range_detector(benchmark::State& state) {
+  constexpr std::size_t kChannels = 8;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 20000;
+  ftsense::generic::PhysicalRangeDetector::Params params;
+  params.floor = {0.0};
+  params.noise_std = {2.0};
+  ftsense::generic::PhysicalRangeDetector range(params,
+                                                ftsense::StageContext(kPeriod, "pressed", {{"signal", kChannels}}));
+  const SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod);
+  std::vector<double> fault(kChannels), type(kChannels), flags(kChannels, 0.0);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(k * kChannels, kChannels)};
+    const std::span<double> outs[] = {fault, type};
+    range.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    for (std::size_t j = 0; j < kChannels; ++j) flags[j] += fault[j];
+    if (++k == kTicks) k = 0;
+  }
+  for (double f : flags) {
+    if (f != 0.0) state.SkipWithError("a channel was flagged: the loads went below the floor's bound");
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 // unread_load_isolator on 8 channels (two contact groups of 4) at 1 kHz, every channel loadable,
 // after one tick in the air, the alarm up and the sum short (-100 N) throughout: every channel's
 // state and every candidate test run every tick.
@@ -488,6 +518,8 @@ void register_benchmarks() {
   benchmark::RegisterBenchmark("stage/hold [stuck_hold, 8 channels, one held, 1 kHz, synthetic]", bench_stuck_hold);
   benchmark::RegisterBenchmark("stage/rejoin [rejoin_detector, 8 channels, all flagged, 1 kHz, synthetic]",
                                bench_rejoin_detector);
+  benchmark::RegisterBenchmark("stage/range [physical_range_detector, 8 channels, floor 0, 1 kHz, synthetic]",
+                               bench_physical_range_detector);
   benchmark::RegisterBenchmark("stage/unread [unread_load_isolator, 8 channels, alarm up, 1 kHz, synthetic]",
                                bench_unread_load_isolator);
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",
