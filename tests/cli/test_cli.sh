@@ -322,6 +322,32 @@ sed 's/"plugin": "signal_validator",/"plugin": "signal_validator", "params": {"n
 check calibrate_keeps_what_the_config_gives 0 $? "^ftsense calibrate: validate: noise_std given in the config, kept$" "$work/out"
 grep -q '"validate"' "$work/given_cal.json" && { failures=$((failures + 1)); echo "FAIL calibrate_keeps_writes_no_entry"; } \
   || { passes=$((passes + 1)); echo "ok   calibrate_keeps_writes_no_entry"; }
+# Calibrated on a second run with the first run's values in place: a range test at its default
+# noise (1 N) flags a healthy 3 N reading at rest below its floor (0 N) on about 0.2 % of the
+# ticks, which a CUSUM watching those flags would take for their centre; on the second run, with
+# the reading's noise measured, nothing is flagged and the centre is exactly 0.
+awk 'BEGIN { srand(7); print "time_s,pad/p1/force_N,pad/p2/force_N";
+  for (k = 0; k < 20000; k++) { printf "%.3f", k / 1000;
+    for (j = 0; j < 2; j++) { u = rand(); v = rand(); if (u < 1e-12) u = 1e-12;
+      printf ",%.6f", 3 * sqrt(-2 * log(u)) * cos(6.283185307 * v) }
+    printf "\n" } }' > "$work/rest.csv"
+cat > "$work/second_run.json" <<'JSON'
+{
+ "sample_period_s": 0.001,
+ "inputs": {"pad": {"columns": ["pad/p1/force_N", "pad/p2/force_N"], "unit": "N"}},
+ "stages": [
+  {"name": "pressed", "plugin": "physical_range_detector", "params": {"floor": [0.0]},
+   "inputs": {"signal": "input.pad"}},
+  {"name": "watch", "plugin": "cusum_detector",
+   "params": {"noise_std": [1.0], "correlation_time_s": 0.0, "min_change": [0.5]},
+   "inputs": {"residual": "pressed.fault"}}
+ ]
+}
+JSON
+"$ftsense" calibrate --config "$work/second_run.json" --input "$work/rest.csv" --output "$work/second_run_cal.json" > "$work/out" 2> "$work/err"
+check calibrate_measures_on_a_second_run 0 $? "^ftsense calibrate: watch: centers 0 0$" "$work/out" \
+  "^ftsense calibrate: pressed: noise_std (2\.9|3\.0)[0-9]* (2\.9|3\.0)[0-9]*$" "$work/out" \
+  "^ftsense calibrate: measured again with the first run's values in place: largest change 100 % \(watch centers channel [01]\)$" "$work/out"
 # A density needs 10 whole windows of 2 s: a 3 s log is refused, saying how long a log it takes.
 head -3001 "$work/stat_clean.csv" > "$work/stat_short.csv"
 "$ftsense" calibrate --config "$work/statistics.json" --input "$work/stat_short.csv" --output "$work/x.json" > "$work/out" 2> "$work/err"
