@@ -83,7 +83,7 @@ TEST(PhysicalRangeDetector, AChannelWithoutABoundIsNeverFlaggedOnThatSide) {
 TEST(PhysicalRangeDetector, AHealthyReadingAtTheFloorIsNeverFlagged) {
   // 100 s at 1 kHz of an unloaded pad (load 0) whose noise is sigma, then noise_margin sigma
   // (the calibration a factor off), quantised to 2 N: not one tick flagged. At the bound's
-  // quantile the chance of one is 1e5 x 1.2e-8 per run.
+  // quantile the chance of one is 1e5 x 5.8e-9 per run (the floor's side: alpha / 2 a tick).
   constexpr unsigned kSeed = 20261207;
   std::printf("seed %u\n", kSeed);
   for (const double noise_factor : {1.0, 1.5}) {

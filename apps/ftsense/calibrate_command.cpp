@@ -198,7 +198,6 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                                                 "); nothing to calibrate");
   }
 
-
   // Every fault-free log in turn (the pipeline restarts for each, and so does the warm-up).
   const std::vector<std::string> inputs = split_list(options.at("input"));
   // Refused before the logs are read: the thresholds file must not replace a log or the config.

@@ -305,14 +305,16 @@ void GainIsolator::step(const StepIO& io) noexcept {
   const auto fault_type = io.out(kFaultType);
   if (loadable_) {
     const auto loadable = io.in(loadable_input_);
-    for (std::size_t j = 0; j < channels_; ++j) loaded_now_[j] &= loadable[j] < 0.5 ? 0 : 1;  // NaN: can
+    for (std::size_t j = 0; j < channels_; ++j) {
+      const bool can_carry = !(loadable[j] < 0.5);  // NaN: can
+      loaded_now_[j] &= can_carry ? 1 : 0;
+      unloaded_now_[j] &= can_carry ? 0 : 1;
+    }
   }
   if (substituted_) {
     const auto substituted = io.in(substituted_input_);
     for (std::size_t j = 0; j < channels_; ++j) {
-      // Not finite counts as standing for nothing; so does loadable's NaN count as can carry load.
-      substituted_now_[j] |= !(substituted[j] < 0.5) ? 1 : 0;
-      unloaded_now_[j] &= (loadable_ && io.in(loadable_input_)[j] < 0.5) ? 1 : 0;
+      substituted_now_[j] |= !(substituted[j] < 0.5) ? 1 : 0;  // not finite: stood for nothing
     }
   }
   for (std::size_t g = 0; g < groups_; ++g) {
@@ -338,7 +340,9 @@ void GainIsolator::step(const StepIO& io) noexcept {
       }
       for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {
         block_substituted_[j * capacity_ + slot] =
-            !substituted_now_[j] ? kStoodForSomething : unloaded_now_[j] ? kStoodForNothingInAir : kStoodForNothing;
+            !substituted_now_[j]             ? kStoodForSomething
+            : loadable_ && unloaded_now_[j] ? kStoodForNothingInAir
+                                            : kStoodForNothing;
         substituted_now_[j] = 0;
         unloaded_now_[j] = 1;
         block_loaded_[j * capacity_ + slot] = loaded_now_[j];
