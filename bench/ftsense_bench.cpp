@@ -32,6 +32,7 @@
 #include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/generic/gain_isolator.hpp"
 #include "ftsense/generic/step_isolator.hpp"
+#include "ftsense/generic/load_apportioner.hpp"
 #include "ftsense/generic/physical_range_detector.hpp"
 #include "ftsense/generic/rejoin_detector.hpp"
 #include "ftsense/generic/stuck_hold.hpp"
@@ -455,6 +456,47 @@ void bench_physical_range_detector(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// load_apportioner on two feet of four pads at 1 kHz, both feet down and one pad of each
+// substituted (l_foot/p4, r_foot/p3): every channel's virtual load is a solve of the sum and both
+// feet's plane relations over three unknowns (its own and the two substituted). Inputs: the
+// swaying loads (seed 1), the reference their true sum; precomputed.
+void bench_load_apportioner(benchmark::State& state) {
+  constexpr std::size_t kChannels = 8;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 20000;
+  ftsense::generic::LoadApportioner::Params params;
+  params.points_per_foot = 4;
+  params.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  params.noise_std = {2.0};
+  ftsense::generic::LoadApportioner apportion(
+      params, ftsense::StageContext(kPeriod, "apportion", {{"signal", kChannels}, {"reference", 1}}));
+  const SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod);
+  std::vector<double> reference(kTicks);
+  for (std::size_t k = 0; k < kTicks; ++k) {
+    double sum = 0.0;
+    for (std::size_t c = 0; c < kChannels; ++c) sum += loads.x[k * kChannels + c];
+    reference[k] = sum - loads.sum_residual[k];
+  }
+  const std::vector<double> loadable(kChannels, 1.0), correction(kChannels, 0.0), flagged(kChannels, 0.0);
+  std::vector<double> substituted(kChannels, 0.0), virtual_load(kChannels);
+  substituted[3] = 1.0;
+  substituted[6] = 1.0;
+  double not_a_number = 0.0;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(k * kChannels, kChannels),
+                                           std::span<const double>(reference).subspan(k, 1),
+                                           loadable, correction, substituted, flagged};
+    const std::span<double> outs[] = {virtual_load};
+    apportion.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    if (k > 200 && std::isnan(virtual_load[3])) not_a_number += 1.0;
+    if (++k == kTicks) k = 0;
+  }
+  if (not_a_number > 0.0) state.SkipWithError("a substituted pad was not apportioned once the relations were learnt");
+  state.SetItemsProcessed(state.iterations());
+}
+
 // unread_load_isolator on 8 channels (two contact groups of 4) at 1 kHz, every channel loadable,
 // after one tick in the air, the alarm up and the sum short (-100 N) throughout: every channel's
 // state and every candidate test run every tick.
@@ -520,6 +562,9 @@ void register_benchmarks() {
                                bench_rejoin_detector);
   benchmark::RegisterBenchmark("stage/range [physical_range_detector, 8 channels, floor 0, 1 kHz, synthetic]",
                                bench_physical_range_detector);
+  benchmark::RegisterBenchmark(
+      "stage/apportion [load_apportioner, 2 feet x 4 pads, 2 substituted, 1 kHz, synthetic]",
+      bench_load_apportioner);
   benchmark::RegisterBenchmark("stage/unread [unread_load_isolator, 8 channels, alarm up, 1 kHz, synthetic]",
                                bench_unread_load_isolator);
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",

@@ -359,7 +359,7 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                                             " points, not points_per_foot = " + std::to_string(feet_points_) +
                                             " (one [x, y] per channel of a foot, in the order of measured)");
   }
-  unmeasured_ = UnmeasuredContactLoads(params.points, feet_points_, feet_);
+  unmeasured_ = generic::UnmeasuredContactLoads(params.points, feet_points_, feet_);
   unknown_.assign(n, 0);
   lower_bound_.assign(n, 0.0);
   plane_usable_.assign(feet_, 0);

@@ -107,7 +107,7 @@ void ContactForceFdi::relation_jumps(std::span<const double> measured, std::span
 bool ContactForceFdi::relation_confirmed(std::size_t foot, std::span<const double> measured, double t) const noexcept {
   const std::size_t relations = unmeasured_.relations_per_foot();
   if (relations == 0 || relation_step_known_[foot] == 0 ||
-      relation_step_count_[foot] < UnmeasuredContactLoads::kMinSamples) {
+      relation_step_count_[foot] < generic::UnmeasuredContactLoads::kMinSamples) {
     return false;
   }
   // Relation r's fault-free window step sigma on this foot: the RMS of its healthy steps [N].

@@ -540,12 +540,12 @@
 #include <string_view>
 #include <vector>
 
-#include "ftsense/biped/unmeasured_contact_loads.hpp"
 #include "ftsense/calibration.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/onset_shape.hpp"
 #include "ftsense/generic/spike_episode.hpp"
 #include "ftsense/generic/trend_window.hpp"
+#include "ftsense/generic/unmeasured_contact_loads.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::biped {
@@ -1335,7 +1335,7 @@ class ContactForceFdi {
   bool gain_unisolated_ = false;  // a strong gain fit that no single channel stands out in
   int gain_window_ticks_ = 1;
   // Substituted channels' loads: the sum and, on rigid soles, the plane relations.
-  UnmeasuredContactLoads unmeasured_{{}, 1, 1};
+  generic::UnmeasuredContactLoads unmeasured_{{}, 1, 1};
   std::vector<char> unknown_;         // per channel, this tick
   std::vector<double> lower_bound_;   // per channel, this tick
   std::vector<char> plane_usable_;    // per foot, this tick

@@ -9,6 +9,7 @@
 #include "ftsense/generic/fault_classifier.hpp"
 #include "ftsense/generic/fault_recovery.hpp"
 #include "ftsense/generic/gain_isolator.hpp"
+#include "ftsense/generic/load_apportioner.hpp"
 #include "ftsense/generic/low_pass.hpp"
 #include "ftsense/generic/orientation_to_rpy.hpp"
 #include "ftsense/generic/physical_range_detector.hpp"
@@ -30,6 +31,6 @@ using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
                                   UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge,
                                   ChangeGuard, StepIsolator, GainIsolator, StuckHold, UnreadLoadIsolator,
-                                  RejoinDetector, PhysicalRangeDetector>;
+                                  RejoinDetector, PhysicalRangeDetector, LoadApportioner>;
 
 }  // namespace ftsense::generic

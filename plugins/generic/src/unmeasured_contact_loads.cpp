@@ -1,11 +1,11 @@
-#include "ftsense/biped/unmeasured_contact_loads.hpp"
+#include "ftsense/generic/unmeasured_contact_loads.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
 
-namespace ftsense::biped {
+namespace ftsense::generic {
 
 UnmeasuredContactLoads::UnmeasuredContactLoads(std::span<const std::array<double, 2>> points,
                                                std::size_t points_per_foot, std::size_t feet)
@@ -44,6 +44,7 @@ UnmeasuredContactLoads::UnmeasuredContactLoads(std::span<const std::array<double
   lower_.assign(channels, 0.0);
   normal_.assign(channels * channels, 0.0);
   gradient_.assign(channels, 0.0);
+  basis_.assign((1 + feet_ * relations_) * channels, 0.0);
 }
 
 double UnmeasuredContactLoads::relation_rms(std::size_t foot, std::size_t relation) const noexcept {
@@ -88,13 +89,14 @@ void UnmeasuredContactLoads::solve(std::span<double> loads, std::span<const char
     fixed_[m] = 0;
     ++m;
   }
+  solved_unknowns_ = m;
+  for (std::size_t f = 0; f < feet_; ++f) foot_rows_[f] = 0;
   if (m == 0) return;
   if (!std::isfinite(leftover)) leftover = 0.0;  // no total force: the bounds alone
   // The feet whose plane relations enter: in full contact, holding an unknown, their variances
   // known; and only for two unknowns or more. One the sum determines alone, to the total force's
   // error, which a plane that holds to tens of newtons as a sole rolls cannot better.
   bool any_rows = false;
-  for (std::size_t f = 0; f < feet_; ++f) foot_rows_[f] = 0;
   if (m >= 2 && relations_ > 0 && sum_count_ >= kMinSamples) {
     for (std::size_t i = 0; i < m; ++i) {
       const std::size_t f = unknowns_[i] / points_per_foot_;
@@ -157,6 +159,50 @@ void UnmeasuredContactLoads::solve(std::span<double> loads, std::span<const char
     fixed_[worst] = 1;
   }
   for (std::size_t i = 0; i < m; ++i) loads[unknowns_[i]] = std::max(loads[unknowns_[i]], lower_[i]);
+}
+
+bool UnmeasuredContactLoads::foot_total_determined(std::size_t foot) noexcept {
+  const std::size_t m = solved_unknowns_;
+  // Modified Gram-Schmidt on the rows over the m unknowns: the sum's (all ones), then each
+  // relation of each foot whose rows entered (its weights on that foot's unknowns).
+  std::size_t rows = 0;
+  const auto add_row = [&](auto weight_of_unknown) {
+    double* row = basis_.data() + rows * m;
+    for (std::size_t a = 0; a < m; ++a) row[a] = weight_of_unknown(a);
+    for (std::size_t b = 0; b < rows; ++b) {
+      const double* q = basis_.data() + b * m;
+      double dot = 0.0;
+      for (std::size_t a = 0; a < m; ++a) dot += q[a] * row[a];
+      for (std::size_t a = 0; a < m; ++a) row[a] -= dot * q[a];
+    }
+    double norm = 0.0;
+    for (std::size_t a = 0; a < m; ++a) norm += row[a] * row[a];
+    norm = std::sqrt(norm);
+    if (norm < 1e-9) return;  // dependent on the rows before
+    for (std::size_t a = 0; a < m; ++a) row[a] /= norm;
+    ++rows;
+  };
+  add_row([](std::size_t) { return 1.0; });
+  for (std::size_t f = 0; f < feet_; ++f) {
+    if (foot_rows_[f] == 0) continue;
+    for (std::size_t r = 0; r < relations_; ++r) {
+      add_row([&](std::size_t a) {
+        const std::size_t j = unknowns_[a];
+        return j / points_per_foot_ == f ? relation_weight(j % points_per_foot_, r) : 0.0;
+      });
+    }
+  }
+  // The foot's indicator s over the unknowns: determined when its projection on the rows is s.
+  double norm = 0.0, projected = 0.0;
+  for (std::size_t a = 0; a < m; ++a) norm += unknowns_[a] / points_per_foot_ == foot ? 1.0 : 0.0;
+  if (norm == 0.0) return true;
+  for (std::size_t b = 0; b < rows; ++b) {
+    const double* q = basis_.data() + b * m;
+    double dot = 0.0;
+    for (std::size_t a = 0; a < m; ++a) dot += unknowns_[a] / points_per_foot_ == foot ? q[a] : 0.0;
+    projected += dot * dot;
+  }
+  return projected > norm * (1.0 - 1e-9);
 }
 
 void UnmeasuredContactLoads::solve_free(std::span<double> loads, double leftover, std::size_t m) noexcept {
@@ -250,4 +296,4 @@ void UnmeasuredContactLoads::solve_free(std::span<double> loads, double leftover
   }
 }
 
-}  // namespace ftsense::biped
+}  // namespace ftsense::generic

@@ -1,7 +1,7 @@
 // UnmeasuredContactLoads: the plane relations of a sole's layout, and the loads of substituted
 // channels from the sum and those relations, against exact values.
 
-#include "ftsense/biped/unmeasured_contact_loads.hpp"
+#include "ftsense/generic/unmeasured_contact_loads.hpp"
 
 #include <array>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-namespace ftsense::biped {
+namespace ftsense::generic {
 namespace {
 
 // SURALP's sole: four pads on a 0.24 m x 0.15 m rectangle (configs/suralp_robust.json).
@@ -188,4 +188,4 @@ TEST(UnmeasuredContactLoads, OneUnknownOrUnlearntRelationsLeaveItToTheSum) {
 }
 
 }  // namespace
-}  // namespace ftsense::biped
+}  // namespace ftsense::generic

@@ -33,7 +33,7 @@
 #include <span>
 #include <vector>
 
-namespace ftsense::biped {
+namespace ftsense::generic {
 
 class UnmeasuredContactLoads {
  public:
@@ -66,6 +66,12 @@ class UnmeasuredContactLoads {
   void solve(std::span<double> loads, std::span<const char> unknown, std::span<const double> lower_bound,
              std::span<const char> plane_usable, double leftover) noexcept;
 
+  // Whether the relations of the last solve fix what foot f's unknowns carry together (the sum
+  // and the feet's plane relations it used, restricted to its unknowns: their indicator lies in
+  // those rows' span). True for a foot without unknowns. Where it is false the loads found there
+  // are the equal share of what the relations leave to unknowns on several feet, not a measure.
+  [[nodiscard]] bool foot_total_determined(std::size_t foot) noexcept;
+
  private:
   // The normal equations over the unknowns not held at their bounds (m unknowns in all).
   void solve_free(std::span<double> loads, double leftover, std::size_t m) noexcept;
@@ -85,6 +91,8 @@ class UnmeasuredContactLoads {
   std::vector<double> lower_;           // per unknown
   std::vector<double> normal_;          // n x n over the n free unknowns (stride n), then its Cholesky factor
   std::vector<double> gradient_;        // n, then the solution
+  std::size_t solved_unknowns_ = 0;     // m of the last solve
+  std::vector<double> basis_;           // orthonormal rows of the last solve's relations, over its m unknowns
 };
 
-}  // namespace ftsense::biped
+}  // namespace ftsense::generic
