@@ -368,8 +368,8 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   std::ostringstream quadruped;
   std::ostringstream quadruped_generic;
   quadruped_generic << "\nThe same quadruped logs through the generic FDI parts alone (configs/quadruped_generic.json:\n"
-                       "sum_constraint_residual -> cusum_detector -> signature_isolator and step_isolator ->\n"
-                       "fault_classifier, and signal_validator, merged by fault_merge -> fault_recovery; calibrated on\n"
+                       "sum_constraint_residual -> cusum_detector -> signature_isolator and step_isolator, and\n"
+                       "physical_range_detector (a foot is pressed, never pulled) -> fault_classifier, and signal_validator, merged by fault_merge -> fault_recovery; calibrated on\n"
                        "quadruped_clean by ftsense calibrate):\n";
   quadruped << "\nA quadruped by JSON alone (configs/quadruped.json: URDF kinematics, m R f_imu spread over the feet in\n"
                "contact about the inverted pendulum's ZMP, contact_force_fdi on four point feet):\n";
@@ -648,7 +648,8 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   doc.table(std::move(quadruped_virtual));
   doc.table(std::move(quadruped_faults));
   doc.paragraph("The same logs through the generic FDI parts alone (`configs/quadruped_generic.json`: "
-                "`sum_constraint_residual` -> `cusum_detector` -> `signature_isolator` and `step_isolator` -> "
+                "`sum_constraint_residual` -> `cusum_detector` -> `signature_isolator` and `step_isolator`, and "
+                "`physical_range_detector` (a foot is pressed, never pulled) -> "
                 "`fault_classifier`, and `signal_validator`, merged by `fault_merge` -> `stuck_hold` (a foot typed frozen "
                 "stays flagged until its reading moves) -> `fault_recovery`; calibrated "
                 "on the clean crawl by `ftsense calibrate`, at 200 Hz on a clean crawl logged at 200 Hz; per scenario, "

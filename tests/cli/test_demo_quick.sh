@@ -140,10 +140,18 @@ drop = [r for r in rows if 6.0 <= float(r["time_s"]) < 7.0]
 assert drop and all(r["rf_foot/fault_type"] == "8" and r["rf_foot/fault"] == "1" for r in drop), "dropout not invalid"
 assert all(math.isfinite(float(r["rf_foot/recovered_N"])) for r in drop), "NaN recovered"
 # The spikes (40 N at 5 per second from 5 s on lf_foot): the validator's spike test runs between
-# the landings that change_guard marks, and names them within 0.5 s; lf_foot shows no other type.
+# the landings that change_guard marks, and names them within 0.5 s; lf_foot shows no other type
+# but on a tick whose reading is below the range test's bound (stage `pressed`: a foot is pressed,
+# never pulled; b = z m sigma + q / 2 from the calibrated sigma and q, z at one false alarm a day
+# at 1 kHz, m = 1.5), which that test flags unclassified on its own tick.
+import json
+pressed = json.load(open(f"{sys.argv[1]}/thresholds_quadruped_generic.json"))["stages"]["pressed"]["params"]
+bound = -(5.7058841 * 1.5 * pressed["noise_std"][0] + 0.5 * pressed["resolution"][0])
 first_spike = next(float(r["time_s"]) for r in rows if r["lf_foot/fault_type"] == "7")
 assert 5.0 <= first_spike < 5.5, first_spike
-assert all(r["lf_foot/fault_type"] in ("0", "7") for r in rows), "lf_foot typed other than spikes"
+other = [r for r in rows if r["lf_foot/fault_type"] not in ("0", "7")]
+assert all(r["lf_foot/fault_type"] == "1" and float(r["lf_foot/measured_N"]) < bound for r in other), \
+    ("lf_foot typed other than spikes", bound, [(r["time_s"], r["lf_foot/fault_type"], r["lf_foot/measured_N"]) for r in other])
 clip = next(float(r["time_s"]) for r in rows if float(r["time_s"]) >= 7.0 and r["lh_foot/fault_type"] == "4")
 assert clip <= 7.1, clip
 assert all(r["lh_foot/fault_type"] == "4" and math.isfinite(float(r["lh_foot/recovered_N"]))
