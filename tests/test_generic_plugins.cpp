@@ -461,6 +461,29 @@ TEST(FaultRecovery, TheCorrectionIsWhatTheChannelsOwnReadingsGive) {
   EXPECT_EQ(told(), (Told{0.0, 1.0}));
 }
 
+TEST(FaultRecovery, AFlaggedChannelIsRecoveredWithinWhatTheQuantityCanTake) {
+  generic::FaultRecovery::Params p;
+  p.correction = generic::FaultRecovery::Correction::when_flagged;
+  p.floor = {0.0};
+  p.ceiling = {500.0};
+  RecoveryRig rig(p);
+  // Healthy: the reading as it is, below the floor too (its noise is the sensor's).
+  EXPECT_EQ(rig.step(-3.0, 0.0, 90.0, 0.0, 0.0), -3.0);
+  // Not yet named, no virtual value: the fallback on the reading is held at the floor.
+  EXPECT_EQ(rig.step(-8.7, -8.7, std::nan(""), 1.0, 1.0), 0.0);
+  EXPECT_EQ(rig.substituted[0], 1.0);
+  // An offset whose correction overshoots: at the floor, its correction the model's (x - (x - b)).
+  EXPECT_EQ(rig.step(30.0, 40.0, 90.0, 1.0, 2.0), 0.0);
+  EXPECT_EQ(rig.correction[0], 40.0);
+  // A virtual value above the ceiling, substituted: at the ceiling.
+  EXPECT_EQ(rig.step(0.0, 0.0, 650.0, 1.0, 4.0), 500.0);
+  // Within the bounds: unchanged.
+  EXPECT_EQ(rig.step(150.0, 50.0, 90.0, 1.0, 2.0), 100.0);
+  // A ceiling not above the floor is refused.
+  p.ceiling = {0.0};
+  EXPECT_THROW((void)generic::FaultRecovery(p, StageContext(1e-3, "rec", {{"measured", 1}})), ConfigError);
+}
+
 TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {
   Diagnostics d;
   (void)load_params<generic::FaultRecovery::Params>(

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
+#include "ftsense/channel_values.hpp"
 #include "ftsense/generic/median_of_three.hpp"
 #include "ftsense/low_pass_gain.hpp"
 #include "ftsense/plausible_ranges.hpp"
@@ -26,6 +29,13 @@ void FaultRecovery::Params::describe(ParamSchema<Params>& schema) {
              "error lies")
       .unit("Hz")
       .greater_than(0.0).plausible(plausible::cutoff_hz());
+  schema.add("floor", &Params::floor,
+             "the least value the measured quantity can take (0 for a force pad that is pressed, never pulled), "
+             "in the reading's unit: a flagged channel's recovered value is held at or above it; empty: none; one "
+             "value applies to all");
+  schema.add("ceiling", &Params::ceiling,
+             "the greatest value the measured quantity can take, in the reading's unit: a flagged channel's "
+             "recovered value is held at or below it; empty: none; one value applies to all");
 }
 
 void FaultRecovery::Params::validate(Diagnostics& diag, std::string_view path) const {
@@ -74,6 +84,17 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
   for (const auto& t : params.median_types) mode_by_type_[fault_code_index(t)] = Mode::median;
   blend_gain_ = low_pass_gain(params.blend_cutoff_hz, context.sample_period_s(), "blend_cutoff_hz");
   const std::size_t dim = context.wired_dim("measured", 1);
+  floor_ = channel_values(params.floor, dim, "floor", true);
+  ceiling_ = channel_values(params.ceiling, dim, "ceiling", true);
+  for (std::size_t j = 0; j < dim; ++j) {
+    if (!std::isfinite(floor_[j])) floor_[j] = -std::numeric_limits<double>::infinity();
+    if (!std::isfinite(ceiling_[j])) ceiling_[j] = std::numeric_limits<double>::infinity();
+    if (!(ceiling_[j] > floor_[j])) {
+      throw ConfigError("/params/ceiling/" + std::to_string(j), " = " + format_number(ceiling_[j]) +
+                                                                    " is not above the floor (" +
+                                                                    format_number(floor_[j]) + ")");
+    }
+  }
   ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the monitored sensor"}.sized_by("as wired"));
   ports_.add_input(PortSpec{"fault_estimate", dim, std::string(kAnyUnit), "the estimated fault eta_hat"}
                        .sized_by("as `measured`"));
@@ -165,9 +186,10 @@ void FaultRecovery::step(const StepIO& io) noexcept {
       value = last_[j];
       stands_for_nothing = true;
     }
+    const double lasting = measured[j] - value;
+    if (fault[j] != 0.0) value = std::clamp(value, floor_[j], ceiling_[j]);
     out[j] = value;
     last_[j] = value;
-    const double lasting = measured[j] - value;
     substituted[j] = stands_for_nothing ? 1.0 : 0.0;
     own_correction[j] = !stands_for_nothing && corrected_by_model && lasting_model && std::isfinite(lasting) ? lasting : 0.0;
   }

@@ -47,6 +47,12 @@
 // after. (Both were seen on an unseen walk, each flagging a healthy neighbour.)
 // `recovered` is never NaN: if the chosen value is not finite, the other one is used, and if
 // neither is, the last recovered value is held.
+// Bounded by the physics: while a channel is flagged its recovered value is held within
+// [floor_j, ceiling_j] (`floor`, `ceiling`: what the measured quantity can take, e.g. 0 N for a
+// pad that is pressed, never pulled; either may be left out), whichever way it was recovered (a
+// fallback on a reading below the floor, a correction that overshoots it, a virtual value that
+// does). A channel not flagged passes its reading unchanged, noise and all. The output
+// `correction` is the model's (measured - the unbounded value): a bound is no fault estimate.
 
 #include <array>
 #include <string>
@@ -75,6 +81,8 @@ class FaultRecovery {
     std::vector<std::string> blend_types;
     std::vector<std::string> median_types;
     double blend_cutoff_hz = 10.0;
+    std::vector<double> floor{};
+    std::vector<double> ceiling{};
     static void describe(ParamSchema<Params>& schema);
     void validate(Diagnostics& diag, std::string_view path) const;
   };
@@ -100,6 +108,7 @@ class FaultRecovery {
   std::vector<std::array<double, 2>> previous_readings_;  // x_{t-1}, x_{t-2} (finite ones)
   std::vector<unsigned char> previous_count_;             // how many of them are set, up to 2
   std::vector<double> last_;
+  std::vector<double> floor_, ceiling_;  // per channel; -inf, +inf: none
 };
 
 }  // namespace ftsense::generic
