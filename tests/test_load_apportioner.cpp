@@ -80,6 +80,17 @@ void plane_loads(std::vector<double>& x, std::size_t foot, double a, double b, d
   for (std::size_t i = 0; i < 4; ++i) x[foot * 4 + i] = a + b * kApportionSole[i][0] + c * kApportionSole[i][1];
 }
 
+// Double support, both feet's loads on their planes, the reference their exact sum.
+Tick double_support() {
+  Tick t;
+  plane_loads(t.x, 0, 280.0, 900.0, 300.0);
+  plane_loads(t.x, 1, 220.0, -600.0, -500.0);
+  double sum = 0.0;
+  for (const double x : t.x) sum += x;
+  t.reference = sum;
+  return t;
+}
+
 // 200 healthy ticks in double support: the sum residual alternates +-10 N, each foot's relation
 // +-5 N (pads 1 and 4 up, 2 and 3 down by 1.25 N).
 void learn(LoadApportioner& part, double flagged) {
@@ -130,13 +141,8 @@ TEST(LoadApportioner, TwoSubstitutedPadsOnFeetInFullContactAreSetApartByTheirPla
   learn(part, 0.0);
   std::printf("learnt: plane relation RMS %.4f N per foot\n", part.relations().relation_rms(0, 0));
   EXPECT_NEAR(part.relations().relation_rms(0, 0), 2.5, 1e-9);  // (1.25 * 4) / 2: W's entries are +-1/2
-  // Double support, loads on both planes, the sum exact; l_foot/p4 and r_foot/p3 substituted.
-  Tick t;
-  plane_loads(t.x, 0, 280.0, 900.0, 300.0);
-  plane_loads(t.x, 1, 220.0, -600.0, -500.0);
-  double sum = 0.0;
-  for (const double x : t.x) sum += x;
-  t.reference = sum;
+  // l_foot/p4 and r_foot/p3 substituted.
+  Tick t = double_support();
   const double l4 = t.x[3], r3 = t.x[6], l2 = t.x[1];
   t.x[3] = 60.0;   // frozen
   t.x[6] = 40.0;   // frozen
@@ -160,12 +166,7 @@ TEST(LoadApportioner, TwoSubstitutedPadsOnFeetInFullContactAreSetApartByTheirPla
 }
 
 TEST(LoadApportioner, TwoUnknownPadsOfOneFootShareWhatTheRelationsLeaveThemEqually) {
-  Tick t;
-  plane_loads(t.x, 0, 280.0, 900.0, 300.0);
-  plane_loads(t.x, 1, 220.0, -600.0, -500.0);
-  double sum = 0.0;
-  for (const double x : t.x) sum += x;
-  t.reference = sum;
+  Tick t = double_support();
   const double l1 = t.x[0], l4 = t.x[3];
   t.substituted[0] = 1.0;
   t.substituted[3] = 1.0;
@@ -188,12 +189,7 @@ TEST(LoadApportioner, TwoUnknownPadsOfOneFootShareWhatTheRelationsLeaveThemEqual
 }
 
 TEST(LoadApportioner, AFootWithAPadAtItsAirLevelOrUnlearntRelationsLeavesItToTheSumAlone) {
-  Tick t;
-  plane_loads(t.x, 0, 280.0, 900.0, 300.0);
-  plane_loads(t.x, 1, 220.0, -600.0, -500.0);
-  double sum = 0.0;
-  for (const double x : t.x) sum += x;
-  t.reference = sum;
+  Tick t = double_support();
   const double l4 = t.x[3], r3 = t.x[6];
   t.substituted[3] = 1.0;
   t.substituted[6] = 1.0;

@@ -369,8 +369,9 @@ int demo_command(const std::vector<std::string>& args, const Context& context) {
   std::ostringstream quadruped_generic;
   quadruped_generic << "\nThe same quadruped logs through the generic FDI parts alone (configs/quadruped_generic.json:\n"
                        "sum_constraint_residual -> cusum_detector -> signature_isolator and step_isolator, and\n"
-                       "physical_range_detector (a foot is pressed, never pulled) -> fault_classifier, and signal_validator, merged by fault_merge -> fault_recovery; calibrated on\n"
-                       "quadruped_clean by ftsense calibrate):\n";
+                       "physical_range_detector (a foot is pressed, never pulled) -> fault_classifier, and\n"
+                       "signal_validator, merged by fault_merge -> fault_recovery; calibrated on quadruped_clean by\n"
+                       "ftsense calibrate):\n";
   quadruped << "\nA quadruped by JSON alone (configs/quadruped.json: URDF kinematics, m R f_imu spread over the feet in\n"
                "contact about the inverted pendulum's ZMP, contact_force_fdi on four point feet):\n";
   std::string quadruped_fault_table;

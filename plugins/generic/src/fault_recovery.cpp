@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <string>
+#include <utility>
 
-#include "ftsense/channel_values.hpp"
 #include "ftsense/generic/median_of_three.hpp"
+#include "ftsense/generic/quantity_bounds.hpp"
 #include "ftsense/low_pass_gain.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
@@ -84,17 +83,9 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
   for (const auto& t : params.median_types) mode_by_type_[fault_code_index(t)] = Mode::median;
   blend_gain_ = low_pass_gain(params.blend_cutoff_hz, context.sample_period_s(), "blend_cutoff_hz");
   const std::size_t dim = context.wired_dim("measured", 1);
-  floor_ = channel_values(params.floor, dim, "floor", true);
-  ceiling_ = channel_values(params.ceiling, dim, "ceiling", true);
-  for (std::size_t j = 0; j < dim; ++j) {
-    if (!std::isfinite(floor_[j])) floor_[j] = -std::numeric_limits<double>::infinity();
-    if (!std::isfinite(ceiling_[j])) ceiling_[j] = std::numeric_limits<double>::infinity();
-    if (!(ceiling_[j] > floor_[j])) {
-      throw ConfigError("/params/ceiling/" + std::to_string(j), " = " + format_number(ceiling_[j]) +
-                                                                    " is not above the floor (" +
-                                                                    format_number(floor_[j]) + ")");
-    }
-  }
+  QuantityBounds bounds = quantity_bounds(params.floor, params.ceiling, dim);
+  floor_ = std::move(bounds.floor);
+  ceiling_ = std::move(bounds.ceiling);
   ports_.add_input(PortSpec{"measured", dim, std::string(kAnyUnit), "the monitored sensor"}.sized_by("as wired"));
   ports_.add_input(PortSpec{"fault_estimate", dim, std::string(kAnyUnit), "the estimated fault eta_hat"}
                        .sized_by("as `measured`"));

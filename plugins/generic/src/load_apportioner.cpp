@@ -7,6 +7,7 @@
 
 #include "ftsense/channel_values.hpp"
 #include "ftsense/generic/false_alarm_target.hpp"
+#include "ftsense/generic/quantity_bounds.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
 namespace ftsense::generic {
@@ -73,7 +74,7 @@ LoadApportioner::LoadApportioner(const Params& params, const StageContext& conte
   const double z = two_sided_z(false_alarm_per_tick(context.sample_period_s(), params.false_alarm_interval_s));
   loaded_above_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
-    loaded_above_[k] = floor_[k] + z * params.noise_margin * noise[k] + 0.5 * resolution[k];
+    loaded_above_[k] = floor_[k] + reading_margin(z, params.noise_margin, noise[k], resolution[k]);
   }
   known_.assign(n, 0.0);
   solved_.assign(n, 0.0);
@@ -173,15 +174,14 @@ void LoadApportioner::step(const StepIO& io) noexcept {
     }
     // Channel i unknown too; a foot's plane usable while all its pads are on the ground and its
     // known ones loaded.
-    double known_sum = 0.0;
     for (std::size_t f = 0; f < feet_; ++f) plane_usable_[f] = 1;
     for (std::size_t j = 0; j < n; ++j) {
       const bool unknown = j == i || std::isnan(known_[j]);
       unknown_[j] = unknown ? 1 : 0;
       solved_[j] = unknown ? 0.0 : known_[j];
-      if (!unknown) known_sum += known_[j];
       if (!can_carry(j) || (!unknown && !(known_[j] > loaded_above_[j]))) plane_usable_[j / points_per_foot_] = 0;
     }
+    const double known_sum = known_total - (std::isnan(known_[i]) ? 0.0 : known_[i]);
     loads_.solve(solved_, unknown_, floor_, plane_usable_, r - known_sum);
     // An equal share across feet is no measure: cannot judge.
     virtual_value[i] = loads_.foot_total_determined(i / points_per_foot_) ? solved_[i] : kNaN;

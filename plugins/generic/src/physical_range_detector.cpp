@@ -7,6 +7,7 @@
 #include "ftsense/channel_values.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/false_alarm_target.hpp"
+#include "ftsense/generic/quantity_bounds.hpp"
 
 namespace ftsense::generic {
 
@@ -48,24 +49,17 @@ void PhysicalRangeDetector::Params::validate(Diagnostics& diag, std::string_view
 
 PhysicalRangeDetector::PhysicalRangeDetector(const Params& params, const StageContext& context) {
   const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
-  const auto floor = channel_values(params.floor, dim, "floor", true);
-  const auto ceiling = channel_values(params.ceiling, dim, "ceiling", true);
+  const QuantityBounds bounds = quantity_bounds(params.floor, params.ceiling, dim);
   const auto noise = channel_values(params.noise_std, dim, "noise_std");
   const auto resolution = channel_values(params.resolution, dim, "resolution");
   check_noise_margin(params.noise_margin);
   const double z = two_sided_z(false_alarm_per_tick(context.sample_period_s(), params.false_alarm_interval_s));
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
   lowest_.resize(dim);
   highest_.resize(dim);
   for (std::size_t j = 0; j < dim; ++j) {
-    if (std::isfinite(floor[j]) && std::isfinite(ceiling[j]) && !(ceiling[j] > floor[j])) {
-      throw ConfigError("/params/ceiling/" + std::to_string(j), " = " + format_number(ceiling[j]) +
-                                                                    " is not above the floor (" +
-                                                                    format_number(floor[j]) + ")");
-    }
-    const double b = z * params.noise_margin * noise[j] + 0.5 * resolution[j];
-    lowest_[j] = std::isfinite(floor[j]) ? floor[j] - b : -kInfinity;
-    highest_[j] = std::isfinite(ceiling[j]) ? ceiling[j] + b : kInfinity;
+    const double b = reading_margin(z, params.noise_margin, noise[j], resolution[j]);
+    lowest_[j] = bounds.floor[j] - b;  // -inf where none
+    highest_[j] = bounds.ceiling[j] + b;
   }
   ports_.add_input(
       PortSpec{"signal", dim, std::string(kAnyUnit), "the readings x_j", PortRole::measured}.sized_by("as wired"));

@@ -23,7 +23,7 @@
 // an equal share between feet is no measure (cannot judge). v_i = 0 for a channel that cannot
 // carry load; NaN for every other while R is not finite (nothing is judged on a guess).
 //
-// b_k = z m sigma_k + q_k / 2 (physical_range_detector.hpp's bound above the floor: a reading
+// b_k = z m sigma_k + q_k / 2 (quantity_bounds.hpp's margin, as physical_range_detector's: a reading
 // within its noise of zero may be a pad that has lifted, off the plane), with sigma, q the
 // readings' noise and quantisation step (`ftsense calibrate`), z at one false alarm per
 // `false_alarm_interval_s`, m = `noise_margin`.
