@@ -179,6 +179,22 @@ TEST(StepIsolator, AStepOnARowRaisedWithNoNamedCauseNamesNobody) {
   expect_nobody_blamed(run_isolator(t));
 }
 
+TEST(StepIsolator, WithJudgeRaisedRowsAStepAwayFromZeroOnARaisedRowIsNamed) {
+  // Rows of readings corrected for the faults already found: the alarm up from the start says
+  // nothing of the row's level, which is zero, so channel 1's step is named on the tick its window
+  // completes, as on a quiet row, and the detector, still up, keeps it until the step back.
+  StepTrace t;
+  t.alarm_from = 0;
+  StepIsolator::Params p;
+  p.judge_raised_rows = true;
+  const StepVerdicts r = run_isolator(t, p);
+  for (int k = 0; k < 1200; ++k) {
+    EXPECT_EQ(r.fault[k][1], k >= 509 && k < 809 ? 1.0 : 0.0) << "tick " << k;
+    EXPECT_EQ(r.fault[k][0], 0.0) << "tick " << k;
+    EXPECT_EQ(r.fault[k][2], 0.0) << "tick " << k;
+  }
+}
+
 TEST(StepIsolator, AStepInsideAGuardIsNotJudged) {
   // Guarded over ticks 495-514: no judgement rests on them (the isolator needs 20 unguarded ticks),
   // so the onset is not named; the end at 800 is a step towards zero and begins nothing.

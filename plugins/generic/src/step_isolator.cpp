@@ -41,9 +41,14 @@ void StepIsolator::Params::describe(ParamSchema<Params>& schema) {
       .plausible(0.01, 10.0, "a detector confirms a lasting change within tenths of a second");
   schema.add("guard", &Params::guard,
              "adds input guard (nonzero: the tick is not judged, e.g. change_guard over a landing's transient)");
+  schema.add("judge_raised_rows", &Params::judge_raised_rows,
+             "also judge a step on a row whose alarm was up before it, with nothing named here: for rows of "
+             "readings corrected for the faults already found (plane_fit_residual with `correction`), whose "
+             "level is then their fault-free one, so a step away from it begins a fault");
 }
 
-StepIsolator::StepIsolator(const Params& params, const StageContext& context) : guard_wired_(params.guard) {
+StepIsolator::StepIsolator(const Params& params, const StageContext& context)
+    : guard_wired_(params.guard), judge_raised_rows_(params.judge_raised_rows) {
   const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
   const double period = context.sample_period_s();
   window_ = step_window_ticks(period);
@@ -203,7 +208,7 @@ void StepIsolator::step(const StepIO& io) noexcept {
         size_[best] += step_[best];
         if (std::abs(size_[best]) <= release_bound_[best]) release(best);
       } else if (std::abs(level_[best]) > std::abs(level_[best] - step_[best]) &&
-                 (raised_ring_[best * span_ + slot(t + 1)] == 0 || blamed_any)) {
+                 (judge_raised_rows_ || raised_ring_[best * span_ + slot(t + 1)] == 0 || blamed_any)) {
         // Blamed only for a step away from the row's fault-free level (one towards it ends a
         // fault nobody named, or another channel's), and not on a row raised before the step
         // with nothing named here (the step may begin a second fault or end that one).

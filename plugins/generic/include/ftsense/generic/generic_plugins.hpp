@@ -13,6 +13,7 @@
 #include "ftsense/generic/low_pass.hpp"
 #include "ftsense/generic/orientation_to_rpy.hpp"
 #include "ftsense/generic/physical_range_detector.hpp"
+#include "ftsense/generic/plane_fit_residual.hpp"
 #include "ftsense/generic/random_walk_fault_filter.hpp"
 #include "ftsense/generic/rejoin_detector.hpp"
 #include "ftsense/generic/signal_validator.hpp"
@@ -31,6 +32,6 @@ using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
                                   UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge,
                                   ChangeGuard, StepIsolator, GainIsolator, StuckHold, UnreadLoadIsolator,
-                                  RejoinDetector, PhysicalRangeDetector, LoadApportioner>;
+                                  RejoinDetector, PhysicalRangeDetector, LoadApportioner, PlaneFitResidual>;
 
 }  // namespace ftsense::generic

@@ -42,7 +42,9 @@
 // row, which also takes it towards zero, is missed too), and when its row's detector was down
 // on the tick before the step or some channel is
 // blamed here (a row raised with no named cause holds a fault nobody can place: a step may begin
-// a second fault or end that one, and the signature isolator judges it); the steps named on it
+// a second fault or end that one, and the signature isolator judges it; with `judge_raised_rows`
+// that rule is off, for rows of readings corrected for the faults already found, whose level is
+// then their fault-free one whatever the alarm says); the steps named on it
 // add up to its size b_j (output fault_estimate). It is re-admitted when
 //   - a step named on it brings b_j back within z sqrt(2) s_r,j (the fault ended as it began);
 //   - the detector on its row (input `alarm`, e.g. a cusum_detector on r) falls after it rose:
@@ -89,6 +91,7 @@ class StepIsolator {
     double false_alarm_interval_s = 86400.0;
     double confirm_s = 0.5;
     bool guard = false;
+    bool judge_raised_rows = false;
     static void describe(ParamSchema<Params>& schema);
   };
 
@@ -109,6 +112,7 @@ class StepIsolator {
 
   Ports ports_;
   bool guard_wired_;
+  bool judge_raised_rows_;
   std::size_t window_;       // W
   std::size_t span_;         // max(2W, W + 2): the samples a judgement rests on
   std::size_t confirm_ticks_;
