@@ -391,6 +391,46 @@ TEST(FaultClassifier, AnExactBlockThatSpreadsMoreThanItsNoiseWeighsAsItsSpread) 
   EXPECT_NEAR(c.fit(0).size, (50.0 * 0.02 * 15.0 + 49.0 * 0.04 * 20.0) / (50.0 * 0.02 + 49.0 * 0.04), 1e-9);
 }
 
+// A gain named on a stance is refuted by the air after it, where an offset and a frozen output fit
+// alike: the type goes back to unclassified (the recovery takes the reference), not a type the data
+// have since refuted (without the rule: a drift, which the air's first blocks favoured, then kept).
+// 0-6 s the reference swings about zero, v = 100 sin(2 pi t) (whole periods: an offset's and a
+// frozen reading's misfits there are equal); from 5 s the reading is v / 2, flagged at once, so
+// gain is named (k = 0.5; offset and frozen leave 0.25 sum w v^2 = 1250 each). From 6 s to 7 s the
+// pad is in the air: its reference 0 exactly (input exact_residual), its reading stuck at -60 (a
+// second long: a drift's ramp from 5 s cannot pass for that constant).
+TEST(FaultClassifier, ANamedTypeThatAnotherModelRefutesIsUnclassifiedUntilOneStandsApart) {
+  FaultClassifier::Params p;
+  p.residual_noise_density = {1.0};
+  p.exact_noise_density = {0.1};
+  p.exact_residual = true;
+  p.block_s = kPeriod;
+  p.history_s = 10.0;
+  FaultClassifier c(p, StageContext(kPeriod, "classify", {{"measured", 1}}));
+  c.reset();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double type = 0.0, estimate = 0.0, x = 0.0, v = 0.0;
+  for (long k = 0; k < 700; ++k) {
+    const double t = static_cast<double>(k) * kPeriod;
+    const bool in_air = k >= 600;
+    v = in_air ? 0.0 : 100.0 * std::sin(2.0 * M_PI * t);
+    x = in_air ? -60.0 : (k >= 500 ? 0.5 * v : v);
+    const double flags[] = {k >= 500 ? 1.0 : 0.0}, xs[] = {x}, vs[] = {v}, es[] = {in_air ? x : nan};
+    double types[1], estimates[1];
+    const std::span<const double> ins[] = {flags, xs, vs, es};
+    const std::span<double> outs[] = {types, estimates};
+    c.step(StepIO{t, ins, outs});
+    type = types[0];
+    estimate = estimates[0];
+    if (k == 599) {
+      EXPECT_EQ(type, fault_code(FaultType::gain));
+      EXPECT_NEAR(c.fit(0).size, 0.5, 1e-9);
+    }
+  }
+  EXPECT_EQ(type, fault_code(FaultType::unclassified));
+  EXPECT_NEAR(x - estimate, v, 1e-12);  // recovered: the reference, 0 in the air
+}
+
 TEST(FaultClassifier, RejectsAHistoryShorterThanFourBlocks) {
   FaultClassifier::Params p;
   p.block_s = 0.1;

@@ -322,7 +322,16 @@ void FaultClassifier::classify(std::size_t c) noexcept {
   for (std::size_t m = 0; m < kModels.size(); ++m) {
     if (m != winner && best[m].rss - best[winner].rss < margin_) named = false;
   }
-  if (named) ch.fit.type = kModels[winner];
+  if (named) {
+    ch.fit.type = kModels[winner];
+  } else {
+    // A named type that another model now fits better by the margin is refuted, though no model
+    // stands apart yet (two that fit alike: a reading stuck in the air is an offset and a frozen
+    // output at once): the type is unclassified again, and the recovery takes the reference.
+    for (std::size_t m = 0; m < kModels.size(); ++m) {
+      if (kModels[m] == ch.fit.type && best[m].rss - best[winner].rss >= margin_) ch.fit.type = FaultType::unclassified;
+    }
+  }
   // The named model's latest fit (its size and onset follow the growing window).
   for (std::size_t m = 0; m < kModels.size(); ++m) {
     if (kModels[m] == ch.fit.type && std::isfinite(best[m].rss)) {

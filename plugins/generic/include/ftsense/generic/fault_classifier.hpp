@@ -49,7 +49,9 @@
 // is the best of many, and a reference error that repeats with the gait (measured out of q,
 // whose windows average it away) stays in the block means, where a model may fit part of it.
 // Until then the type is unclassified. A named type stays while the channel is flagged unless
-// another model overtakes it by the same margin. An episode ends when the flag drops (the channel
+// another model overtakes it by the same margin; where another fits better by that margin but
+// none stands apart yet (an offset and a frozen output, alike on a reading stuck in the air), the
+// named type is refuted and the channel is unclassified again. An episode ends when the flag drops (the channel
 // is re-admitted) and stays down `same_episode_s`; a flag back sooner continues it (a detector's
 // chatter does not throw the evidence away), a later one starts a new fit after the re-admission. A gain whose k is within its own uncertainty of
 // 0 (|k| < sqrt(chi^2_1(confidence) / sum w_i v_i^2)) is the frozen-at-zero
