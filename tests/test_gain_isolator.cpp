@@ -44,6 +44,7 @@ double swaying_pad_load(std::size_t j, int k, double phase_step = 2.0 * M_PI / 3
 struct GainTrace {
   std::size_t channel = 1;
   int onset = 2000;  // the first tick of block 20
+  int gain_to = 1000000;  // the gain's end (the reading its load again from this tick)
   int alarm_from = 2000, alarm_to = 1000000;
   double gain = 2.0, offset = 0.0, drift_per_s = 0.0;
   double phase_step = 2.0 * M_PI / 3.0;
@@ -89,7 +90,7 @@ std::vector<int> run_gain_trace(const GainTrace& t, GainIsolator::Params p = {})
                                                              : swaying_pad_load(j, k, t.phase_step);
       reference += l;
       x[j] = l + t.noise * noise(rng) + (air && k >= t.air_from ? t.air_reading : 0.0);
-      if (j == t.channel && k >= t.onset) {
+      if (j == t.channel && k >= t.onset && k < t.gain_to) {
         x[j] = t.gain * x[j] + t.offset + t.drift_per_s * (k - t.onset) * kGainPeriod;
       }
     }
@@ -206,6 +207,34 @@ TEST(GainIsolator, TheNameDropsOnTheTickTheAlarmDoesAndARaisedAlarmIsJudgedAtIts
   named = run_gain_trace(t);
   EXPECT_EQ(first_gain_named(named), 3199);
   EXPECT_EQ(named[3199], 1);
+}
+
+// With hold_until_refuted the name outlives the alarm (a gain is unseen while its pad carries
+// nothing). The alarm falls on tick 3000, the first of block 30; with density 0.1 a block mean's
+// variance is 0.01 / 0.1 = 0.1 N^2. A gain that stays leaves u = e - beta x_1 = 0 (beta = 1/2): never
+// refuted, it is held until its pad has carried load for min_fault_s = 3 blocks with the alarm down
+// (blocks 30, 31, 32: tick 3299). A gain that ends with the alarm leaves e = 0 while x_1 sways:
+// on block 31's end (tick 3199) the two blocks' u moved by half of x_1's block means' change,
+// hundreds of times the margin, and the name drops there.
+TEST(GainIsolator, AHeldNameDropsWhenTheBlocksRefuteItsGainOrItsPadHasCarriedLoadLongEnough) {
+  GainIsolator::Params p;
+  p.hold_until_refuted = true;
+  GainTrace t;
+  t.density = 0.1;
+  t.alarm_to = 3000;
+  t.ticks = 3400;
+  std::vector<int> named = run_gain_trace(t, p);
+  EXPECT_EQ(first_gain_named(named), 2299);
+  for (int k = 2299; k < 3299; ++k) ASSERT_EQ(named[k], 1) << "tick " << k;
+  for (int k = 3299; k < 3400; ++k) ASSERT_EQ(named[k], -1) << "tick " << k;
+  t.gain_to = 3000;
+  named = run_gain_trace(t, p);
+  for (int k = 2299; k < 3199; ++k) ASSERT_EQ(named[k], 1) << "tick " << k;
+  for (int k = 3199; k < 3400; ++k) ASSERT_EQ(named[k], -1) << "tick " << k;
+  // Without the hold the name drops with the alarm.
+  named = run_gain_trace(t);
+  EXPECT_EQ(named[2999], 1);
+  EXPECT_EQ(named[3000], -1);
 }
 
 TEST(GainIsolator, NothingIsNamedWithoutAnAlarmOrBeforeTheOnsetHasItsBlocks) {

@@ -42,6 +42,9 @@ void GainIsolator::Params::describe(ParamSchema<Params>& schema) {
       .unit("s")
       .greater_than(0.0)
       .plausible(0.01, 60.0, "from a few ticks to a minute");
+  schema.add("hold_until_refuted", &Params::hold_until_refuted,
+             "keep a named channel named after the group's alarm falls, until the blocks since show that e no longer "
+             "follows its reading by the gain fitted (a gain is invisible while its pad carries nothing)");
   schema
       .add("false_alarm_interval_s", &Params::false_alarm_interval_s,
            "mean time between wrong names the margins are set for, per decision: alpha = block_s / interval")
@@ -157,6 +160,15 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   unloaded_now_.assign(channels_, 1);
   named_.assign(groups_, -1);
   last_named_.assign(groups_, -1);
+  hold_ = params.hold_until_refuted;
+  held_.assign(groups_, -1);
+  beta_.assign(groups_, 0.0);
+  held_n_.assign(groups_, 0.0);
+  held_e_.assign(groups_, 0.0);
+  held_ee_.assign(groups_, 0.0);
+  held_u_.assign(groups_, 0.0);
+  held_uu_.assign(groups_, 0.0);
+  held_loaded_blocks_.assign(groups_, 0);
   window_e_.assign(capacity_, 0.0);
   window_t_.assign(capacity_, 0.0);
   window_x_.assign(group_size_ * capacity_, 0.0);
@@ -174,6 +186,8 @@ void GainIsolator::reset() noexcept {
   std::fill(unloaded_now_.begin(), unloaded_now_.end(), 1);
   std::fill(named_.begin(), named_.end(), -1);
   std::fill(last_named_.begin(), last_named_.end(), -1);
+  std::fill(held_.begin(), held_.end(), -1);
+  std::fill(beta_.begin(), beta_.end(), 0.0);
   tick_in_block_ = 0;
   blocks_ = 0;
 }
@@ -272,6 +286,18 @@ long GainIsolator::judge(std::size_t group) noexcept {
   const bool explains = best * w >= margin_ && (best - runner_up) * w >= margin_ && left <= fit_bound_[n];
   if (!explains) return -1;
   if (loadable_ && stuck_neighbour(best_channel, n)) return -1;
+  // beta: the named channel's coefficient from its onset on (z = x [b >= onset], with the intercept).
+  {
+    const double* x = window_x_.data() + static_cast<std::size_t>(best_channel) * capacity_;
+    double s_z = 0.0, s_zz = 0.0, s_ez = 0.0;
+    for (std::size_t b = onset_[static_cast<std::size_t>(best_channel)]; b < n; ++b) {
+      s_z += x[b];
+      s_zz += x[b] * x[b];
+      s_ez += window_e_[b] * x[b];
+    }
+    const double spread = s_zz - s_z * s_z / count;
+    beta_[group] = spread > 0.0 ? (s_ez - sum_e * s_z / count) / spread : 0.0;
+  }
   return best_channel;
 }
 
@@ -295,6 +321,38 @@ bool GainIsolator::stuck_neighbour(long named, std::size_t n) const noexcept {
     if (spread_x < follow_ratio_ * follow_ratio_ * spread_e) return true;
   }
   return false;
+}
+
+bool GainIsolator::held_refuted(std::size_t group) noexcept {
+  // The block just completed, as judge() takes blocks: usable, no other channel standing for
+  // nothing while it could carry load (its course in e is unknown); one spent in the air counts at 0.
+  const std::size_t slot = (blocks_ - 1) % capacity_;
+  const long held = held_[group];
+  // A gain that stayed shows in e as soon as its pad carries load, and the alarm rises again: a
+  // pad that could carry load for min_fault_s of blocks (every block without `loadable`) with the
+  // alarm still down is no longer held, whatever the fit says (a neighbour standing for nothing
+  // may leave no block to fit).
+  const std::size_t own = (group * group_size_ + static_cast<std::size_t>(held)) * capacity_ + slot;
+  if (!loadable_ || block_loaded_[own]) held_loaded_blocks_[group] += 1;
+  if (held_loaded_blocks_[group] >= min_fault_blocks_) return true;
+  if (!block_usable_[group * capacity_ + slot]) return false;
+  double e = block_e_[group * capacity_ + slot];
+  for (std::size_t j = 0; j < group_size_; ++j) {
+    if (static_cast<long>(j) == held) continue;
+    const std::size_t at = (group * group_size_ + j) * capacity_ + slot;
+    if (block_substituted_[at] == kStoodForNothing) return false;
+    if (block_substituted_[at] == kStoodForNothingInAir) e -= block_x_[at];
+  }
+  const double u = e - beta_[group] * block_x_[own];
+  held_n_[group] += 1.0;
+  held_e_[group] += e;
+  held_ee_[group] += e * e;
+  held_u_[group] += u;
+  held_uu_[group] += u * u;
+  const double n = held_n_[group];
+  const double rss_none = held_ee_[group] - held_e_[group] * held_e_[group] / n;
+  const double rss_gain = held_uu_[group] - held_u_[group] * held_u_[group] / n;
+  return (rss_gain - rss_none) * inv_block_var_[group] >= margin_;
 }
 
 void GainIsolator::step(const StepIO& io) noexcept {
@@ -361,13 +419,24 @@ void GainIsolator::step(const StepIO& io) noexcept {
       raised = raised || (std::isfinite(alarm[j]) && alarm[j] != 0.0);  // as the other isolators read it
     }
     if (!raised) {
+      if (hold_ && named_[g] >= 0) {
+        // The alarm fell with a channel named: held from here until the blocks refute its gain.
+        held_[g] = named_[g];
+        held_n_[g] = held_e_[g] = held_ee_[g] = held_u_[g] = held_uu_[g] = 0.0;
+        held_loaded_blocks_[g] = 0;
+      }
       named_[g] = -1;
+      if (held_[g] >= 0 && block_ends && held_refuted(g)) held_[g] = -1;
     } else if (block_ends) {
       named_[g] = judge(g);
-      if (named_[g] >= 0) last_named_[g] = named_[g];
+      if (named_[g] >= 0) {
+        last_named_[g] = named_[g];
+        held_[g] = -1;
+      }
     }
+    const long shown = named_[g] >= 0 ? named_[g] : held_[g];
     for (std::size_t j = 0; j < group_size_; ++j) {
-      const bool named = named_[g] == static_cast<long>(j);
+      const bool named = shown == static_cast<long>(j);
       fault[g * group_size_ + j] = named ? 1.0 : 0.0;
       fault_type[g * group_size_ + j] = fault_code(named ? FaultType::gain : FaultType::none);
     }

@@ -57,7 +57,19 @@
 // moved over those blocks (root mean square about the mean of each: signal_validator's follow
 // test, on the sum residual).
 // The name holds while the group's alarm holds (re-judged at every block's end), and drops with
-// it: the detector's state, not this part's, says when the fault is over. A block is usable when
+// it: the detector's state, not this part's, says when the fault is over. With
+// `hold_until_refuted` it holds past the alarm's fall until the blocks since show the gain is
+// over: a gain moves e by beta x_j, nothing while its pad carries nothing, so the alarm falls
+// with every swing while the fault stays. On the usable blocks since the fall (none of the
+// others standing for nothing), with an intercept each,
+//   RSS_0 = sum (e_b - mean e)^2,   RSS_1 = sum (u_b - mean u)^2,   u_b = e_b - beta x_jb,
+// beta the one fitted at the last naming, and the name drops when (RSS_1 - RSS_0) / s^2 >= m:
+// the gain, had it stayed, would have moved e by the margin, and e did not follow. A pad in the
+// air (x_j constant) refutes nothing; a stance where e follows beta x_j raises the alarm again,
+// and the group is judged afresh. The name also drops once the pad could carry load (input
+// `loadable`; every block without it) over min_fault_s of blocks since the fall with the alarm
+// still down: a gain that stayed would have raised it (where a neighbour standing for nothing
+// leaves no block to fit, this bounds the hold). A block is usable when
 // at least half its ticks have e and every reading of the group finite.
 //
 // What it is not for: a fault that does not scale with the reading (an offset, a drift, a frozen
@@ -101,6 +113,7 @@ class GainIsolator {
     bool substituted = false;
     bool loadable = false;
     double follow_ratio = 0.25;
+    bool hold_until_refuted = false;
     static void describe(ParamSchema<Params>& schema);
   };
 
@@ -122,6 +135,9 @@ class GainIsolator {
   // Whether a channel other than `named` read still while loaded from the named onset on (over
   // the window's n blocks), by follow_ratio of e's move: a stuck reading could be e's cause.
   [[nodiscard]] bool stuck_neighbour(long named, std::size_t n) const noexcept;
+  // With hold_until_refuted: takes the block just completed into the held channel's sums; whether
+  // they now refute its gain (header).
+  [[nodiscard]] bool held_refuted(std::size_t group) noexcept;
 
   Ports ports_;
   std::size_t channels_ = 0;
@@ -160,6 +176,14 @@ class GainIsolator {
   // Per group: the channel last named (its own substituted blocks judge on after a decision
   // named nobody), -1 none yet.
   std::vector<long> last_named_;
+  // With hold_until_refuted, per group: the channel named when the alarm fell (-1 none), the
+  // gain's beta = 1 - 1/k fitted at its last naming, and sums over the usable blocks since the
+  // alarm fell of e and u = e - beta x_j (n, sum e, sum e^2, sum u, sum u^2).
+  bool hold_ = false;
+  std::vector<long> held_;
+  std::vector<double> beta_;
+  std::vector<double> held_n_, held_e_, held_ee_, held_u_, held_uu_;
+  std::vector<std::size_t> held_loaded_blocks_;  // per group: blocks since the fall the held pad could carry load
   // Scratch for a decision (sized once): the window's usable blocks in order.
   std::vector<double> window_e_, window_t_, window_x_;
 };
