@@ -237,6 +237,24 @@ TEST(GainIsolator, AHeldNameDropsWhenTheBlocksRefuteItsGainOrItsPadHasCarriedLoa
   EXPECT_EQ(named[3000], -1);
 }
 
+// The alarm stays up, the gain ends on tick 3000: block 30's judgement (tick 3099) names nobody
+// (the fit leaves the end). Without the hold the name drops there; with it the name is held, and
+// block 31 (tick 3199) refutes the gain as above.
+TEST(GainIsolator, AJudgementThatNamesNobodyWhileTheAlarmIsUpHoldsTheNameUntilRefuted) {
+  GainTrace t;
+  t.density = 0.1;
+  t.gain_to = 3000;
+  t.ticks = 3400;
+  std::vector<int> named = run_gain_trace(t);
+  EXPECT_EQ(named[3098], 1);
+  for (int k = 3099; k < 3400; ++k) ASSERT_EQ(named[k], -1) << "tick " << k;
+  GainIsolator::Params p;
+  p.hold_until_refuted = true;
+  named = run_gain_trace(t, p);
+  for (int k = 2299; k < 3199; ++k) ASSERT_EQ(named[k], 1) << "tick " << k;
+  for (int k = 3199; k < 3400; ++k) ASSERT_EQ(named[k], -1) << "tick " << k;
+}
+
 TEST(GainIsolator, NothingIsNamedWithoutAnAlarmOrBeforeTheOnsetHasItsBlocks) {
   GainTrace t;
   t.alarm_from = 1000000;

@@ -323,17 +323,17 @@ bool GainIsolator::stuck_neighbour(long named, std::size_t n) const noexcept {
   return false;
 }
 
-bool GainIsolator::held_refuted(std::size_t group) noexcept {
+bool GainIsolator::held_refuted(std::size_t group, bool alarm_down) noexcept {
   // The block just completed, as judge() takes blocks: usable, no other channel standing for
   // nothing while it could carry load (its course in e is unknown); one spent in the air counts at 0.
   const std::size_t slot = (blocks_ - 1) % capacity_;
   const long held = held_[group];
   // A gain that stayed shows in e as soon as its pad carries load, and the alarm rises again: a
   // pad that could carry load for min_fault_s of blocks (every block without `loadable`) with the
-  // alarm still down is no longer held, whatever the fit says (a neighbour standing for nothing
-  // may leave no block to fit).
+  // alarm down is no longer held, whatever the fit says (a neighbour standing for nothing may
+  // leave no block to fit). Blocks with the alarm up count only in the fit.
   const std::size_t own = (group * group_size_ + static_cast<std::size_t>(held)) * capacity_ + slot;
-  if (!loadable_ || block_loaded_[own]) held_loaded_blocks_[group] += 1;
+  if (alarm_down && (!loadable_ || block_loaded_[own])) held_loaded_blocks_[group] += 1;
   if (held_loaded_blocks_[group] >= min_fault_blocks_) return true;
   if (!block_usable_[group * capacity_ + slot]) return false;
   double e = block_e_[group * capacity_ + slot];
@@ -418,20 +418,27 @@ void GainIsolator::step(const StepIO& io) noexcept {
     for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) {
       raised = raised || (std::isfinite(alarm[j]) && alarm[j] != 0.0);  // as the other isolators read it
     }
-    if (!raised) {
+    // A name the evidence no longer gives (the alarm fell, or a block's judgement named nobody):
+    // with hold_until_refuted it is held from here until the blocks refute its gain.
+    const auto hold_named = [&] {
       if (hold_ && named_[g] >= 0) {
-        // The alarm fell with a channel named: held from here until the blocks refute its gain.
         held_[g] = named_[g];
         held_n_[g] = held_e_[g] = held_ee_[g] = held_u_[g] = held_uu_[g] = 0.0;
         held_loaded_blocks_[g] = 0;
       }
       named_[g] = -1;
-      if (held_[g] >= 0 && block_ends && held_refuted(g)) held_[g] = -1;
+    };
+    if (!raised) {
+      hold_named();
+      if (held_[g] >= 0 && block_ends && held_refuted(g, true)) held_[g] = -1;
     } else if (block_ends) {
-      named_[g] = judge(g);
-      if (named_[g] >= 0) {
-        last_named_[g] = named_[g];
+      const long judged = judge(g);
+      if (judged >= 0) {
+        named_[g] = last_named_[g] = judged;
         held_[g] = -1;
+      } else {
+        hold_named();
+        if (held_[g] >= 0 && held_refuted(g, false)) held_[g] = -1;
       }
     }
     const long shown = named_[g] >= 0 ? named_[g] : held_[g];

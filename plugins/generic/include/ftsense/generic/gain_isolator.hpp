@@ -58,10 +58,11 @@
 // test, on the sum residual).
 // The name holds while the group's alarm holds (re-judged at every block's end), and drops with
 // it: the detector's state, not this part's, says when the fault is over. With
-// `hold_until_refuted` it holds past the alarm's fall until the blocks since show the gain is
-// over: a gain moves e by beta x_j, nothing while its pad carries nothing, so the alarm falls
-// with every swing while the fault stays. On the usable blocks since the fall (none of the
-// others standing for nothing), with an intercept each,
+// `hold_until_refuted` it holds past the alarm's fall, and past a block's judgement that names
+// nobody while the alarm is up, until the blocks since show the gain is over: a gain moves e by
+// beta x_j, nothing while its pad carries nothing, so the alarm falls with every swing while the
+// fault stays, and an unloading stance's blocks may fit no one. On the usable blocks since (none
+// of the others standing for nothing), with an intercept each,
 //   RSS_0 = sum (e_b - mean e)^2,   RSS_1 = sum (u_b - mean u)^2,   u_b = e_b - beta x_jb,
 // beta the one fitted at the last naming, and the name drops when (RSS_1 - RSS_0) / s^2 >= m:
 // the gain, had it stayed, would have moved e by the margin, and e did not follow. A pad in the
@@ -137,7 +138,7 @@ class GainIsolator {
   [[nodiscard]] bool stuck_neighbour(long named, std::size_t n) const noexcept;
   // With hold_until_refuted: takes the block just completed into the held channel's sums; whether
   // they now refute its gain (header).
-  [[nodiscard]] bool held_refuted(std::size_t group) noexcept;
+  [[nodiscard]] bool held_refuted(std::size_t group, bool alarm_down) noexcept;
 
   Ports ports_;
   std::size_t channels_ = 0;
