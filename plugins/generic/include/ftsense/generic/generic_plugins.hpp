@@ -19,6 +19,7 @@
 #include "ftsense/generic/signal_validator.hpp"
 #include "ftsense/generic/signature_isolator.hpp"
 #include "ftsense/generic/step_isolator.hpp"
+#include "ftsense/generic/still_reading_isolator.hpp"
 #include "ftsense/generic/stuck_hold.hpp"
 #include "ftsense/generic/sum_constraint_residual.hpp"
 #include "ftsense/generic/threshold_detector.hpp"
@@ -32,6 +33,7 @@ using generic_plugins = PluginSet<DifferenceResidual, LowPass, ThresholdDetector
                                   OrientationToRpy, AttitudeFromImu, CusumDetector, SignalValidator,
                                   UnloadedReadingResidual, SumConstraintResidual, SignatureIsolator, FaultClassifier, FaultMerge,
                                   ChangeGuard, StepIsolator, GainIsolator, StuckHold, UnreadLoadIsolator,
-                                  RejoinDetector, PhysicalRangeDetector, LoadApportioner, PlaneFitResidual>;
+                                  RejoinDetector, PhysicalRangeDetector, LoadApportioner, PlaneFitResidual,
+                                  StillReadingIsolator>;
 
 }  // namespace ftsense::generic
