@@ -33,6 +33,8 @@
 #include "ftsense/generic/gain_isolator.hpp"
 #include "ftsense/generic/step_isolator.hpp"
 #include "ftsense/generic/load_apportioner.hpp"
+#include "ftsense/generic/plane_fit_residual.hpp"
+#include "ftsense/generic/still_reading_isolator.hpp"
 #include "ftsense/generic/physical_range_detector.hpp"
 #include "ftsense/generic/rejoin_detector.hpp"
 #include "ftsense/generic/stuck_hold.hpp"
@@ -531,6 +533,60 @@ void bench_unread_load_isolator(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// plane_fit_residual on two feet of four pads at 1 kHz, both feet in full contact (every swaying
+// load above the loaded bound), the readings corrected, none substituted: every row a 4 x 4 sum.
+void bench_plane_fit_residual(benchmark::State& state) {
+  constexpr std::size_t kChannels = 8;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 20000;
+  ftsense::generic::PlaneFitResidual::Params params;
+  params.points = {{0.12, 0.075}, {0.12, -0.075}, {-0.12, 0.075}, {-0.12, -0.075}};
+  params.loadable = params.correction = params.substituted = true;
+  params.noise_std = {2.0};
+  ftsense::generic::PlaneFitResidual plane(params, ftsense::StageContext(kPeriod, "plane", {{"signal", kChannels}}));
+  const SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod);
+  const std::vector<double> loadable(kChannels, 1.0), correction(kChannels, 0.0), substituted(kChannels, 0.0);
+  std::vector<double> residual(kChannels);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(k * kChannels, kChannels),
+                                           loadable, correction, substituted};
+    const std::span<double> outs[] = {residual};
+    plane.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    if (++k == kTicks) k = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+// still_reading_isolator on 8 channels at 1 kHz, the alarm up, nothing flagged: every block's end
+// (50 ticks) judges the span; the other ticks add to the block's sums.
+void bench_still_reading_isolator(benchmark::State& state) {
+  constexpr std::size_t kChannels = 8;
+  constexpr double kPeriod = 0.001;
+  constexpr std::size_t kTicks = 20000;
+  ftsense::generic::StillReadingIsolator::Params params;
+  params.noise_std = {2.0};
+  params.residual_noise_density = {0.5};
+  ftsense::generic::StillReadingIsolator isolator(
+      params, ftsense::StageContext(kPeriod, "still", {{"signal", kChannels}, {"sum_residual", 1}}));
+  const SwayingLoads loads = swaying_loads(kTicks, kChannels, kPeriod);
+  const std::vector<double> alarm(kChannels, 1.0), loadable(kChannels, 1.0), flagged(kChannels, 0.0);
+  std::vector<double> fault(kChannels), type(kChannels);
+  isolator.reset();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::span<const double> ins[] = {std::span<const double>(loads.x).subspan(k * kChannels, kChannels),
+                                           std::span<const double>(loads.sum_residual).subspan(k, 1), alarm,
+                                           loadable, flagged};
+    const std::span<double> outs[] = {fault, type};
+    isolator.step(ftsense::StepIO{static_cast<double>(k) * kPeriod, ins, outs});
+    benchmark::ClobberMemory();
+    if (++k == kTicks) k = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void register_benchmarks() {
   const std::pair<const char*, const char*> stages[] = {
       {"com", "lipm_com_estimator"},        {"split", "leg_force_split"},
@@ -567,6 +623,10 @@ void register_benchmarks() {
       bench_load_apportioner);
   benchmark::RegisterBenchmark("stage/unread [unread_load_isolator, 8 channels, alarm up, 1 kHz, synthetic]",
                                bench_unread_load_isolator);
+  benchmark::RegisterBenchmark(
+      "stage/plane [plane_fit_residual, 2 feet x 4 pads, full contact, 1 kHz, synthetic]", bench_plane_fit_residual);
+  benchmark::RegisterBenchmark("stage/still [still_reading_isolator, 8 channels, alarm up, 1 kHz, synthetic]",
+                               bench_still_reading_isolator);
   benchmark::RegisterBenchmark("tick/suralp.json [active_set solver]",
                                [](benchmark::State& s) { bench_tick_config(s, suralp_config("active_set")); });
   benchmark::RegisterBenchmark("tick/suralp.json [ceres solver]",
