@@ -192,6 +192,18 @@ void GainIsolator::reset() noexcept {
   blocks_ = 0;
 }
 
+bool GainIsolator::block_residual(std::size_t group, std::size_t slot, long keep, double& e) const noexcept {
+  if (!block_usable_[group * capacity_ + slot]) return false;
+  e = block_e_[group * capacity_ + slot];
+  for (std::size_t j = 0; j < group_size_; ++j) {
+    if (static_cast<long>(j) == keep) continue;
+    const std::size_t at = (group * group_size_ + j) * capacity_ + slot;
+    if (block_substituted_[at] == kStoodForNothing) return false;
+    if (block_substituted_[at] == kStoodForNothingInAir) e -= block_x_[at];
+  }
+  return true;
+}
+
 long GainIsolator::judge(std::size_t group) noexcept {
   // The window's usable blocks, oldest first. A reading that stood for nothing (frozen, clipped,
   // invalid, not yet typed) has an unknown course in e, which its neighbours' loads follow: a block
@@ -203,18 +215,14 @@ long GainIsolator::judge(std::size_t group) noexcept {
   std::size_t n = 0;
   for (std::size_t age = filled; age-- > 0;) {
     const std::size_t slot = (blocks_ - 1 - age) % capacity_;
-    if (!block_usable_[group * capacity_ + slot]) continue;
-    bool stood_for_nothing = false;
-    double e = block_e_[group * capacity_ + slot];
+    double e = 0.0;
+    if (!block_residual(group, slot, keep, e)) continue;
     for (std::size_t j = 0; j < group_size_; ++j) {
       const std::size_t at = (group * group_size_ + j) * capacity_ + slot;
-      const char substituted = static_cast<long>(j) == keep ? kStoodForSomething : block_substituted_[at];
-      stood_for_nothing = stood_for_nothing || substituted == kStoodForNothing;
-      window_x_[j * capacity_ + n] = substituted == kStoodForNothingInAir ? 0.0 : block_x_[at];
-      if (substituted == kStoodForNothingInAir) e -= block_x_[at];
+      const bool in_air = static_cast<long>(j) != keep && block_substituted_[at] == kStoodForNothingInAir;
+      window_x_[j * capacity_ + n] = in_air ? 0.0 : block_x_[at];
       window_loaded_[j * capacity_ + n] = block_loaded_[at];
     }
-    if (stood_for_nothing) continue;
     window_e_[n] = e;
     window_t_[n] = static_cast<double>(blocks_ - 1 - age);  // the block's index: a ramp is in time
     ++n;
@@ -230,10 +238,13 @@ long GainIsolator::judge(std::size_t group) noexcept {
   const double w = inv_block_var_[group];
   // What a regressor z (given by its sums over the window, z = 0 before the onset) explains of e
   // beside the intercept; a regressor that does not move explains nothing (and divides by nothing).
-  const auto explained = [&](double s_z, double s_zz, double s_ez) {
+  // Also its coefficient, through `coefficient` when given (0 for a regressor that does not move).
+  const auto explained = [&](double s_z, double s_zz, double s_ez, double* coefficient = nullptr) {
     const double spread = s_zz - s_z * s_z / count;
+    if (coefficient != nullptr) *coefficient = 0.0;
     if (!(spread > 1e-12 * std::max(1.0, s_zz))) return 0.0;
     const double covariance = s_ez - sum_e * s_z / count;
+    if (coefficient != nullptr) *coefficient = covariance / spread;
     return covariance * covariance / spread;
   };
   // The courses that are nobody's gain: a step and a ramp from an onset (an offset, a drift, the
@@ -255,27 +266,30 @@ long GainIsolator::judge(std::size_t group) noexcept {
       nobody = std::max(nobody, explained(s_t - m * t, s_tt - 2.0 * t * s_t + m * t * t, s_te - t * s_e));
     }
   }
-  double best = 0.0, runner_up = nobody;
+  double best = 0.0, runner_up = nobody, best_beta = 0.0;
   long best_channel = -1;
   for (std::size_t j = 0; j < group_size_; ++j) {
     const double* x = window_x_.data() + j * capacity_;
     // Onsets from the latest allowed back to the window's start: suffix sums of z = x [b >= o].
-    double s_z = 0.0, s_zz = 0.0, s_ez = 0.0, best_j = 0.0;
+    double s_z = 0.0, s_zz = 0.0, s_ez = 0.0, best_j = 0.0, beta_j = 0.0;
     onset_[j] = 0;
     for (std::size_t o = n; o-- > 0;) {
       s_z += x[o];
       s_zz += x[o] * x[o];
       s_ez += window_e_[o] * x[o];
       if (n - o < min_fault_blocks_) continue;
-      const double explained_o = explained(s_z, s_zz, s_ez);
+      double beta_o = 0.0;
+      const double explained_o = explained(s_z, s_zz, s_ez, &beta_o);
       if (explained_o > best_j) {
         best_j = explained_o;
+        beta_j = beta_o;
         onset_[j] = o;
       }
     }
     if (best_j > best) {
       runner_up = std::max(runner_up, best);
       best = best_j;
+      best_beta = beta_j;
       best_channel = static_cast<long>(j);
     } else {
       runner_up = std::max(runner_up, best_j);
@@ -286,18 +300,7 @@ long GainIsolator::judge(std::size_t group) noexcept {
   const bool explains = best * w >= margin_ && (best - runner_up) * w >= margin_ && left <= fit_bound_[n];
   if (!explains) return -1;
   if (loadable_ && stuck_neighbour(best_channel, n)) return -1;
-  // beta: the named channel's coefficient from its onset on (z = x [b >= onset], with the intercept).
-  {
-    const double* x = window_x_.data() + static_cast<std::size_t>(best_channel) * capacity_;
-    double s_z = 0.0, s_zz = 0.0, s_ez = 0.0;
-    for (std::size_t b = onset_[static_cast<std::size_t>(best_channel)]; b < n; ++b) {
-      s_z += x[b];
-      s_zz += x[b] * x[b];
-      s_ez += window_e_[b] * x[b];
-    }
-    const double spread = s_zz - s_z * s_z / count;
-    beta_[group] = spread > 0.0 ? (s_ez - sum_e * s_z / count) / spread : 0.0;
-  }
+  beta_[group] = best_beta;  // the named channel's coefficient from its onset on
   return best_channel;
 }
 
@@ -324,8 +327,7 @@ bool GainIsolator::stuck_neighbour(long named, std::size_t n) const noexcept {
 }
 
 bool GainIsolator::held_refuted(std::size_t group, bool alarm_down) noexcept {
-  // The block just completed, as judge() takes blocks: usable, no other channel standing for
-  // nothing while it could carry load (its course in e is unknown); one spent in the air counts at 0.
+  // The block just completed, taken as judge() takes blocks (block_residual).
   const std::size_t slot = (blocks_ - 1) % capacity_;
   const long held = held_[group];
   // A gain that stayed shows in e as soon as its pad carries load, and the alarm rises again: a
@@ -335,14 +337,8 @@ bool GainIsolator::held_refuted(std::size_t group, bool alarm_down) noexcept {
   const std::size_t own = (group * group_size_ + static_cast<std::size_t>(held)) * capacity_ + slot;
   if (alarm_down && (!loadable_ || block_loaded_[own])) held_loaded_blocks_[group] += 1;
   if (held_loaded_blocks_[group] >= min_fault_blocks_) return true;
-  if (!block_usable_[group * capacity_ + slot]) return false;
-  double e = block_e_[group * capacity_ + slot];
-  for (std::size_t j = 0; j < group_size_; ++j) {
-    if (static_cast<long>(j) == held) continue;
-    const std::size_t at = (group * group_size_ + j) * capacity_ + slot;
-    if (block_substituted_[at] == kStoodForNothing) return false;
-    if (block_substituted_[at] == kStoodForNothingInAir) e -= block_x_[at];
-  }
+  double e = 0.0;
+  if (!block_residual(group, slot, held, e)) return false;
   const double u = e - beta_[group] * block_x_[own];
   held_n_[group] += 1.0;
   held_e_[group] += e;

@@ -27,16 +27,7 @@ void LoadApportioner::Params::describe(ParamSchema<Params>& schema) {
   schema.add("floor", &Params::floor,
              "the least load an unknown channel carries (0 for a pad that is pressed, never pulled), in the "
              "readings' unit; one value applies to all");
-  schema
-      .add("noise_std", &Params::noise_std,
-           "standard deviation sigma of a healthy reading's noise, in its unit; one value applies to all")
-      .greater_than(0.0)
-      .count_at_least(1);
-  schema
-      .add("resolution", &Params::resolution,
-           "quantisation step q of the reading, in its unit (0: continuous); one value applies to all")
-      .at_least(0.0)
-      .count_at_least(1);
+  describe_reading_noise(schema);
   schema.add("noise_margin", &Params::noise_margin,
              "a healthy noise is known within this factor: a pad counts as loaded above noise_margin sigma times z")
       .at_least(1.0)

@@ -18,16 +18,7 @@ void PhysicalRangeDetector::Params::describe(ParamSchema<Params>& schema) {
   schema.add("ceiling", &Params::ceiling,
              "the greatest value the measured quantity can take, in the reading's unit; empty: none; one value "
              "applies to all");
-  schema
-      .add("noise_std", &Params::noise_std,
-           "standard deviation sigma of a healthy reading's noise, in its unit; one value applies to all")
-      .greater_than(0.0)
-      .count_at_least(1);
-  schema
-      .add("resolution", &Params::resolution,
-           "quantisation step q of the reading, in its unit (0: continuous); one value applies to all")
-      .at_least(0.0)
-      .count_at_least(1);
+  describe_reading_noise(schema);
   schema.add("noise_margin", &Params::noise_margin,
              "a healthy noise is known within this factor: the bound is taken at noise_margin sigma")
       .at_least(1.0)

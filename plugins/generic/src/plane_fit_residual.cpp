@@ -37,16 +37,7 @@ void PlaneFitResidual::Params::describe(ParamSchema<Params>& schema) {
   schema.add("floor", &Params::floor,
              "the least load a pad carries (0 for a pad that is pressed, never pulled), in the readings' unit; a "
              "pad counts as loaded beyond the noise margin above it; one value applies to all");
-  schema
-      .add("noise_std", &Params::noise_std,
-           "standard deviation sigma of a healthy reading's noise, in its unit; one value applies to all")
-      .greater_than(0.0)
-      .count_at_least(1);
-  schema
-      .add("resolution", &Params::resolution,
-           "quantisation step q of the reading, in its unit (0: continuous); one value applies to all")
-      .at_least(0.0)
-      .count_at_least(1);
+  describe_reading_noise(schema);
   schema.add("noise_margin", &Params::noise_margin,
              "a healthy noise is known within this factor: a pad counts as loaded above the floor plus "
              "noise_margin sigma times z")

@@ -24,16 +24,7 @@ void StillReadingIsolator::Params::describe(ParamSchema<Params>& schema) {
            "value applies to all")
       .greater_than(0.0)
       .count_at_least(1);
-  schema
-      .add("noise_std", &Params::noise_std,
-           "standard deviation sigma of a healthy reading's noise, in its unit; one value applies to all")
-      .greater_than(0.0)
-      .count_at_least(1);
-  schema
-      .add("resolution", &Params::resolution,
-           "quantisation step q of the reading, in its unit (0: continuous); one value applies to all")
-      .at_least(0.0)
-      .count_at_least(1);
+  describe_reading_noise(schema);
   schema.add("floor", &Params::floor,
              "the least load a channel carries (0 for a pad that is pressed, never pulled), in the readings' unit; "
              "one value applies to all");
@@ -140,7 +131,7 @@ StillReadingIsolator::StillReadingIsolator(const Params& params, const StageCont
   block_e_.assign(groups_ * ring_, 0.0);
   block_x_.assign(channels_ * ring_, 0.0);
   block_loaded_.assign(channels_ * ring_, 0);
-  block_flagged_.assign(groups_ * ring_, 1);
+  block_flagged_.assign(groups_ * ring_, 0);
   named_.assign(groups_, -1);
 }
 
@@ -152,7 +143,7 @@ void StillReadingIsolator::reset() noexcept {
   std::fill(loaded_now_.begin(), loaded_now_.end(), 1);
   std::fill(flagged_now_.begin(), flagged_now_.end(), 0);
   std::fill(block_loaded_.begin(), block_loaded_.end(), 0);
-  std::fill(block_flagged_.begin(), block_flagged_.end(), 1);
+  std::fill(block_flagged_.begin(), block_flagged_.end(), 0);
   std::fill(named_.begin(), named_.end(), -1);
   tick_in_block_ = 0;
   blocks_ = 0;

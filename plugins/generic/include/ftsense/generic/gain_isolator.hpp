@@ -131,6 +131,10 @@ class GainIsolator {
   [[nodiscard]] double margin() const noexcept { return margin_; }
 
  private:
+  // Block `slot`'s e with the channels that spent it in the air taken at their load there, zero
+  // (e less their readings); false when the block is not usable or a channel other than `keep`
+  // stood for nothing on it while it could carry load (its course in e is unknown).
+  [[nodiscard]] bool block_residual(std::size_t group, std::size_t slot, long keep, double& e) const noexcept;
   // Judges group `group` on the window of blocks; returns the named channel (in the group), or -1.
   [[nodiscard]] long judge(std::size_t group) noexcept;
   // Whether a channel other than `named` read still while loaded from the named onset on (over

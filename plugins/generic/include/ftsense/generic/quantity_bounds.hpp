@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "ftsense/channel_values.hpp"
+#include "ftsense/params.hpp"
 #include "ftsense/plugin.hpp"
 
 namespace ftsense::generic {
@@ -39,6 +40,23 @@ struct QuantityBounds {
     }
   }
   return bounds;
+}
+
+// The parameters `noise_std` (sigma) and `resolution` (q) of a part that takes the margin b (both
+// per channel, one value applying to all; `ftsense calibrate` measures them as tick_noise and
+// resolution).
+template <class P>
+void describe_reading_noise(ParamSchema<P>& schema) {
+  schema
+      .add("noise_std", &P::noise_std,
+           "standard deviation sigma of a healthy reading's noise, in its unit; one value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+  schema
+      .add("resolution", &P::resolution,
+           "quantisation step q of the reading, in its unit (0: continuous); one value applies to all")
+      .at_least(0.0)
+      .count_at_least(1);
 }
 
 // b = z m sigma + q / 2 (header).
