@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "ftsense/fault_type.hpp"
+#include "ftsense/generic/chi_square.hpp"
 #include "ftsense/generic/still_reading_isolator.hpp"
 #include "ftsense/testing/plugin_contract.hpp"
 
@@ -111,10 +112,13 @@ TEST(StillReadingIsolator, TheNameDropsWithTheAlarm) {
   for (int k = 1200; k < 1300; ++k) ASSERT_EQ(named[k], -1) << "tick " << k;
 }
 
-TEST(StillReadingIsolator, ASpanThatIsNotWholeBlocksIsAConfigError) {
-  StillReadingIsolator::Params p;
-  p.span_s = 0.12;
-  EXPECT_THROW(StillReadingIsolator(p, StageContext(1e-3, "still", {{"signal", 3}})), ConfigError);
+TEST(StillReadingIsolator, BlocksAndSpanAreTakenToWholeTicksAtAnyRate) {
+  // At 333 Hz (T = 3 ms) 0.05 s is 16.7 ticks: blocks of 17 ticks, 0.051 s, and the move bound
+  // z sqrt(2 / 0.051) q with z at alpha = 0.051 / 86400, as the other block parts round theirs.
+  const StillReadingIsolator iso(StillReadingIsolator::Params{},
+                                 StageContext(0.003, "still", {{"signal", 3}, {"sum_residual", 1}}));
+  const double z = -generic::normal_quantile(0.5 * 0.051 / 86400.0);
+  EXPECT_NEAR(iso.move_bound(0), z * std::sqrt(2.0 / 0.051), 1e-9);
 }
 
 }  // namespace

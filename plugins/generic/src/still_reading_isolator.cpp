@@ -28,11 +28,11 @@ void StillReadingIsolator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("floor", &Params::floor,
              "the least load a channel carries (0 for a pad that is pressed, never pulled), in the readings' unit; "
              "one value applies to all");
-  schema.add("block_s", &Params::block_s, "length of the blocks whose means are compared (a whole number of ticks)")
+  schema.add("block_s", &Params::block_s, "length of the blocks whose means are compared (taken to the nearest whole number of ticks)")
       .unit("s")
       .greater_than(0.0)
       .plausible(0.001, 1.0, "from a tick to a second");
-  schema.add("span_s", &Params::span_s, "how far apart the two blocks compared are (a whole number of blocks)")
+  schema.add("span_s", &Params::span_s, "how far apart the two blocks compared are (taken to the nearest whole number of blocks)")
       .unit("s")
       .greater_than(0.0)
       .plausible(0.01, 5.0, "from ten milliseconds to a few seconds");
@@ -62,28 +62,22 @@ StillReadingIsolator::StillReadingIsolator(const Params& params, const StageCont
   }
   groups_ = channels_ / group_size_;
   const double period = context.sample_period_s();
-  const double ticks = std::round(params.block_s / period);
-  if (!(ticks >= 1.0) || std::abs(ticks * period - params.block_s) > 1e-6 * params.block_s) {
-    throw ConfigError("/params/block_s", " = " + format_number(params.block_s) +
-                                             " s is not a whole number of ticks of " + format_number(period) + " s");
-  }
-  ticks_per_block_ = static_cast<int>(ticks);
-  const double blocks = std::round(params.span_s / params.block_s);
-  if (!(blocks >= 1.0) || std::abs(blocks * params.block_s - params.span_s) > 1e-6 * params.span_s) {
-    throw ConfigError("/params/span_s", " = " + format_number(params.span_s) + " s is not a whole number of blocks of " +
-                                            format_number(params.block_s) + " s");
-  }
+  // Blocks of the nearest whole number of ticks, a span of the nearest whole number of blocks
+  // (at least one each), as the other block parts take theirs: a config holds at any rate.
+  ticks_per_block_ = std::max(1, static_cast<int>(std::lround(params.block_s / period)));
+  const double block_s = ticks_per_block_ * period;
+  const double blocks = std::max(1.0, std::round(params.span_s / block_s));
   // The span's K + 1 blocks and the one after it, whose flags are read too (a step is named
   // within a few ticks of it: a block later the flag is known).
   ring_ = static_cast<std::size_t>(blocks) + 2;
   check_noise_margin(params.noise_margin);
   // One decision per block: the move's bound at alpha = b / interval; the loaded bound per tick.
-  const double z_block = two_sided_z(false_alarm_per_tick(params.block_s, params.false_alarm_interval_s));
+  const double z_block = two_sided_z(false_alarm_per_tick(block_s, params.false_alarm_interval_s));
   const double z_tick = two_sided_z(false_alarm_per_tick(period, params.false_alarm_interval_s));
   const auto density = channel_values(params.residual_noise_density, groups_, "residual_noise_density");
   move_bound_.resize(groups_);
   for (std::size_t g = 0; g < groups_; ++g) {
-    move_bound_[g] = z_block * std::sqrt(2.0 / params.block_s) * density[g];
+    move_bound_[g] = z_block * std::sqrt(2.0 / block_s) * density[g];
   }
   floor_ = channel_values(params.floor, channels_, "floor");
   const auto noise = channel_values(params.noise_std, channels_, "noise_std");
