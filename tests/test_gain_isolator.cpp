@@ -156,6 +156,22 @@ TEST(GainIsolator, ANeighbourThatStandsForNothingLeavesItsBlocksUnjudgedButTheNa
   for (int k = 2299; k < 4000; ++k) ASSERT_EQ(named[k], 1) << "tick " << k;
 }
 
+TEST(GainIsolator, AChannelThatStandsForNothingBeforeItIsNamedIsJudgedOnItsOwnBlocks) {
+  // Channel 1, the gain's, substituted from its onset (another test flagged it, not yet typed):
+  // on the blocks every channel stood for something on, nothing after the onset is left, and
+  // nobody is named; judged on its own blocks too, its reading explains e, and it is named on
+  // time. Channel 0 substituted instead (it is not the gain's) is judged on its own blocks the
+  // same way, but channel 1's reading explains them better: nobody (as the test above).
+  GainTrace t;
+  t.substituted_channel = 1;
+  t.substituted_from = 2000;
+  const std::vector<int> named = run_gain_trace(t);
+  EXPECT_EQ(first_gain_named(named), 2299);
+  for (int k = 2299; k < 4000; ++k) ASSERT_EQ(named[k], 1) << "tick " << k;
+  t.substituted_channel = 0;
+  EXPECT_EQ(first_gain_named(run_gain_trace(t)), -1);
+}
+
 TEST(GainIsolator, ABlockWhereANeighbourStoodForNothingIsLeftOutAndTheRestJudged) {
   // Channel 0 substituted on blocks 5 to 7 only (a flicker of a not-yet-typed flag): those three
   // blocks leave the window, and the gain is named on time, as without them. (Before

@@ -418,6 +418,50 @@ TEST(SignalValidator, ANoiseBurstIsFlaggedWithinAWindowAndClearsAfterIt) {
   EXPECT_LE(last, 1500 + 100 + 1);
 }
 
+TEST(SignalValidator, ANoiseBurstKeepsItsFlagThroughAGuardThatHidesIt) {
+  // 0.8 s of 10x noise (ticks 1000..1799) with a guard over ticks 1300..1449 (a landing's 0.15 s,
+  // longer than the 0.1 s window): the guarded ticks are not seen, so the window keeps the burst's
+  // ticks and the flag holds through the guard, to the burst's end and at most a window after it.
+  // (Counted as quiet, the guard emptied the window and the flag fell on tick 1300 + 100 or
+  // so.) Healthy noise with the same guard is never flagged.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.1;
+  p.guard = true;
+  constexpr unsigned kSeed = 19;
+  std::printf("seed %u\n", kSeed);
+  for (const bool burst : {true, false}) {
+    SignalValidator validator(p, StageContext(1e-3, "v", {{"signal", 1}, {"guard", 1}}));
+    validator.reset();
+    std::vector<double> x{0.0}, g{0.0}, fault{0.0}, type{0.0};
+    std::mt19937_64 rng(kSeed);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    int first = -1, last = -1, flagged = 0;
+    for (int k = 0; k < 3000; ++k) {
+      const double sigma = burst && k >= 1000 && k < 1800 ? 10.0 : 1.0;
+      x[0] = 50.0 + sigma * noise(rng);
+      g[0] = k >= 1300 && k < 1450 ? 1.0 : 0.0;
+      const std::span<const double> ins[] = {x, g};
+      const std::span<double> outs[] = {fault, type};
+      validator.step(StepIO{k * 1e-3, ins, outs});
+      if (fault[0] == 0.0) continue;
+      if (first < 0) first = k;
+      last = k;
+      ++flagged;
+    }
+    if (!burst) {
+      EXPECT_EQ(flagged, 0);
+      continue;
+    }
+    std::printf("noise 1000..1799, guard 1300..1449: flagged %d..%d, %d ticks\n", first, last, flagged);
+    EXPECT_GE(first, 1000);
+    EXPECT_LE(first, 1100);
+    EXPECT_GE(last, 1799);
+    EXPECT_LE(last, 1800 + 100 + 1);
+    EXPECT_EQ(flagged, last - first + 1);  // no gap: held through the guard
+  }
+}
+
 TEST(SignalValidator, ABurstIsNoiseThoughItsSamplesLookLikeSpikesAndSparseSpikesStaySpikes) {
   // 0.5 s of 10x noise: many of its samples pass the spike test on their own. Once the window's
   // count shows the burst (within 0.1 s), every tick to the burst's end is typed noise. Then

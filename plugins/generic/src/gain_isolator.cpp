@@ -101,8 +101,12 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   min_fault_blocks_ = static_cast<std::size_t>(std::max(1.0, min_fault_blocks));
   const double alpha = std::clamp(block_s / params.false_alarm_interval_s, 1e-15, 0.5);
   // A decision takes the best of g channels at up to capacity - min_fault_blocks + 1 onsets each:
-  // the margin holds alpha over all of them (Bonferroni), the fit test is one test.
-  const double tries = static_cast<double>(group_size_) * (blocks_in_history - std::max(1.0, min_fault_blocks) + 1.0);
+  // the margin holds alpha over all of them (Bonferroni), the fit test is one test. With
+  // `substituted`, a decision that names nobody may judge each channel once more on its own
+  // window (judge): g more tries at as many onsets.
+  const double windows = substituted_ ? 2.0 : 1.0;
+  const double tries =
+      windows * static_cast<double>(group_size_) * (blocks_in_history - std::max(1.0, min_fault_blocks) + 1.0);
   margin_ = chi_square_quantile(1.0, 1.0 - alpha / tries);
   fit_bound_.assign(capacity_ + 1, 0.0);
   for (std::size_t n = 4; n <= capacity_; ++n) {
@@ -192,11 +196,12 @@ void GainIsolator::reset() noexcept {
   blocks_ = 0;
 }
 
-bool GainIsolator::block_residual(std::size_t group, std::size_t slot, long keep, double& e) const noexcept {
+bool GainIsolator::block_residual(std::size_t group, std::size_t slot, long keep, double& e,
+                                  long candidate) const noexcept {
   if (!block_usable_[group * capacity_ + slot]) return false;
   e = block_e_[group * capacity_ + slot];
   for (std::size_t j = 0; j < group_size_; ++j) {
-    if (static_cast<long>(j) == keep) continue;
+    if (static_cast<long>(j) == keep || static_cast<long>(j) == candidate) continue;
     const std::size_t at = (group * group_size_ + j) * capacity_ + slot;
     if (block_substituted_[at] == kStoodForNothing) return false;
     if (block_substituted_[at] == kStoodForNothingInAir) e -= block_x_[at];
@@ -205,21 +210,45 @@ bool GainIsolator::block_residual(std::size_t group, std::size_t slot, long keep
 }
 
 long GainIsolator::judge(std::size_t group) noexcept {
+  const long named = judge_window(group, -1);
+  if (named >= 0 || !substituted_) return named;
+  // Nobody named on the blocks every channel stood for something on: a channel that stood for
+  // nothing on some of them (flagged by another test, not yet typed) is judged on its own blocks
+  // too, as the channel named last is. Its reading is still in e there, and if its gain is the
+  // fault, its course is e's.
+  const std::size_t filled = std::min(blocks_, capacity_);
+  for (std::size_t j = 0; j < group_size_; ++j) {
+    if (static_cast<long>(j) == last_named_[group]) continue;
+    bool stood_for_nothing = false;
+    for (std::size_t age = 0; age < filled && !stood_for_nothing; ++age) {
+      const std::size_t slot = (blocks_ - 1 - age) % capacity_;
+      stood_for_nothing = block_substituted_[(group * group_size_ + j) * capacity_ + slot] == kStoodForNothing;
+    }
+    if (stood_for_nothing && judge_window(group, static_cast<long>(j)) == static_cast<long>(j)) {
+      return static_cast<long>(j);
+    }
+  }
+  return -1;
+}
+
+long GainIsolator::judge_window(std::size_t group, long candidate) noexcept {
   // The window's usable blocks, oldest first. A reading that stood for nothing (frozen, clipped,
   // invalid, not yet typed) has an unknown course in e, which its neighbours' loads follow: a block
   // on which it could carry load is left out; a block it spent in the air takes it at its load
   // there, zero (e less its reading). The channel named last is kept as it reads: it stands for
-  // nothing while it is typed, and its own course is the gain's.
+  // nothing while it is typed, and its own course is the gain's; so is `candidate`, who alone may
+  // then be named.
   const std::size_t filled = std::min(blocks_, capacity_);
   const long keep = last_named_[group];
   std::size_t n = 0;
   for (std::size_t age = filled; age-- > 0;) {
     const std::size_t slot = (blocks_ - 1 - age) % capacity_;
     double e = 0.0;
-    if (!block_residual(group, slot, keep, e)) continue;
+    if (!block_residual(group, slot, keep, e, candidate)) continue;
     for (std::size_t j = 0; j < group_size_; ++j) {
       const std::size_t at = (group * group_size_ + j) * capacity_ + slot;
-      const bool in_air = static_cast<long>(j) != keep && block_substituted_[at] == kStoodForNothingInAir;
+      const bool as_read = static_cast<long>(j) == keep || static_cast<long>(j) == candidate;
+      const bool in_air = !as_read && block_substituted_[at] == kStoodForNothingInAir;
       window_x_[j * capacity_ + n] = in_air ? 0.0 : block_x_[at];
       window_loaded_[j * capacity_ + n] = block_loaded_[at];
     }
@@ -298,7 +327,7 @@ long GainIsolator::judge(std::size_t group) noexcept {
   // In units of the block mean's variance: GLRs, and what the fit leaves, a chi^2_{N-3}.
   const double left = std::max(0.0, centred_ee - best) * w;
   const bool explains = best * w >= margin_ && (best - runner_up) * w >= margin_ && left <= fit_bound_[n];
-  if (!explains) return -1;
+  if (!explains || (candidate >= 0 && best_channel != candidate)) return -1;
   if (loadable_ && stuck_neighbour(best_channel, n)) return -1;
   beta_[group] = best_beta;  // the named channel's coefficient from its onset on
   return best_channel;

@@ -48,7 +48,7 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("guard", &Params::guard,
              "adds input guard (nonzero on ticks whose own motion the rate does not resolve, such as a "
              "landing: change_guard after the contact flags): there no spike is seen and no second "
-             "difference counts as noise");
+             "difference is counted, for noise or against it");
   schema
       .add("reference_noise_std", &Params::reference_noise_std,
            "standard deviation sigma_r of the reference's noise at the tick rate, in the signal's unit; "
@@ -341,7 +341,10 @@ void SignalValidator::step(const StepIO& io) noexcept {
         const double d2 = y - 2.0 * s.y1 + s.y2;
         const bool noisy = std::abs(reading_d2) > l.noise_level &&
                            (!reference_ || (std::abs(d2) > l.residual_noise_level && d2 * reading_d2 > 0.0));
-        push(s.tested_d2, sums_storage_, n, !guarded && noisy ? 1.0 : 0.0);
+        // A guarded tick is not seen: no evidence either way, so the window keeps the ticks seen
+        // and the verdict holds through the guard, as through a non-finite reading (counted as
+        // quiet, a landing's guard emptied a noise burst's window on every stride).
+        if (!guarded) push(s.tested_d2, sums_storage_, n, noisy ? 1.0 : 0.0);
         const double off_neighbours = s.y1 - 0.5 * (s.y2 + y);
         const bool spike =
             std::abs(reading_spike) > l.spike_above && std::abs(reading_span) < std::abs(reading_spike) &&

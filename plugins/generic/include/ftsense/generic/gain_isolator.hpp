@@ -48,7 +48,12 @@
 // pad frozen at 200 N reads it through its swings too, a step in e there that a loaded
 // neighbour's reading (zero in its own swing) explains as a gain. The channel this part named
 // last is kept as it reads: its recovery stands for nothing while it is typed, and its own course
-// is the gain's.
+// is the gain's. Where that window names nobody, each channel j that stood for nothing on a block
+// of it (flagged by another test and not yet typed: a step found in its stance, so substituted as
+// unclassified) is judged once more on the window with its own blocks kept as it reads too (under
+// "j's gain", e = c + beta x_j there as anywhere), and named only if it is the best there and
+// passes every test below; any other best names nobody. The margin counts these windows' fits
+// too (2 g K tries instead of g K).
 // With `loadable` on (input `loadable`, 1 while a channel can carry load, by kinematics), a
 // reading stuck while its channel is loaded is ruled out as the cause first: it makes e follow its
 // own load (e = x_j(t0) - L_j(t)), which a co-loaded neighbour's reading explains as a gain. So
@@ -134,9 +139,14 @@ class GainIsolator {
   // Block `slot`'s e with the channels that spent it in the air taken at their load there, zero
   // (e less their readings); false when the block is not usable or a channel other than `keep`
   // stood for nothing on it while it could carry load (its course in e is unknown).
-  [[nodiscard]] bool block_residual(std::size_t group, std::size_t slot, long keep, double& e) const noexcept;
+  // `candidate` (-1 none) is kept as it reads, as `keep` is.
+  [[nodiscard]] bool block_residual(std::size_t group, std::size_t slot, long keep, double& e,
+                                    long candidate = -1) const noexcept;
   // Judges group `group` on the window of blocks; returns the named channel (in the group), or -1.
   [[nodiscard]] long judge(std::size_t group) noexcept;
+  // One judgement: on the blocks no channel but the one named last and `candidate` stood for
+  // nothing on; with a candidate, only it may be named.
+  [[nodiscard]] long judge_window(std::size_t group, long candidate) noexcept;
   // Whether a channel other than `named` read still while loaded from the named onset on (over
   // the window's n blocks), by follow_ratio of e's move: a stuck reading could be e's cause.
   [[nodiscard]] bool stuck_neighbour(long named, std::size_t n) const noexcept;

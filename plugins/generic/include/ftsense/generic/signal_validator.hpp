@@ -78,8 +78,9 @@
 // differences alone, so they hold only for a signal whose own motion the sample rate resolves:
 // a foot's landing logged at 200 Hz is one sample off its neighbours, as a spike is. For such a signal leave them out, give a reference,
 // or give a `guard` input (change_guard after the contact flags): on a tick it marks, no spike is
-// seen and no second difference counts as noise, so the tests judge the ticks between
-// transients.
+// seen and no second difference is counted, for noise or against it, so the tests judge the ticks
+// between transients, and a verdict holds through a guard (the noise window keeps the ticks seen,
+// as it does through non-finite readings).
 // The type reported is the first that fires in the order above (noise before spikes: a burst is
 // many spikes, and isolated ones stay under the noise count's bound). A flag clears as soon as its
 // test passes again (frozen and noise: the window no longer shows it; spikes: h after the last
