@@ -17,7 +17,7 @@
 namespace ftsense::testing {
 template <>
 struct ContractSetup<generic::RejoinDetector> {
-  static Json params() { return {{"guard", true}}; }
+  static Json params() { return {{"guard", true}, {"residual", true}}; }
   static std::size_t input_dim(std::string_view) { return 3; }
   static void nominal_input(std::string_view port, std::span<double> v) {
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = port == "fault" || port == "guard" ? 0.0 : 100.0 + 10.0 * i;
@@ -152,6 +152,44 @@ TEST(RejoinDetector, ANoisyFaultThatGoesOnNeverRejoinsAndItsEndDoes) {
       100100, [](long k) { return k < 100000 ? 60.0 : 0.0; }, offset_60_estimate, [](long) { return true; },
       [&](long k) { return noise[static_cast<std::size_t>(k)]; });
   EXPECT_EQ(rejoined, std::vector<long>{100000});
+}
+
+// With `residual`: the channel's constraint row r (its reading's share of a sum residual) must
+// step with the jump. A 60 offset_60 from tick 100 to 500, flagged from 150, estimate 60, the load at 200:
+// its end moves the row by -60 too, and the pulse comes W - 1 = 9 ticks after the jump (W = 10 at
+// 1 kHz). The load dropping by 60 at tick 500 while the offset goes on (a foot rolling off the pad)
+// lands the reading on the same recovered line, but the row stays: no end (without the row, an
+// end on tick 500).
+std::vector<long> run_with_row(bool residual_wired, bool load_moves) {
+  RejoinDetector::Params p = rejoin_params();
+  p.residual = residual_wired;
+  p.residual_step_std = {1.0};
+  RejoinDetector detector(p, StageContext(kRejoinPeriod, "rejoin", {{"signal", 1}}));
+  detector.reset();
+  std::vector<long> rejoined;
+  double y_before = std::numeric_limits<double>::quiet_NaN(), flag_before = 0.0;
+  for (long k = 0; k < 1000; ++k) {
+    const double load = load_moves && k >= 500 ? 140.0 : 200.0;
+    const double fault = k >= 100 && (load_moves || k < 500) ? 60.0 : 0.0;
+    const double x = load + fault;
+    const double xs[] = {x}, ys[] = {y_before}, fs[] = {flag_before}, rs[] = {fault};
+    double out[1];
+    const std::span<const double> ins[] = {xs, ys, fs, rs};
+    const std::span<double> outs[] = {out};
+    detector.step(StepIO{static_cast<double>(k) * kRejoinPeriod, ins, outs});
+    if (out[0] != 0.0) rejoined.push_back(k);
+    const bool flagged = k >= 150;
+    y_before = flagged ? x - 60.0 : x;
+    flag_before = flagged ? 1.0 : 0.0;
+  }
+  return rejoined;
+}
+
+TEST(RejoinDetector, WithItsRowAJumpIsAnEndOnlyIfTheRowSteppedWithIt) {
+  EXPECT_EQ(run_with_row(true, false), std::vector<long>{509});
+  EXPECT_TRUE(run_with_row(true, true).empty());
+  EXPECT_EQ(run_with_row(false, true), std::vector<long>{500});
+  EXPECT_EQ(run_with_row(false, false), std::vector<long>{500});
 }
 
 TEST(RejoinDetector, RejectsAFalseAlarmIntervalOfTwoTicks) {

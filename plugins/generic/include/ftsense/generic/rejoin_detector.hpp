@@ -25,7 +25,24 @@
 // told ended from a noise jump, and an end within a guard is not seen: those are left to the
 // tests that flagged the channel. The output is a one-tick pulse; a detector takes it as input
 // `reset` (cusum_detector) to drop a flag it would otherwise hold until it could judge again
-// (a pad's air row, held through its stance). Units: any, the reading's. Allocation-free.
+// (a pad's air row, held through its stance).
+//
+// With `residual` on (input `residual`: the channel's row of a constraint residual that its
+// reading enters one for one, d r_j / d x_j = 1, as step_isolator takes it: sum_constraint_residual's
+// rows, each loaded pad's row its group's sum residual), a jump onto y's line is the fault's end
+// only if the row stepped with it: load that moves between channels (a foot rolling from heel to
+// toe drops a pad by tens of newtons in a tick) moves the reading and leaves the sum. With
+// W = step_window_ticks(T) (10 ms) and the row's window step D r = mean(r[t .. t+W-1]) -
+// mean(r[t-W .. t-1]) over the jump at t,
+//
+//   rejoined_j(t+W-1) = 1   when the reading's test above held at t, |D r| > z s_r and
+//                           |d0(t) - D r| <= z sqrt(6 sigma^2 + q^2 / 2 + s_r^2),
+//
+// s_r the row's fault-free window step (`residual_step_std`, `ftsense calibrate`'s window_step):
+// the row moved, and by what the reading jumped (step_isolator's own test for a step). The pulse
+// comes W - 1 ticks after the jump; the channel must stay flagged, and the 2W samples of r be
+// finite and unguarded. Units: any, the reading's. Allocation-free: a ring of 2W residual
+// samples per channel.
 
 #include <array>
 #include <string_view>
@@ -42,11 +59,12 @@ class RejoinDetector {
   static constexpr std::string_view summary =
       "a flagged channel whose reading jumps onto its recovered value: its fault has ended (a one-tick pulse)";
   // For the config reference's port table and the schema (plugin.hpp): input guard is optional.
-  static constexpr std::string_view example_params = R"([{}, {"guard": true}])";
+  static constexpr std::string_view example_params = R"([{}, {"guard": true, "residual": true}])";
 
   static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
       {"noise_std", "signal", FaultFreeStatistic::tick_noise},
       {"resolution", "signal", FaultFreeStatistic::resolution},
+      {"residual_step_std", "residual", FaultFreeStatistic::window_step},
   });
 
   struct Params {
@@ -54,9 +72,12 @@ class RejoinDetector {
     std::vector<double> resolution{0.0};
     double false_alarm_interval_s = 86400.0;
     bool guard = false;
+    bool residual = false;
+    std::vector<double> residual_step_std{1.0};
     static void describe(ParamSchema<Params>& schema);
   };
 
+  // Inputs guard and residual follow the three, in that order, when their params are on.
   enum Input : std::size_t { kSignal, kRecovered, kFault, kGuard };
   enum Output : std::size_t { kRejoined };
 
@@ -77,6 +98,17 @@ class RejoinDetector {
   std::vector<double> x1_, x2_, y2_;
   std::vector<char> flagged2_;
   std::vector<char> smooth_before_;  // 1: the tick before's |d0| was within b
+  // With `residual`: the row's last 2W samples per channel ([j * 2W + k], a ring; NaN where
+  // guarded or not finite), and each channel's pending jump: ticks until it is judged (-1 none)
+  // and its d0.
+  bool residual_wired_ = false;
+  std::size_t guard_input_ = kGuard, residual_input_ = kGuard;
+  std::size_t window_ = 1;
+  std::size_t ring_next_ = 0;
+  std::vector<double> residual_ring_;
+  std::vector<double> step_bound_, match_bound_;  // z s_r; z sqrt(6 sigma^2 + q^2 / 2 + s_r^2)
+  std::vector<long> pending_ticks_;
+  std::vector<double> pending_jump_;
 };
 
 }  // namespace ftsense::generic
