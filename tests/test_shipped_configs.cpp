@@ -88,7 +88,7 @@ TEST(ShippedConfigs, EveryShippedConfigIsPlausible) {
 TEST(ShippedConfigs, FedBackCorrectionsTripTheIndependenceRuleUnlessAllowed) {
   Json config = load("configs/suralp_generic.json");
   const Pipeline allowed = Pipeline::build(config, reference_plugins::registry(), std::filesystem::path(FTSENSE_SOURCE_DIR) / "configs");
-  ASSERT_EQ(allowed.warnings().size(), 9u);
+  ASSERT_EQ(allowed.warnings().size(), 10u);
   EXPECT_EQ(allowed.warnings()[0].path, "/stages/3/inputs/correction");
   EXPECT_EQ(allowed.warnings()[1].path, "/stages/3/inputs/substituted");
   // load_apportioner's: the recovery's corrections and substitutions, and the flags that keep a
@@ -99,14 +99,16 @@ TEST(ShippedConfigs, FedBackCorrectionsTripTheIndependenceRuleUnlessAllowed) {
   // plane_fit_residual's: the readings as corrected, and a substituted one's foot left unjudged.
   EXPECT_EQ(allowed.warnings()[5].path, "/stages/5/inputs/correction");
   EXPECT_EQ(allowed.warnings()[6].path, "/stages/5/inputs/substituted");
-  EXPECT_EQ(allowed.warnings()[7].path, "/stages/11/inputs/substituted");  // gain_isolator's
-  EXPECT_EQ(allowed.warnings()[8].path, "/stages/13/inputs/flagged");  // still_reading_isolator's
+  // gain_isolator's: the substituted readings, and the pads other isolators placed a fault on.
+  EXPECT_EQ(allowed.warnings()[7].path, "/stages/11/inputs/substituted");
+  EXPECT_EQ(allowed.warnings()[8].path, "/stages/11/inputs/flagged");
+  EXPECT_EQ(allowed.warnings()[9].path, "/stages/13/inputs/flagged");  // still_reading_isolator's
   config["allow_dependent_virtual_sensor"] = false;
   try {
     (void)Pipeline::build(config, reference_plugins::registry(), std::filesystem::path(FTSENSE_SOURCE_DIR) / "configs");
     FAIL() << "the fed-back corrections make the virtual sensor depend on the monitored sensors";
   } catch (const ConfigError& e) {
-    ASSERT_EQ(e.problems().size(), 9u) << e.what();
+    ASSERT_EQ(e.problems().size(), 10u) << e.what();
     for (const Diagnostic& problem : e.problems()) {
       EXPECT_NE(problem.message.find("independence rule"), std::string::npos) << e.what();
       EXPECT_NE(problem.message.find("'l_forces', 'r_forces'"), std::string::npos) << e.what();

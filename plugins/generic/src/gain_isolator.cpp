@@ -58,6 +58,10 @@ void GainIsolator::Params::describe(ParamSchema<Params>& schema) {
   schema.add("loadable", &Params::loadable,
              "adds input loadable (1 while a channel can carry load, by kinematics): nobody is named while "
              "another channel's reading stood still while loaded (a stuck reading's own load moves e)");
+  schema.add("flagged", &Params::flagged,
+             "adds input flagged (1 where another part isolated the channel on the tick before, e.g. the merged "
+             "isolators' flags through previous_tick): a channel flagged on a block since its fitted onset is "
+             "named without the lead over the runner-up, which only tells which channel, when it explains e best");
   schema
       .add("follow_ratio", &Params::follow_ratio,
            "with loadable: a loaded reading that moved by less than this share of what the sum residual moved "
@@ -67,7 +71,10 @@ void GainIsolator::Params::describe(ParamSchema<Params>& schema) {
 }
 
 GainIsolator::GainIsolator(const Params& params, const StageContext& context)
-    : substituted_(params.substituted), loadable_(params.loadable), follow_ratio_(params.follow_ratio) {
+    : substituted_(params.substituted),
+      loadable_(params.loadable),
+      follow_ratio_(params.follow_ratio),
+      flagged_wired_(params.flagged) {
   const double period = context.sample_period_s();
   channels_ = context.wired_dim("signal", params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : 2);
   group_size_ = params.group_size > 0 ? static_cast<std::size_t>(params.group_size) : channels_;
@@ -142,6 +149,13 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
                               PortRole::virtual_estimate}
                          .sized_by("as `signal`"));
   }
+  if (flagged_wired_) {
+    flagged_input_ = next_input++;
+    ports_.add_input(PortSpec{"flagged", channels_, std::string(kDimensionless),
+                              "1 where another part isolated channel j on the tick before (previous_tick)",
+                              PortRole::virtual_estimate}
+                         .sized_by("as `signal`"));
+  }
   ports_.add_output(PortSpec{"fault", channels_, std::string(kDimensionless),
                              "1 while the channel is named: its reading explains the raised sum residual"}
                         .sized_by("as `signal`"));
@@ -159,6 +173,10 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   loaded_now_.assign(channels_, 1);
   block_loaded_.assign(channels_ * capacity_, 0);
   window_loaded_.assign(group_size_ * capacity_, 0);
+  flagged_now_.assign(channels_, 0);
+  shown_before_.assign(channels_, 0);
+  block_flagged_.assign(channels_ * capacity_, 0);
+  window_flagged_.assign(group_size_ * capacity_, 0);
   onset_.assign(group_size_, 0);
   substituted_now_.assign(channels_, 0);
   unloaded_now_.assign(channels_, 1);
@@ -186,6 +204,9 @@ void GainIsolator::reset() noexcept {
   std::fill(block_substituted_.begin(), block_substituted_.end(), 0);
   std::fill(loaded_now_.begin(), loaded_now_.end(), 1);
   std::fill(block_loaded_.begin(), block_loaded_.end(), 0);
+  std::fill(flagged_now_.begin(), flagged_now_.end(), 0);
+  std::fill(shown_before_.begin(), shown_before_.end(), 0);
+  std::fill(block_flagged_.begin(), block_flagged_.end(), 0);
   std::fill(substituted_now_.begin(), substituted_now_.end(), 0);
   std::fill(unloaded_now_.begin(), unloaded_now_.end(), 1);
   std::fill(named_.begin(), named_.end(), -1);
@@ -251,6 +272,7 @@ long GainIsolator::judge_window(std::size_t group, long candidate) noexcept {
       const bool in_air = !as_read && block_substituted_[at] == kStoodForNothingInAir;
       window_x_[j * capacity_ + n] = in_air ? 0.0 : block_x_[at];
       window_loaded_[j * capacity_ + n] = block_loaded_[at];
+      window_flagged_[j * capacity_ + n] = block_flagged_[at];
     }
     window_e_[n] = e;
     window_t_[n] = static_cast<double>(blocks_ - 1 - age);  // the block's index: a ramp is in time
@@ -326,7 +348,18 @@ long GainIsolator::judge_window(std::size_t group, long candidate) noexcept {
   }
   // In units of the block mean's variance: GLRs, and what the fit leaves, a chi^2_{N-3}.
   const double left = std::max(0.0, centred_ee - best) * w;
-  const bool explains = best * w >= margin_ && (best - runner_up) * w >= margin_ && left <= fit_bound_[n];
+  // The lead over the runner-up tells which channel; another part that isolated the best one at
+  // the onset the fit found (on that block or the next: a step on its row, its air row) has told
+  // it already, and at the same time.
+  bool isolated_elsewhere = false;
+  if (flagged_wired_ && best_channel >= 0) {
+    const std::size_t b = static_cast<std::size_t>(best_channel);
+    for (std::size_t k = onset_[b]; k < std::min(n, onset_[b] + 2) && !isolated_elsewhere; ++k) {
+      isolated_elsewhere = window_flagged_[b * capacity_ + k] != 0;
+    }
+  }
+  const bool explains = best * w >= margin_ && ((best - runner_up) * w >= margin_ || isolated_elsewhere) &&
+                        left <= fit_bound_[n];
   if (!explains || (candidate >= 0 && best_channel != candidate)) return -1;
   if (loadable_ && stuck_neighbour(best_channel, n)) return -1;
   beta_[group] = best_beta;  // the named channel's coefficient from its onset on
@@ -394,6 +427,13 @@ void GainIsolator::step(const StepIO& io) noexcept {
       unloaded_now_[j] &= can_carry ? 0 : 1;
     }
   }
+  if (flagged_wired_) {
+    const auto flagged = io.in(flagged_input_);
+    // Not this part's own name of the tick before: that is no other part's word.
+    for (std::size_t j = 0; j < channels_; ++j) {
+      flagged_now_[j] |= std::isfinite(flagged[j]) && flagged[j] != 0.0 && !shown_before_[j] ? 1 : 0;
+    }
+  }
   if (substituted_) {
     const auto substituted = io.in(substituted_input_);
     for (std::size_t j = 0; j < channels_; ++j) {
@@ -430,6 +470,8 @@ void GainIsolator::step(const StepIO& io) noexcept {
         unloaded_now_[j] = 1;
         block_loaded_[j * capacity_ + slot] = loaded_now_[j];
         loaded_now_[j] = 1;
+        block_flagged_[j * capacity_ + slot] = flagged_now_[j];
+        flagged_now_[j] = 0;
       }
       sum_e_[g] = 0.0;
       for (std::size_t j = g * group_size_; j < (g + 1) * group_size_; ++j) sum_x_[j] = 0.0;
@@ -470,6 +512,7 @@ void GainIsolator::step(const StepIO& io) noexcept {
     for (std::size_t j = 0; j < group_size_; ++j) {
       const bool named = shown == static_cast<long>(j);
       fault[g * group_size_ + j] = named ? 1.0 : 0.0;
+      shown_before_[g * group_size_ + j] = named ? 1 : 0;
       fault_type[g * group_size_ + j] = fault_code(named ? FaultType::gain : FaultType::none);
     }
   }

@@ -54,6 +54,16 @@
 // "j's gain", e = c + beta x_j there as anywhere), and named only if it is the best there and
 // passes every test below; any other best names nobody. The margin counts these windows' fits
 // too (2 g K tries instead of g K).
+// With `flagged` on (input `flagged`, 1 where another part isolated a channel on the tick before:
+// the merged isolators' flags through previous_tick), the lead over the runner-up is waived for
+// a best channel that another part flagged on its fitted onset's block or the next (a step
+// isolator's name at a gain's onset in stance): the lead says which channel, and two tests that
+// name the same channel at the same time have said it. Every other test holds. This part's own
+// names (its `fault` of the tick before) are not another part's word. Why: co-loaded pads of one
+// sole carry alike loads over a stance, so the lead grows a few units a stance (a x0.6 gain found
+// by its step at 4.1 s on SURALP's gains_bursts: GLR 290-410, lead 25-36 against a margin of
+// 44), and meanwhile the step isolator re-admits the pad when the sum's alarm falls as its foot
+// unloads, which leaves its gain uncorrected for whole stances.
 // With `loadable` on (input `loadable`, 1 while a channel can carry load, by kinematics), a
 // reading stuck while its channel is loaded is ruled out as the cause first: it makes e follow its
 // own load (e = x_j(t0) - L_j(t)), which a co-loaded neighbour's reading explains as a gain. So
@@ -102,7 +112,7 @@ class GainIsolator {
       "names the channel whose reading explains a shared sum residual's course (a gain or a sign flip)";
   // For the config reference's port table and the schema (plugin.hpp): input substituted is optional.
   static constexpr std::string_view example_params =
-      R"([{"residual_noise_density": [1.0]}, {"residual_noise_density": [1.0], "substituted": true, "loadable": true}])";
+      R"([{"residual_noise_density": [1.0]}, {"residual_noise_density": [1.0], "substituted": true, "loadable": true, "flagged": true}])";
 
   // `ftsense calibrate` measures the noise density of the fault-free sum residual.
   static constexpr auto calibrated_params = std::to_array<CalibratedParam>({
@@ -120,10 +130,11 @@ class GainIsolator {
     bool loadable = false;
     double follow_ratio = 0.25;
     bool hold_until_refuted = false;
+    bool flagged = false;
     static void describe(ParamSchema<Params>& schema);
   };
 
-  // Inputs substituted and loadable follow the three, in that order, when their params are on.
+  // Inputs substituted, loadable and flagged follow the three, in that order, when their params are on.
   enum Input : std::size_t { kSignal, kSumResidual, kAlarm, kSubstituted };
   enum Output : std::size_t { kFault, kFaultType };
 
@@ -185,6 +196,12 @@ class GainIsolator {
   std::vector<char> loaded_now_;        // channels: loadable on every tick of the block so far
   std::vector<char> block_loaded_;      // [channel * capacity + slot]
   std::vector<char> window_loaded_;     // [j * capacity + n]
+  // With `flagged`: isolated by another part on a tick of the block being filled, per channel; per
+  // block [channel * capacity + slot]; per window block [j * capacity + n].
+  bool flagged_wired_ = false;
+  std::size_t flagged_input_ = kSubstituted;
+  std::vector<char> flagged_now_, block_flagged_, window_flagged_;
+  std::vector<char> shown_before_;  // per channel: this part's own `fault` of the tick before
   std::vector<std::size_t> onset_;      // per channel of the group judged: its best onset
   std::size_t blocks_ = 0;  // blocks completed
   std::vector<long> named_;  // per group: the named channel in the group, -1 none
