@@ -155,26 +155,36 @@ TEST(RejoinDetector, ANoisyFaultThatGoesOnNeverRejoinsAndItsEndDoes) {
 }
 
 // With `residual`: the channel's constraint row r (its reading's share of a sum residual) must
-// step with the jump. A 60 offset_60 from tick 100 to 500, flagged from 150, estimate 60, the load at 200:
-// its end moves the row by -60 too, and the pulse comes W - 1 = 9 ticks after the jump (W = 10 at
-// 1 kHz). The load dropping by 60 at tick 500 while the offset goes on (a foot rolling off the pad)
-// lands the reading on the same recovered line, but the row stays: no end (without the row, an
-// end on tick 500).
-std::vector<long> run_with_row(bool residual_wired, bool load_moves) {
-  RejoinDetector::Params p = rejoin_params();
-  p.residual = residual_wired;
+// step with the jump. A 60 offset from tick 100 to `end_at`, flagged from 150, estimate 60, the
+// load at 200 (its row: the offset alone): its end moves the row by -60 too, and the pulse comes
+// W - 1 = 9 ticks after the jump (W = 10 at 1 kHz). The load dropping by 60 at `load_drop_at`
+// while the offset goes on (a foot rolling off the pad) lands the reading on the same recovered
+// line, but the row stays: no end (without the row, an end on that tick).
+struct RowCase {
+  bool residual = true;
+  long end_at = 500;         // the offset's end (1000: none)
+  long load_drop_at = 1000;  // the load's drop by 60 (1000: none)
+  long guard_from = 0, guard_to = 0;  // guarded ticks (with a guard wired)
+};
+
+std::vector<long> run_with_row(const RowCase& c) {
+  RejoinDetector::Params p = rejoin_params(c.guard_to > c.guard_from);
+  p.residual = c.residual;
   p.residual_step_std = {1.0};
   RejoinDetector detector(p, StageContext(kRejoinPeriod, "rejoin", {{"signal", 1}}));
   detector.reset();
   std::vector<long> rejoined;
   double y_before = std::numeric_limits<double>::quiet_NaN(), flag_before = 0.0;
   for (long k = 0; k < 1000; ++k) {
-    const double load = load_moves && k >= 500 ? 140.0 : 200.0;
-    const double fault = k >= 100 && (load_moves || k < 500) ? 60.0 : 0.0;
+    const double load = k >= c.load_drop_at ? 140.0 : 200.0;
+    const double fault = k >= 100 && k < c.end_at ? 60.0 : 0.0;
     const double x = load + fault;
-    const double xs[] = {x}, ys[] = {y_before}, fs[] = {flag_before}, rs[] = {fault};
+    const double xs[] = {x}, ys[] = {y_before}, fs[] = {flag_before}, rs[] = {fault},
+                 gs[] = {k >= c.guard_from && k < c.guard_to ? 1.0 : 0.0};
     double out[1];
-    const std::span<const double> ins[] = {xs, ys, fs, rs};
+    std::vector<std::span<const double>> ins{xs, ys, fs};
+    if (p.guard) ins.emplace_back(gs);
+    if (p.residual) ins.emplace_back(rs);
     const std::span<double> outs[] = {out};
     detector.step(StepIO{static_cast<double>(k) * kRejoinPeriod, ins, outs});
     if (out[0] != 0.0) rejoined.push_back(k);
@@ -186,10 +196,24 @@ std::vector<long> run_with_row(bool residual_wired, bool load_moves) {
 }
 
 TEST(RejoinDetector, WithItsRowAJumpIsAnEndOnlyIfTheRowSteppedWithIt) {
-  EXPECT_EQ(run_with_row(true, false), std::vector<long>{509});
-  EXPECT_TRUE(run_with_row(true, true).empty());
-  EXPECT_EQ(run_with_row(false, true), std::vector<long>{500});
-  EXPECT_EQ(run_with_row(false, false), std::vector<long>{500});
+  EXPECT_EQ(run_with_row({}), std::vector<long>{509});
+  EXPECT_TRUE(run_with_row({.end_at = 1000, .load_drop_at = 500}).empty());
+  EXPECT_EQ(run_with_row({.residual = false, .end_at = 1000, .load_drop_at = 500}), std::vector<long>{500});
+  EXPECT_EQ(run_with_row({.residual = false}), std::vector<long>{500});
+}
+
+TEST(RejoinDetector, WithItsRowEachJumpIsJudgedOnItsOwnWindows) {
+  // The load drops on tick 491 (a candidate: the row stays, rejected on tick 500) and the offset
+  // ends on tick 500, within the first's window: judged on its own windows, confirmed on 509.
+  EXPECT_EQ(run_with_row({.end_at = 500, .load_drop_at = 491}), std::vector<long>{509});
+}
+
+TEST(RejoinDetector, WithItsRowAWindowNeedsHalfItsSamplesUnguarded) {
+  // A guard over tick 490, the first of the window before the end: nine samples left, confirmed.
+  EXPECT_EQ(run_with_row({.guard_from = 490, .guard_to = 491}), std::vector<long>{509});
+  // A guard over ticks 490-495: four left of ten, not judged; nor with the whole window guarded.
+  EXPECT_TRUE(run_with_row({.guard_from = 490, .guard_to = 496}).empty());
+  EXPECT_TRUE(run_with_row({.guard_from = 490, .guard_to = 500}).empty());
 }
 
 TEST(RejoinDetector, RejectsAFalseAlarmIntervalOfTwoTicks) {

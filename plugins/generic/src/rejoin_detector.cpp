@@ -83,8 +83,7 @@ RejoinDetector::RejoinDetector(const Params& params, const StageContext& context
   flagged2_.assign(dim, 0);
   smooth_before_.assign(dim, 0);
   residual_ring_.assign(residual_wired_ ? dim * 2 * window_ : 0, std::numeric_limits<double>::quiet_NaN());
-  pending_ticks_.assign(dim, -1);
-  pending_jump_.assign(dim, 0.0);
+  candidate_jump_.assign(residual_wired_ ? dim * window_ : 0, std::numeric_limits<double>::quiet_NaN());
 }
 
 void RejoinDetector::reset() noexcept {
@@ -94,7 +93,8 @@ void RejoinDetector::reset() noexcept {
   std::fill(flagged2_.begin(), flagged2_.end(), 0);
   std::fill(smooth_before_.begin(), smooth_before_.end(), 0);
   std::fill(residual_ring_.begin(), residual_ring_.end(), std::numeric_limits<double>::quiet_NaN());
-  std::fill(pending_ticks_.begin(), pending_ticks_.end(), -1);
+  std::fill(candidate_jump_.begin(), candidate_jump_.end(), std::numeric_limits<double>::quiet_NaN());
+  candidate_next_ = 0;
   ring_next_ = 0;
 }
 
@@ -121,23 +121,31 @@ void RejoinDetector::step(const StepIO& io) noexcept {
       double* const samples = residual_ring_.data() + j * ring;
       samples[ring_next_] = guarded ? std::numeric_limits<double>::quiet_NaN() : r;
       rejoined[j] = 0.0;
-      if (pending_ticks_[j] >= 0 && !flagged1) pending_ticks_[j] = -1;  // re-admitted meanwhile
-      if (pending_ticks_[j] < 0 && onto_recovered) {
-        pending_ticks_[j] = static_cast<long>(window_) - 1;
-        pending_jump_[j] = d0;
-      }
-      if (pending_ticks_[j] == 0) {
-        // The ring holds r[t-W .. t+W-1], oldest at ring_next_ + 1: its window step.
+      // Each tick's candidate (its d0; NaN: none) waits W - 1 ticks for its window after; one
+      // re-admitted meanwhile is dropped. The candidate judged now is the one from W - 1 ticks
+      // back, in the slot after this tick's (this tick's own at W = 1).
+      double* const candidates = candidate_jump_.data() + j * window_;
+      if (!flagged1) std::fill(candidates, candidates + window_, std::numeric_limits<double>::quiet_NaN());
+      candidates[candidate_next_] = onto_recovered ? d0 : std::numeric_limits<double>::quiet_NaN();
+      const double jump = candidates[candidate_next_ + 1 == window_ ? 0 : candidate_next_ + 1];
+      if (std::isfinite(jump)) {
+        // The ring holds r[t-W .. t+W-1], oldest at ring_next_ + 1: its window step, over each
+        // window's finite samples, at least half of each (an end just after a landing's guard
+        // has the guard's last ticks in its window before).
         double before = 0.0, after = 0.0;
+        std::size_t n_before = 0, n_after = 0;
         for (std::size_t k = 0; k < window_; ++k) {
-          before += samples[(ring_next_ + 1 + k) % ring];
-          after += samples[(ring_next_ + 1 + window_ + k) % ring];
+          const double b = samples[(ring_next_ + 1 + k) % ring];
+          const double a = samples[(ring_next_ + 1 + window_ + k) % ring];
+          if (std::isfinite(b)) before += b, ++n_before;
+          if (std::isfinite(a)) after += a, ++n_after;
         }
-        const double step = (after - before) / static_cast<double>(window_);
+        const bool enough = 2 * n_before >= window_ && 2 * n_after >= window_ && n_before > 0 && n_after > 0;
+        const double step = enough ? after / static_cast<double>(n_after) - before / static_cast<double>(n_before)
+                                   : std::numeric_limits<double>::quiet_NaN();
         // NaN fails both: not an end.
-        rejoined[j] = std::abs(step) > step_bound_[j] && std::abs(pending_jump_[j] - step) <= match_bound_[j] ? 1.0 : 0.0;
+        rejoined[j] = std::abs(step) > step_bound_[j] && std::abs(jump - step) <= match_bound_[j] ? 1.0 : 0.0;
       }
-      if (pending_ticks_[j] >= 0) --pending_ticks_[j];
     }
     // The tick after a jump (and the one after that) holds it in its second difference, and y's
     // line through it: judged only after a tick whose d0 stayed within the bound.
@@ -147,7 +155,10 @@ void RejoinDetector::step(const StepIO& io) noexcept {
     y2_[j] = y1[j];
     flagged2_[j] = flagged1 ? 1 : 0;
   }
-  if (residual_wired_) ring_next_ = ring_next_ + 1 == ring ? 0 : ring_next_ + 1;
+  if (residual_wired_) {
+    ring_next_ = ring_next_ + 1 == ring ? 0 : ring_next_ + 1;
+    candidate_next_ = candidate_next_ + 1 == window_ ? 0 : candidate_next_ + 1;
+  }
 }
 
 }  // namespace ftsense::generic

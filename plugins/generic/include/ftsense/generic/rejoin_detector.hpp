@@ -40,8 +40,10 @@
 //
 // s_r the row's fault-free window step (`residual_step_std`, `ftsense calibrate`'s window_step):
 // the row moved, and by what the reading jumped (step_isolator's own test for a step). The pulse
-// comes W - 1 ticks after the jump; the channel must stay flagged, and the 2W samples of r be
-// finite and unguarded. Units: any, the reading's. Allocation-free: a ring of 2W residual
+// comes W - 1 ticks after the jump; the channel must stay flagged, and each window have at least
+// half its samples of r finite and unguarded (each window's mean is over those: an end just after
+// a landing's guard has the guard's last ticks in its window before). Each tick's jump is judged
+// on its own windows, so a load's drop a few ticks before an end does not hide the end. Units: any, the reading's. Allocation-free: a ring of 2W residual
 // samples per channel.
 
 #include <array>
@@ -99,16 +101,17 @@ class RejoinDetector {
   std::vector<char> flagged2_;
   std::vector<char> smooth_before_;  // 1: the tick before's |d0| was within b
   // With `residual`: the row's last 2W samples per channel ([j * 2W + k], a ring; NaN where
-  // guarded or not finite), and each channel's pending jump: ticks until it is judged (-1 none)
-  // and its d0.
+  // guarded or not finite), and each channel's candidate jumps of the last W ticks ([j * W + k],
+  // a ring: their d0, NaN where none), so a jump a few ticks after another is judged on its own
+  // windows.
   bool residual_wired_ = false;
   std::size_t guard_input_ = kGuard, residual_input_ = kGuard;
   std::size_t window_ = 1;
   std::size_t ring_next_ = 0;
   std::vector<double> residual_ring_;
   std::vector<double> step_bound_, match_bound_;  // z s_r; z sqrt(6 sigma^2 + q^2 / 2 + s_r^2)
-  std::vector<long> pending_ticks_;
-  std::vector<double> pending_jump_;
+  std::size_t candidate_next_ = 0;
+  std::vector<double> candidate_jump_;
 };
 
 }  // namespace ftsense::generic
