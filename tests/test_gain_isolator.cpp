@@ -324,6 +324,11 @@ TEST(GainIsolator, ALeadTooSmallToTellTheChannelIsWaivedWhereAnotherPartIsolated
   t.flagged_from = 2000;
   t.flagged_to = 2010;
   EXPECT_EQ(first_gain_named(run_gain_trace(t)), -1);
+  // A flag raised before the onset (tick 1000) and held through it is no word about this onset.
+  t.flagged_channel = 1;
+  t.flagged_from = 1000;
+  t.flagged_to = 4000;
+  EXPECT_EQ(first_gain_named(run_gain_trace(t)), -1);
 }
 
 TEST(GainIsolator, WithNoiseTheGainIsNamedAndNoNeighbourEverIs) {

@@ -462,6 +462,32 @@ TEST(SignalValidator, ANoiseBurstKeepsItsFlagThroughAGuardThatHidesIt) {
   }
 }
 
+TEST(SignalValidator, AGuardThatStaysOnLetsTheNoiseVerdictLapseAfterTwoWindows) {
+  // The same burst, guarded from tick 1300 to the end: the verdict holds for two windows of
+  // guarded ticks (200), then the window empties; last flagged on tick 1498.
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.1;
+  p.guard = true;
+  constexpr unsigned kSeed = 19;
+  std::printf("seed %u\n", kSeed);
+  SignalValidator validator(p, StageContext(1e-3, "v", {{"signal", 1}, {"guard", 1}}));
+  validator.reset();
+  std::vector<double> x{0.0}, g{0.0}, fault{0.0}, type{0.0};
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  int last = -1;
+  for (int k = 0; k < 3000; ++k) {
+    x[0] = 50.0 + (k >= 1000 && k < 1800 ? 10.0 : 1.0) * noise(rng);
+    g[0] = k >= 1300 ? 1.0 : 0.0;
+    const std::span<const double> ins[] = {x, g};
+    const std::span<double> outs[] = {fault, type};
+    validator.step(StepIO{k * 1e-3, ins, outs});
+    if (fault[0] != 0.0) last = k;
+  }
+  EXPECT_EQ(last, 1498);
+}
+
 TEST(SignalValidator, ABurstIsNoiseThoughItsSamplesLookLikeSpikesAndSparseSpikesStaySpikes) {
   // 0.5 s of 10x noise: many of its samples pass the spike test on their own. Once the window's
   // count shows the burst (within 0.1 s), every tick to the burst's end is typed noise. Then

@@ -112,9 +112,11 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   // `substituted`, a decision that names nobody may judge each channel once more on its own
   // window (judge): g more tries at as many onsets.
   const double windows = substituted_ ? 2.0 : 1.0;
-  const double tries =
-      windows * static_cast<double>(group_size_) * (blocks_in_history - std::max(1.0, min_fault_blocks) + 1.0);
-  margin_ = chi_square_quantile(1.0, 1.0 - alpha / tries);
+  const double tries = static_cast<double>(group_size_) * (blocks_in_history - std::max(1.0, min_fault_blocks) + 1.0);
+  margin_ = chi_square_quantile(1.0, 1.0 - alpha / (windows * tries));
+  // The hold's refutation is one test of the named channel's fit, at the naming's own margin over
+  // one window of fits.
+  hold_margin_ = chi_square_quantile(1.0, 1.0 - alpha / tries);
   fit_bound_.assign(capacity_ + 1, 0.0);
   for (std::size_t n = 4; n <= capacity_; ++n) {
     fit_bound_[n] = chi_square_quantile(static_cast<double>(n - 3), 1.0 - alpha);
@@ -176,7 +178,7 @@ GainIsolator::GainIsolator(const Params& params, const StageContext& context)
   flagged_now_.assign(channels_, 0);
   shown_before_.assign(channels_, 0);
   block_flagged_.assign(channels_ * capacity_, 0);
-  window_flagged_.assign(group_size_ * capacity_, 0);
+  flagged_before_.assign(channels_, 0);
   onset_.assign(group_size_, 0);
   substituted_now_.assign(channels_, 0);
   unloaded_now_.assign(channels_, 1);
@@ -205,6 +207,7 @@ void GainIsolator::reset() noexcept {
   std::fill(loaded_now_.begin(), loaded_now_.end(), 1);
   std::fill(block_loaded_.begin(), block_loaded_.end(), 0);
   std::fill(flagged_now_.begin(), flagged_now_.end(), 0);
+  std::fill(flagged_before_.begin(), flagged_before_.end(), 0);
   std::fill(shown_before_.begin(), shown_before_.end(), 0);
   std::fill(block_flagged_.begin(), block_flagged_.end(), 0);
   std::fill(substituted_now_.begin(), substituted_now_.end(), 0);
@@ -272,7 +275,6 @@ long GainIsolator::judge_window(std::size_t group, long candidate) noexcept {
       const bool in_air = !as_read && block_substituted_[at] == kStoodForNothingInAir;
       window_x_[j * capacity_ + n] = in_air ? 0.0 : block_x_[at];
       window_loaded_[j * capacity_ + n] = block_loaded_[at];
-      window_flagged_[j * capacity_ + n] = block_flagged_[at];
     }
     window_e_[n] = e;
     window_t_[n] = static_cast<double>(blocks_ - 1 - age);  // the block's index: a ramp is in time
@@ -317,7 +319,7 @@ long GainIsolator::judge_window(std::size_t group, long candidate) noexcept {
       nobody = std::max(nobody, explained(s_t - m * t, s_tt - 2.0 * t * s_t + m * t * t, s_te - t * s_e));
     }
   }
-  double best = 0.0, runner_up = nobody, best_beta = 0.0;
+  double best = 0.0, runner_up = 0.0, best_beta = 0.0;  // runner_up: the best other channel
   long best_channel = -1;
   for (std::size_t j = 0; j < group_size_; ++j) {
     const double* x = window_x_.data() + j * capacity_;
@@ -348,18 +350,20 @@ long GainIsolator::judge_window(std::size_t group, long candidate) noexcept {
   }
   // In units of the block mean's variance: GLRs, and what the fit leaves, a chi^2_{N-3}.
   const double left = std::max(0.0, centred_ee - best) * w;
-  // The lead over the runner-up tells which channel; another part that isolated the best one at
-  // the onset the fit found (on that block or the next: a step on its row, its air row) has told
-  // it already, and at the same time.
+  // The lead over the runner-up tells which channel; another part that raised its flag on the
+  // best one at the onset the fit found (on that block or the next, in time: a step on its row)
+  // has told it already, and at the same time. The lead over a step or a ramp (nobody's gain)
+  // holds either way.
   bool isolated_elsewhere = false;
   if (flagged_wired_ && best_channel >= 0) {
-    const std::size_t b = static_cast<std::size_t>(best_channel);
-    for (std::size_t k = onset_[b]; k < std::min(n, onset_[b] + 2) && !isolated_elsewhere; ++k) {
-      isolated_elsewhere = window_flagged_[b * capacity_ + k] != 0;
+    const std::size_t at = (group * group_size_ + static_cast<std::size_t>(best_channel)) * capacity_;
+    const std::size_t onset_block = static_cast<std::size_t>(window_t_[onset_[static_cast<std::size_t>(best_channel)]]);
+    for (std::size_t b = onset_block; b < std::min(blocks_, onset_block + 2) && !isolated_elsewhere; ++b) {
+      isolated_elsewhere = block_flagged_[at + b % capacity_] != 0;
     }
   }
-  const bool explains = best * w >= margin_ && ((best - runner_up) * w >= margin_ || isolated_elsewhere) &&
-                        left <= fit_bound_[n];
+  const bool explains = best * w >= margin_ && (best - nobody) * w >= margin_ &&
+                        ((best - runner_up) * w >= margin_ || isolated_elsewhere) && left <= fit_bound_[n];
   if (!explains || (candidate >= 0 && best_channel != candidate)) return -1;
   if (loadable_ && stuck_neighbour(best_channel, n)) return -1;
   beta_[group] = best_beta;  // the named channel's coefficient from its onset on
@@ -410,7 +414,7 @@ bool GainIsolator::held_refuted(std::size_t group, bool alarm_down) noexcept {
   const double n = held_n_[group];
   const double rss_none = held_ee_[group] - held_e_[group] * held_e_[group] / n;
   const double rss_gain = held_uu_[group] - held_u_[group] * held_u_[group] / n;
-  return (rss_gain - rss_none) * inv_block_var_[group] >= margin_;
+  return (rss_gain - rss_none) * inv_block_var_[group] >= hold_margin_;
 }
 
 void GainIsolator::step(const StepIO& io) noexcept {
@@ -429,9 +433,12 @@ void GainIsolator::step(const StepIO& io) noexcept {
   }
   if (flagged_wired_) {
     const auto flagged = io.in(flagged_input_);
-    // Not this part's own name of the tick before: that is no other part's word.
+    // A flag raised (not one held since), and not by this part's own name of the tick before:
+    // that is no other part's word.
     for (std::size_t j = 0; j < channels_; ++j) {
-      flagged_now_[j] |= std::isfinite(flagged[j]) && flagged[j] != 0.0 && !shown_before_[j] ? 1 : 0;
+      const char raised = std::isfinite(flagged[j]) && flagged[j] != 0.0 ? 1 : 0;
+      flagged_now_[j] |= raised && !flagged_before_[j] && !shown_before_[j] ? 1 : 0;
+      flagged_before_[j] = raised;
     }
   }
   if (substituted_) {

@@ -345,6 +345,10 @@ void SignalValidator::step(const StepIO& io) noexcept {
         // and the verdict holds through the guard, as through a non-finite reading (counted as
         // quiet, a landing's guard emptied a noise burst's window on every stride).
         if (!guarded) push(s.tested_d2, sums_storage_, n, noisy ? 1.0 : 0.0);
+        // Blind for two windows (a guard that stays on): the verdict lapses, and the window
+        // fills again from seen ticks.
+        s.guarded_ticks = guarded ? std::min(s.guarded_ticks + 1, 2 * n) : 0;
+        if (s.guarded_ticks == 2 * n) clear(s.tested_d2);
         const double off_neighbours = s.y1 - 0.5 * (s.y2 + y);
         const bool spike =
             std::abs(reading_spike) > l.spike_above && std::abs(reading_span) < std::abs(reading_spike) &&

@@ -55,11 +55,13 @@
 // passes every test below; any other best names nobody. The margin counts these windows' fits
 // too (2 g K tries instead of g K).
 // With `flagged` on (input `flagged`, 1 where another part isolated a channel on the tick before:
-// the merged isolators' flags through previous_tick), the lead over the runner-up is waived for
-// a best channel that another part flagged on its fitted onset's block or the next (a step
-// isolator's name at a gain's onset in stance): the lead says which channel, and two tests that
-// name the same channel at the same time have said it. Every other test holds. This part's own
-// names (its `fault` of the tick before) are not another part's word. Why: co-loaded pads of one
+// the merged isolators' flags through previous_tick), the lead over the runner-up channel is
+// waived for a best channel on which another part raised its flag (0 -> 1) on the fitted onset's
+// block or the next, in time (a step isolator's name at a gain's onset in stance): the lead says
+// which channel, and two tests that name the same channel at the same time have said it. A flag
+// held since earlier says nothing about this onset. Every other test holds, the lead over a step
+// or a ramp too. This part's own names (its `fault` of the tick before) are not another part's
+// word. The hold's refutation keeps the margin of one window of fits. Why: co-loaded pads of one
 // sole carry alike loads over a stance, so the lead grows a few units a stance (a x0.6 gain found
 // by its step at 4.1 s on SURALP's gains_bursts: GLR 290-410, lead 25-36 against a margin of
 // 44), and meanwhile the step isolator re-admits the pad when the sum's alarm falls as its foot
@@ -173,6 +175,7 @@ class GainIsolator {
   std::size_t capacity_ = 0;         // blocks in the window
   std::size_t min_fault_blocks_ = 1;
   double margin_ = 0.0;
+  double hold_margin_ = 0.0;  // the hold's refutation: chi^2_1 over one window's fits
   std::vector<double> fit_bound_;    // chi^2_{N-3}(1 - alpha) for N = 0 .. capacity
   std::vector<double> inv_block_var_;  // 1 / s^2 per group
   // The block being filled, per group: sums over its usable ticks.
@@ -196,11 +199,12 @@ class GainIsolator {
   std::vector<char> loaded_now_;        // channels: loadable on every tick of the block so far
   std::vector<char> block_loaded_;      // [channel * capacity + slot]
   std::vector<char> window_loaded_;     // [j * capacity + n]
-  // With `flagged`: isolated by another part on a tick of the block being filled, per channel; per
-  // block [channel * capacity + slot]; per window block [j * capacity + n].
+  // With `flagged`: another part raised its flag on a tick of the block being filled, per channel;
+  // per block [channel * capacity + slot].
   bool flagged_wired_ = false;
   std::size_t flagged_input_ = kSubstituted;
-  std::vector<char> flagged_now_, block_flagged_, window_flagged_;
+  std::vector<char> flagged_now_, block_flagged_;
+  std::vector<char> flagged_before_;  // per channel: the input `flagged` of the tick before (a raise is 0 -> 1)
   std::vector<char> shown_before_;  // per channel: this part's own `fault` of the tick before
   std::vector<std::size_t> onset_;      // per channel of the group judged: its best onset
   std::size_t blocks_ = 0;  // blocks completed

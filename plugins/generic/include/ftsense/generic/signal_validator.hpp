@@ -80,7 +80,8 @@
 // or give a `guard` input (change_guard after the contact flags): on a tick it marks, no spike is
 // seen and no second difference is counted, for noise or against it, so the tests judge the ticks
 // between transients, and a verdict holds through a guard (the noise window keeps the ticks seen,
-// as it does through non-finite readings).
+// as it does through non-finite readings), up to two windows of guarded ticks: a guard that stays
+// on empties the window then, as the spike episode ends after twice its longest hold.
 // The type reported is the first that fires in the order above (noise before spikes: a burst is
 // many spikes, and isolated ones stay under the noise count's bound). A flag clears as soon as its
 // test passes again (frozen and noise: the window no longer shows it; spikes: h after the last
@@ -185,6 +186,7 @@ class SignalValidator {
     // and all ticks since its last spike.
     SpikeEpisode spikes;
     std::int64_t spike_idle_ticks = 0;
+    std::size_t guarded_ticks = 0;  // consecutive guarded ticks (the noise window's blind time)
   };
 
   static constexpr std::int64_t kTickCap = 1'000'000'000'000;  // tick counters saturate here
