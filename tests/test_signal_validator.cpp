@@ -418,74 +418,56 @@ TEST(SignalValidator, ANoiseBurstIsFlaggedWithinAWindowAndClearsAfterIt) {
   EXPECT_LE(last, 1500 + 100 + 1);
 }
 
+// 3 s of white noise (sigma 1, seed 19) at 1 kHz around 50, ten times that over ticks 1000..1799
+// when `burst`, guarded over [guard_from, guard_to): the ticks flagged.
+std::vector<int> guarded_burst_flags(bool burst, int guard_from, int guard_to) {
+  SignalValidator::Params p;
+  p.noise_std = {1.0};
+  p.window_s = 0.1;
+  p.guard = true;
+  SignalValidator validator(p, StageContext(1e-3, "v", {{"signal", 1}, {"guard", 1}}));
+  validator.reset();
+  std::vector<double> x{0.0}, g{0.0}, fault{0.0}, type{0.0};
+  std::mt19937_64 rng(19);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<int> flagged;
+  for (int k = 0; k < 3000; ++k) {
+    x[0] = 50.0 + (burst && k >= 1000 && k < 1800 ? 10.0 : 1.0) * noise(rng);
+    g[0] = k >= guard_from && k < guard_to ? 1.0 : 0.0;
+    const std::span<const double> ins[] = {x, g};
+    const std::span<double> outs[] = {fault, type};
+    validator.step(StepIO{k * 1e-3, ins, outs});
+    if (fault[0] != 0.0) flagged.push_back(k);
+  }
+  return flagged;
+}
+
 TEST(SignalValidator, ANoiseBurstKeepsItsFlagThroughAGuardThatHidesIt) {
   // 0.8 s of 10x noise (ticks 1000..1799) with a guard over ticks 1300..1449 (a landing's 0.15 s,
   // longer than the 0.1 s window): the guarded ticks are not seen, so the window keeps the burst's
   // ticks and the flag holds through the guard, to the burst's end and at most a window after it.
   // (Counted as quiet, the guard emptied the window and the flag fell on tick 1300 + 100 or
   // so.) Healthy noise with the same guard is never flagged.
-  SignalValidator::Params p;
-  p.noise_std = {1.0};
-  p.window_s = 0.1;
-  p.guard = true;
-  constexpr unsigned kSeed = 19;
-  std::printf("seed %u\n", kSeed);
-  for (const bool burst : {true, false}) {
-    SignalValidator validator(p, StageContext(1e-3, "v", {{"signal", 1}, {"guard", 1}}));
-    validator.reset();
-    std::vector<double> x{0.0}, g{0.0}, fault{0.0}, type{0.0};
-    std::mt19937_64 rng(kSeed);
-    std::normal_distribution<double> noise(0.0, 1.0);
-    int first = -1, last = -1, flagged = 0;
-    for (int k = 0; k < 3000; ++k) {
-      const double sigma = burst && k >= 1000 && k < 1800 ? 10.0 : 1.0;
-      x[0] = 50.0 + sigma * noise(rng);
-      g[0] = k >= 1300 && k < 1450 ? 1.0 : 0.0;
-      const std::span<const double> ins[] = {x, g};
-      const std::span<double> outs[] = {fault, type};
-      validator.step(StepIO{k * 1e-3, ins, outs});
-      if (fault[0] == 0.0) continue;
-      if (first < 0) first = k;
-      last = k;
-      ++flagged;
-    }
-    if (!burst) {
-      EXPECT_EQ(flagged, 0);
-      continue;
-    }
-    std::printf("noise 1000..1799, guard 1300..1449: flagged %d..%d, %d ticks\n", first, last, flagged);
-    EXPECT_GE(first, 1000);
-    EXPECT_LE(first, 1100);
-    EXPECT_GE(last, 1799);
-    EXPECT_LE(last, 1800 + 100 + 1);
-    EXPECT_EQ(flagged, last - first + 1);  // no gap: held through the guard
-  }
+  std::printf("seed 19\n");
+  EXPECT_TRUE(guarded_burst_flags(false, 1300, 1450).empty());
+  const std::vector<int> flagged = guarded_burst_flags(true, 1300, 1450);
+  ASSERT_FALSE(flagged.empty());
+  const int first = flagged.front(), last = flagged.back();
+  std::printf("noise 1000..1799, guard 1300..1449: flagged %d..%d, %zu ticks\n", first, last, flagged.size());
+  EXPECT_GE(first, 1000);
+  EXPECT_LE(first, 1100);
+  EXPECT_GE(last, 1799);
+  EXPECT_LE(last, 1800 + 100 + 1);
+  EXPECT_EQ(static_cast<int>(flagged.size()), last - first + 1);  // no gap: held through the guard
 }
 
 TEST(SignalValidator, AGuardThatStaysOnLetsTheNoiseVerdictLapseAfterTwoWindows) {
   // The same burst, guarded from tick 1300 to the end: the verdict holds for two windows of
   // guarded ticks (200), then the window empties; last flagged on tick 1498.
-  SignalValidator::Params p;
-  p.noise_std = {1.0};
-  p.window_s = 0.1;
-  p.guard = true;
-  constexpr unsigned kSeed = 19;
-  std::printf("seed %u\n", kSeed);
-  SignalValidator validator(p, StageContext(1e-3, "v", {{"signal", 1}, {"guard", 1}}));
-  validator.reset();
-  std::vector<double> x{0.0}, g{0.0}, fault{0.0}, type{0.0};
-  std::mt19937_64 rng(kSeed);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  int last = -1;
-  for (int k = 0; k < 3000; ++k) {
-    x[0] = 50.0 + (k >= 1000 && k < 1800 ? 10.0 : 1.0) * noise(rng);
-    g[0] = k >= 1300 ? 1.0 : 0.0;
-    const std::span<const double> ins[] = {x, g};
-    const std::span<double> outs[] = {fault, type};
-    validator.step(StepIO{k * 1e-3, ins, outs});
-    if (fault[0] != 0.0) last = k;
-  }
-  EXPECT_EQ(last, 1498);
+  std::printf("seed 19\n");
+  const std::vector<int> flagged = guarded_burst_flags(true, 1300, 3000);
+  ASSERT_FALSE(flagged.empty());
+  EXPECT_EQ(flagged.back(), 1498);
 }
 
 TEST(SignalValidator, ABurstIsNoiseThoughItsSamplesLookLikeSpikesAndSparseSpikesStaySpikes) {

@@ -26,12 +26,7 @@ void RejoinDetector::Params::describe(ParamSchema<Params>& schema) {
              "adds input residual (the channel's constraint residual row, which its reading enters one for one): a "
              "jump is an end only if the row stepped with it over 10 ms windows (load moving between channels "
              "leaves the row)");
-  schema
-      .add("residual_step_std", &Params::residual_step_std,
-           "with residual: s_r, how much each fault-free residual row steps between two consecutive 10 ms windows "
-           "(standard deviation, in its unit); one value applies to all")
-      .greater_than(0.0)
-      .count_at_least(1);
+  describe_residual_step(schema);
 }
 
 RejoinDetector::RejoinDetector(const Params& params, const StageContext& context)

@@ -16,12 +16,7 @@ namespace ftsense::generic {
 
 void StepIsolator::Params::describe(ParamSchema<Params>& schema) {
   describe_jump_noise(schema);
-  schema
-      .add("residual_step_std", &Params::residual_step_std,
-           "s_r: how much each fault-free residual row steps between two consecutive 10 ms windows (standard "
-           "deviation, in its unit); one value applies to all")
-      .greater_than(0.0)
-      .count_at_least(1);
+  describe_residual_step(schema);
   schema
       .add("virtual_step_std", &Params::virtual_step_std,
            "s_v: the same for each virtual sensor x - r (what the relation says the reading should be); one "

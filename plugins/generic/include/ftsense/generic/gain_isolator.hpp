@@ -63,9 +63,9 @@
 // or a ramp too. This part's own names (its `fault` of the tick before) are not another part's
 // word. The hold's refutation keeps the margin of one window of fits. Why: co-loaded pads of one
 // sole carry alike loads over a stance, so the lead grows a few units a stance (a x0.6 gain found
-// by its step at 4.1 s on SURALP's gains_bursts: GLR 290-410, lead 25-36 against a margin of
-// 44), and meanwhile the step isolator re-admits the pad when the sum's alarm falls as its foot
-// unloads, which leaves its gain uncorrected for whole stances.
+// by its step on SURALP's gains_bursts was named 3.3 s after its onset), and meanwhile the step
+// isolator re-admits the pad when the sum's alarm falls as its foot unloads, which leaves its
+// gain uncorrected for whole stances.
 // With `loadable` on (input `loadable`, 1 while a channel can carry load, by kinematics), a
 // reading stuck while its channel is loaded is ruled out as the cause first: it makes e follow its
 // own load (e = x_j(t0) - L_j(t)), which a co-loaded neighbour's reading explains as a gain. So

@@ -35,4 +35,16 @@ void describe_jump_noise(ParamSchema<P>& schema) {
       .count_at_least(1);
 }
 
+// The parameter `residual_step_std` of a part that confirms a reading's jump by its residual row's
+// window step (window_step_noise.hpp; `ftsense calibrate` measures it as window_step).
+template <class P>
+void describe_residual_step(ParamSchema<P>& schema) {
+  schema
+      .add("residual_step_std", &P::residual_step_std,
+           "s_r: how much each fault-free residual row steps between two consecutive 10 ms windows (standard "
+           "deviation, in its unit); one value applies to all")
+      .greater_than(0.0)
+      .count_at_least(1);
+}
+
 }  // namespace ftsense::generic
