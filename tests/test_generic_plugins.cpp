@@ -484,6 +484,37 @@ TEST(FaultRecovery, AFlaggedChannelIsRecoveredWithinWhatTheQuantityCanTake) {
   EXPECT_THROW((void)generic::FaultRecovery(p, StageContext(1e-3, "rec", {{"measured", 1}})), ConfigError);
 }
 
+TEST(FaultRecovery, ASaturatedReadingBoundsItsRecoveredValueFromBelow) {
+  // Saturation (code 9) substituted and a lower bound: a virtual value below the clipped 350 N
+  // gives the reading, which stands for itself; one above it is the value, substituted. Not
+  // flagged, or without the list, the bound does nothing.
+  generic::FaultRecovery::Params p;
+  p.correction = generic::FaultRecovery::Correction::when_flagged;
+  p.substitute_types = {"frozen", "invalid", "saturation"};
+  p.lower_bound_types = {"saturation"};
+  const double saturation = fault_code(FaultType::saturation);
+  ASSERT_EQ(saturation, 9.0);
+  RecoveryRig rig(p);
+  EXPECT_EQ(rig.step(350.0, 0.0, 280.0, 1.0, saturation), 350.0);
+  EXPECT_EQ(rig.substituted[0], 0.0);
+  EXPECT_EQ(rig.correction[0], 0.0);
+  EXPECT_EQ(rig.step(350.0, 0.0, 420.0, 1.0, saturation), 420.0);
+  EXPECT_EQ(rig.substituted[0], 1.0);
+  EXPECT_EQ(rig.step(350.0, 0.0, std::nan(""), 1.0, saturation), 350.0);  // no virtual value: the bound
+  EXPECT_EQ(rig.substituted[0], 0.0);
+  EXPECT_EQ(rig.step(300.0, 0.0, 280.0, 0.0, 0.0), 300.0);
+  EXPECT_EQ(rig.step(350.0, 0.0, 280.0, 1.0, fault_code(FaultType::frozen)), 280.0);  // frozen: no bound
+  p.lower_bound_types = {};
+  RecoveryRig without(p);
+  EXPECT_EQ(without.step(350.0, 0.0, 280.0, 1.0, saturation), 280.0);
+  EXPECT_EQ(without.substituted[0], 1.0);
+  Diagnostics d;
+  (void)load_params<generic::FaultRecovery::Params>(Json::parse(R"({"lower_bound_types": ["saturaton"]})"),
+                                                    "/stages/4/params", "fault_recovery", d);
+  ASSERT_EQ(d.errors().size(), 1u);
+  EXPECT_EQ(d.errors()[0].path, "/stages/4/params/lower_bound_types/0");
+}
+
 TEST(FaultRecovery, ATypeRecoveredTwoWaysOrABlendAboveNyquistIsAConfigError) {
   Diagnostics d;
   (void)load_params<generic::FaultRecovery::Params>(

@@ -105,6 +105,7 @@ TEST(SignalValidator, AFrozenReadingIsFlaggedOnTheTickItsLastMovesLeaveTheWindow
   p.noise_std = {1.0};
   p.window_s = 0.05;
   p.noise_margin = 1.0;  // the bound as computed below; NoiseMargin* tests the margin
+  p.repeat_min_s = 1.0;  // the run of repeats off (n_r beyond the window): the window's test alone
   OneValidatedChannel c(p, 1e-3);
   const std::size_t n = c.validator.window_ticks();
   ASSERT_EQ(n, 50u);
@@ -126,6 +127,52 @@ TEST(SignalValidator, AFrozenReadingIsFlaggedOnTheTickItsLastMovesLeaveTheWindow
   // It moves by 3 (d2 = 3: 9 < bound, still frozen) and back (d2 = -6: 9 + 36 > bound, cleared).
   EXPECT_EQ(c.step(last + 3.0), FaultType::frozen);
   EXPECT_EQ(c.step(last), FaultType::none);
+}
+
+TEST(SignalValidator, ARunOfRepeatsIsFrozenAfterRepeatMinSOrTheRunItsNoiseMakesUnlikely) {
+  // Window 0.1 s (100 ticks at 1 kHz), repeat_min_s 0.02 s, noise_margin 1.5. A reading that moves
+  // every tick by +-a (a = 1 continuous, one level of q = 2: its d2 below the noise test's bar),
+  // then repeats its last value on ticks 500-559:
+  //   continuous (q = 0): no noise leaves a reading on its value, so the run is frozen once it is
+  //     repeat_min_s long, 20 repeats: on tick 519;
+  //   q = 2, sigma = 2: p = erf(2 x 1.5 / (2 sqrt(2) 2)) = 0.5468, and alpha = 1e-3 / 86400, so
+  //     n_r = ceil(ln alpha / ln p) = 31 repeats: on tick 530.
+  // The move on tick 560 ends it, before the window's variance test (which needs most of the
+  // window silent) fires; a second run at the same value from tick 700 is saturation (a clip's
+  // ceiling), as soon after its start.
+  for (const double q : {0.0, 2.0}) {
+    SignalValidator::Params p;
+    p.noise_std = {2.0};
+    p.resolution = {q};
+    OneValidatedChannel c(p, 1e-3);
+    const int run = q == 0.0 ? 19 : 30;  // the flag's tick less the run's first
+    const double a = q == 0.0 ? 1.0 : q;
+    const auto moving = [&](int k) { return 100.0 + (k % 2 ? a : -a); };
+    for (int k = 0; k < 800; ++k) {
+      const bool first = k >= 500 && k < 560, second = k >= 700;
+      const double x = first ? moving(499) : second ? moving(699) : moving(k);
+      const FaultType expected = first && k >= 500 + run    ? FaultType::frozen
+                                 : second && k >= 700 + run ? FaultType::saturation
+                                                            : FaultType::none;
+      EXPECT_EQ(c.step(x), expected) << "q " << q << ", tick " << k;
+    }
+  }
+}
+
+TEST(SignalValidator, AQuantisedHealthySensorAtItsLeastNoiseRepeatsItselfWithoutAFlag) {
+  // q = 2, stated sigma = 2, true noise sigma / m = 1.33 (the least the margin allows), a
+  // constant load on a level's centre (where a reading stays on its level most): 100 s at 1 kHz.
+  SignalValidator::Params p;
+  p.noise_std = {2.0};
+  p.resolution = {2.0};
+  OneValidatedChannel c(p, 1e-3);
+  constexpr unsigned kSeed = 20261208;
+  std::printf("seed %u\n", kSeed);
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 2.0 / 1.5);
+  int flagged = 0;
+  for (int k = 0; k < 100000; ++k) flagged += c.step(2.0 * std::round((200.0 + noise(rng)) / 2.0)) != FaultType::none;
+  EXPECT_EQ(flagged, 0);
 }
 
 TEST(SignalValidator, ACoarselyQuantisedHealthySensorThatRepeatsItselfIsNotFrozen) {
@@ -567,6 +614,7 @@ TEST(SignalValidator, ARunOnTheRestValueIsNoFrozenEvidenceButARunElsewhereStillI
     p.noise_std = {1.0};
     p.window_s = 0.05;
     p.noise_margin = 1.0;  // the stale bound of the test above
+    p.repeat_min_s = 1.0;  // the run of repeats off: the window's test alone
     if (with_rest) p.rest_value = {0.0};
     OneValidatedChannel c(p, 1e-3);
     const int n = static_cast<int>(c.validator.window_ticks());
@@ -596,6 +644,7 @@ TEST(SignalValidator, StuckAgainAtThePreviousEpisodesValueIsSaturationElsewhereF
   p.noise_std = {1.0};
   p.window_s = 0.05;
   p.noise_margin = 1.0;  // the stale bound of the tests above
+  p.repeat_min_s = 1.0;  // the run of repeats off: the window's test alone
   OneValidatedChannel c(p, 1e-3);
   const int n = static_cast<int>(c.validator.window_ticks());
   for (int k = 0; k < 1100; ++k) {

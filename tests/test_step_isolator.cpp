@@ -1,10 +1,13 @@
 // step_isolator: on three channels that sum to a reference while their loads move, a step on one
 // is named on the tick its window completes, with its exact size, and no neighbour is; its end
 // re-admits it on the tick that window completes. A reference step, a spike of three ticks, a step towards zero, a step on a row raised
-// with no named cause and a step inside a guard name nobody; a step no
+// with no named cause and a step inside a guard name nobody, unless the guard's own move s_g
+// is given: then a step inside a guard is named once the guard is over, when the rows moved by its
+// jump across it and no other reading jumped with it; a corrected channel's step is not blamed; a step no
 // detector confirms is dropped after confirm_s, and a blamed channel is re-admitted on the tick
 // its detector falls. window_step_noise: exact steps of small sequences, and sigma sqrt(2 / W)
-// for white noise (seed printed).
+// for white noise (seed printed). guard_step_noise: exact steps across the guards of a small
+// sequence, and the guards it does not count.
 
 #include <cmath>
 #include <cstdio>
@@ -14,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "ftsense/fault_type.hpp"
+#include "ftsense/generic/guard_step_noise.hpp"
 #include "ftsense/generic/step_isolator.hpp"
 #include "ftsense/generic/window_step_noise.hpp"
 #include "ftsense/testing/plugin_contract.hpp"
@@ -58,6 +62,8 @@ struct StepTrace {
   int reference_onset = 500;
   int guard_from = -1, guard_to = -1;
   int alarm_from = 505, alarm_to = 100000;  // the detector on every row raised on [from, to)
+  double shift = 0.0;      // load moved from channel 2 to channel 0 from the onset (the sum keeps it)
+  int corrected_from = 100000;  // input correction nonzero on the faulty channel from this tick
 };
 
 struct StepVerdicts {
@@ -71,15 +77,17 @@ StepVerdicts run_isolator(const StepTrace& trace, StepIsolator::Params p = {}) {
   p.guard = true;
   StepIsolator iso(p, StageContext(kStepPeriod, "step", {{"signal", 3}}));
   iso.reset();
-  std::vector<double> x(3), r(3), alarm(3), guard(3), fault(3), type(3), estimate(3);
-  const std::span<const double> ins[] = {x, r, alarm, guard};
+  std::vector<double> x(3), r(3), alarm(3), guard(3), correction(3), fault(3), type(3), estimate(3);
+  const std::span<const double> ins[] = {x, r, alarm, guard, correction};
   const std::span<double> outs[] = {fault, type, estimate};
   StepVerdicts out;
   for (int k = 0; k < 1200; ++k) {
     double sum = 0.0;
     for (std::size_t j = 0; j < 3; ++j) {
       x[j] = swaying_load(j, k) + (j == trace.channel && k >= trace.onset && k < trace.end ? trace.size : 0.0);
+      if (k >= trace.onset) x[j] += j == 0 ? trace.shift : j == 2 ? -trace.shift : 0.0;
       sum += x[j];
+      correction[j] = j == trace.channel && k >= trace.corrected_from ? 1.0 : 0.0;
     }
     const double reference = kSharedLoad + (k >= trace.reference_onset ? trace.reference_step : 0.0);
     for (std::size_t j = 0; j < 3; ++j) {
@@ -204,6 +212,84 @@ TEST(StepIsolator, AStepInsideAGuardIsNotJudged) {
   expect_nobody_blamed(run_isolator(t));
 }
 
+// Guard step s_g = 1: the bar z s_g is 5.7 (z = 5.70 at one false alarm a day at 1 kHz).
+StepIsolator::Params judged_in_guard(double guard_step_std = 1.0) {
+  StepIsolator::Params p;
+  p.guard_step_std = {guard_step_std};
+  return p;
+}
+
+TEST(StepIsolator, WithGuardStepStdAStepInsideAGuardIsNamedOnceTheGuardIsOver) {
+  // Guarded over ticks 495-514: the step at 500 is the one candidate on tick 509 (its windows
+  // complete), and is judged on tick 524, the tenth unguarded tick: the rows moved from 0 (ticks
+  // 485-494) to 30 (515-524), its jump. Its end at 800 is named as usual (blamed 524-808).
+  StepTrace t;
+  t.guard_from = 495;
+  t.guard_to = 515;
+  const StepVerdicts r = run_isolator(t, judged_in_guard());
+  for (int k = 0; k < 1200; ++k) {
+    EXPECT_EQ(r.fault[k][1], k >= 524 && k < 809 ? 1.0 : 0.0) << "tick " << k;
+    EXPECT_EQ(r.fault[k][0] + r.fault[k][2], 0.0) << "tick " << k;
+  }
+  EXPECT_NEAR(r.estimate[524][1], 30.0, 1e-9);
+}
+
+TEST(StepIsolator, AStepInsideAGuardThatEndsThereIsNotNamed) {
+  // The step at 500 is back on 510, inside the guard (495-529): the rows did not move across it.
+  StepTrace t;
+  t.guard_from = 495;
+  t.guard_to = 530;
+  t.end = 510;
+  expect_nobody_blamed(run_isolator(t, judged_in_guard()));
+}
+
+TEST(StepIsolator, AMoveAcrossTheGuardOtherThanTheJumpNamesNobody) {
+  // s_g = 10: bar 57, and the move may differ from the jump by z sqrt(6 sigma^2 + s_g^2) = 57 but
+  // by no more than half the jump. A 70 N step moves the rows by 70: named on tick 544 (guard
+  // 495-534). A 30 N step with the reference 30 N lower from tick 515 (inside the guard, after
+  // the step's windows) moves them by 60, twice the jump: nobody.
+  StepTrace named;
+  named.size = 70.0;
+  named.guard_from = 495;
+  named.guard_to = 535;
+  const StepVerdicts r = run_isolator(named, judged_in_guard(10.0));
+  EXPECT_EQ(r.fault[543][1], 0.0);
+  EXPECT_EQ(r.fault[544][1], 1.0);
+  EXPECT_NEAR(r.estimate[544][1], 70.0, 1e-9);
+  StepTrace doubled = named;
+  doubled.size = 30.0;
+  doubled.reference_step = -30.0;
+  doubled.reference_onset = 515;
+  doubled.end = 100000;
+  expect_nobody_blamed(run_isolator(doubled, judged_in_guard(10.0)));
+}
+
+TEST(StepIsolator, AStepInsideAGuardBesideAnotherJumpNamesNobody) {
+  // 40 N moves from channel 2 to channel 0 on the tick channel 1 steps (a foot's pads trading
+  // load): the sum keeps the shift, the rows move by channel 1's 30 N, but three readings jumped.
+  StepTrace t;
+  t.guard_from = 495;
+  t.guard_to = 515;
+  t.shift = 40.0;
+  expect_nobody_blamed(run_isolator(t, judged_in_guard()));
+}
+
+TEST(StepIsolator, ACorrectedChannelsStepIsNotBlamed) {
+  // Input correction on channel 1 from tick 0 (a fault already found there): its step at 500,
+  // outside a guard or inside one, is that fault changing, and names nobody.
+  StepTrace t;
+  t.corrected_from = 0;
+  StepIsolator::Params p = judged_in_guard();
+  p.correction = true;
+  expect_nobody_blamed(run_isolator(t, p));
+  t.guard_from = 495;
+  t.guard_to = 515;
+  expect_nobody_blamed(run_isolator(t, p));
+  // Without the input, the same trace names it (the test above).
+  t.corrected_from = 100000;
+  EXPECT_EQ(flagged_ticks(run_isolator(t, p), 1), 809 - 524);
+}
+
 TEST(StepIsolator, AStepNoDetectorConfirmsIsDroppedAfterConfirmS) {
   // No alarm ever: blamed on tick 509 for confirm_s = 50 ms, 50 ticks (509-558).
   StepTrace t;
@@ -272,6 +358,32 @@ TEST(WindowStepNoise, StepsOfASmallSequenceAreExact) {
   // Steps 1, 1.5, 0: median 1.
   EXPECT_DOUBLE_EQ(w.standard_deviation(), 1.0 / 0.6744897501960817);
   generic::WindowStepNoise empty(0.001);
+  EXPECT_TRUE(std::isnan(empty.standard_deviation()));
+}
+
+TEST(GuardStepNoise, StepsAcrossGuardsOfASmallSequenceAreExact) {
+  // T = 5 ms: W = 2. Each entry is (sample, guarded).
+  generic::GuardStepNoise g(0.005);
+  EXPECT_EQ(g.window_ticks(), 2u);
+  const auto feed = [&](std::initializer_list<std::pair<double, bool>> samples) {
+    for (const auto& [r, guarded] : samples) g.add(r, guarded);
+  };
+  feed({{0.0, false}, {0.0, false}, {5.0, true}, {7.0, true}, {3.0, false}});
+  EXPECT_EQ(g.count(), 0u);  // one tick after the guard so far
+  feed({{3.0, false}});      // (3 + 3) / 2 - (0 + 0) / 2 = 3
+  EXPECT_EQ(g.count(), 1u);
+  EXPECT_DOUBLE_EQ(g.standard_deviation(), 3.0 / 0.6744897501960817);
+  // A non-finite sample after a guard breaks it: not counted.
+  feed({{1.0, false}, {9.0, true}, {2.0, false}, {std::nan(""), false}});
+  EXPECT_EQ(g.count(), 1u);
+  // A guard again one tick after the last: neither counts.
+  feed({{4.0, false}, {4.0, false}, {0.0, true}, {6.0, false}, {0.0, true}, {8.0, false}, {8.0, false}});
+  EXPECT_EQ(g.count(), 1u);
+  // The two ticks after that guard are the next one's before: (13 + 13) / 2 - (8 + 8) / 2 = 5.
+  feed({{1.0, true}, {13.0, false}, {13.0, false}});
+  EXPECT_EQ(g.count(), 2u);
+  EXPECT_DOUBLE_EQ(g.standard_deviation(), 4.0 / 0.6744897501960817);  // median of 3 and 5
+  generic::GuardStepNoise empty(0.001);
   EXPECT_TRUE(std::isnan(empty.standard_deviation()));
 }
 

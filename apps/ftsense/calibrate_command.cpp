@@ -11,6 +11,7 @@
 #include "ftsense/generic/noise_density.hpp"
 #include "ftsense/generic/residual_statistics.hpp"
 #include "ftsense/generic/tick_noise.hpp"
+#include "ftsense/generic/guard_step_noise.hpp"
 #include "ftsense/generic/window_step_noise.hpp"
 #include "ftsense/io/output_file.hpp"
 #include "log_runner.hpp"
@@ -67,6 +68,8 @@ struct Measured {
   std::vector<generic::NoiseDensity> density;           // per channel (noise_density only)
   std::vector<generic::TickNoise> tick_noise;           // per channel (tick_noise and resolution only)
   std::vector<generic::WindowStepNoise> window_step;    // per channel (window_step only)
+  std::optional<SignalRef> guard;                       // guard_step only: its guard input
+  std::vector<generic::GuardStepNoise> guard_step;      // per channel (guard_step only)
   bool one_number = false;  // the plugin takes one number for all channels: the largest is written
 };
 
@@ -170,9 +173,13 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
         const auto in = ports.find_input(spec.input);
         const auto minus = spec.minus_input.empty() ? std::nullopt : ports.find_input(spec.minus_input);
         if (!in || (!spec.minus_input.empty() && !minus)) continue;  // the contract test rules this out
+        // A step across guards without the guard input wired (an optional port): not measured.
+        const auto guard = spec.guard_input.empty() ? std::nullopt : ports.find_input(spec.guard_input);
+        if (!spec.guard_input.empty() && !guard) continue;
         Measured m{std::string(pipeline.stage_name(i)), spec, pipeline.stage_input(i, *in), std::nullopt, {}, {}, {}, {},
-                   takes_one_number(*info, spec.param)};
+                   std::nullopt, {}, takes_one_number(*info, spec.param)};
         if (minus) m.minus = pipeline.stage_input(i, *minus);
+        if (guard) m.guard = pipeline.stage_input(i, *guard);
         // Only a correlation time needs the lags beyond one (and their ring of past samples).
         const double max_lag_s = spec.statistic == FaultFreeStatistic::correlation_time
                                      ? generic::ResidualStatistics::kDefaultMaxLagS : 0.0;
@@ -185,6 +192,9 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
         }
         if (spec.statistic == FaultFreeStatistic::window_step) {
           m.window_step.assign(m.input.dim, generic::WindowStepNoise(pipeline.sample_period_s()));
+        }
+        if (spec.statistic == FaultFreeStatistic::guard_step) {
+          m.guard_step.assign(m.input.dim, generic::GuardStepNoise(pipeline.sample_period_s()));
         }
         run.measured.push_back(std::move(m));
       }
@@ -237,6 +247,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
               for (auto& d : m.density) d.break_sequence();
               for (auto& q : m.tick_noise) q.break_sequence();
               for (auto& w : m.window_step) w.break_sequence();
+              for (auto& g : m.guard_step) g.break_sequence();
             }
           }
           last = t;
@@ -249,6 +260,8 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                 if (!m.density.empty()) m.density[j].add(r);
                 if (!m.tick_noise.empty()) m.tick_noise[j].add(r);
                 if (!m.window_step.empty()) m.window_step[j].add(r);
+                // NaN guard: unknown, so guarded (as the plugins take it).
+                if (!m.guard_step.empty()) m.guard_step[j].add(r, pipeline.values(*m.guard)[j] != 0.0);
               }
             }
           }
@@ -339,12 +352,14 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
           case FaultFreeStatistic::tick_noise: value = m.tick_noise[j].standard_deviation(); break;
           case FaultFreeStatistic::resolution: value = m.tick_noise[j].resolution(); break;
           case FaultFreeStatistic::window_step: value = m.window_step[j].standard_deviation(); break;
+          case FaultFreeStatistic::guard_step: value = m.guard_step[j].standard_deviation(); break;
         }
         const bool spread = m.spec.statistic == FaultFreeStatistic::standard_deviation ||
                             m.spec.statistic == FaultFreeStatistic::rms ||
                             m.spec.statistic == FaultFreeStatistic::noise_density ||
                             m.spec.statistic == FaultFreeStatistic::tick_noise ||
-                            m.spec.statistic == FaultFreeStatistic::window_step;
+                            m.spec.statistic == FaultFreeStatistic::window_step ||
+                            m.spec.statistic == FaultFreeStatistic::guard_step;
         if (m.spec.statistic == FaultFreeStatistic::noise_density && m.density[j].windows() < kMinNoiseDensityWindows) {
           refusals.push_back(what + std::to_string(m.density[j].windows()) + " whole windows of " +
                              format_number(kNoiseDensityWindowS) + " s after the warm-up, fewer than " +
@@ -359,6 +374,12 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                              " consecutive finite samples after the warm-up (two windows of " +
                              format_number(generic::kStepWindowS) + " s); calibrate on a log where they are, or give "
                              "it in the config");
+        } else if (m.spec.statistic == FaultFreeStatistic::guard_step && m.guard_step[j].count() == 0) {
+          refusals.push_back(what + "no guard (input " + std::string(m.spec.guard_input) + " nonzero) with " +
+                             std::to_string(m.guard_step[j].window_ticks()) +
+                             " finite unguarded samples on each side after the warm-up; calibrate on a log with "
+                             "guards (a walk's landings), or give it in the config (0: a step inside a guard is not "
+                             "judged)");
         } else if (!std::isfinite(value)) {
           refusals.push_back(what + "is not a finite number (" + format_number(value) +
                              "): the log holds absurd values; calibrate on a fault-free log");

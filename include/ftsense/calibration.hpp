@@ -28,6 +28,9 @@
 //   window_step         how much r steps between two consecutive windows of W = round(10 ms / T)
 //                       ticks: median(|mean after - mean before|) / 0.67449
 //                       (generic/window_step_noise.hpp)
+//   guard_step          how much r steps across a guard (the ticks on which the input named by
+//                       `guard_input` is nonzero): the mean of W finite unguarded ticks after it
+//                       less that of the W before it, median(|.|) / 0.67449 (generic/guard_step_noise.hpp)
 //
 // A parameter is written as its plugin's schema takes it: a list of one value per channel, or,
 // for a parameter of one number (a correlation time, a noise level every channel shares), the
@@ -40,7 +43,7 @@
 namespace ftsense {
 
 enum class FaultFreeStatistic { centre, standard_deviation, rms, correlation_time, noise_density, tick_noise,
-                                resolution, window_step };
+                                resolution, window_step, guard_step };
 
 // The window of the noise-density statistic: long against a stride or a gait cycle (whose
 // periodic error averages out over it), short against the minutes of a calibration log.
@@ -51,6 +54,7 @@ struct CalibratedParam {
   std::string_view input;               // the input port whose fault-free samples are measured
   FaultFreeStatistic statistic;
   std::string_view minus_input = {};    // when set, the samples are input - minus_input
+  std::string_view guard_input = {};    // guard_step only: the input whose nonzero ticks are the guards
 };
 
 }  // namespace ftsense

@@ -245,6 +245,10 @@ TYPED_TEST_P(PluginContract, CalibratedParamsNameItsParametersAndInputs) {
       if (!c.minus_input.empty()) {
         EXPECT_TRUE(ports.find_input(c.minus_input).has_value()) << "calibrated from - " << c.minus_input;
       }
+      // A step across guards needs the guards, and only it reads them (the guard input may be an
+      // optional port these params leave out: calibrate then leaves the parameter alone).
+      EXPECT_EQ(c.statistic == FaultFreeStatistic::guard_step, !c.guard_input.empty())
+          << "calibrated parameter " << c.param << ": guard_input goes with the guard_step statistic";
     }
   } else {
     SUCCEED() << "no calibrated parameters";

@@ -23,6 +23,10 @@ void FaultRecovery::Params::describe(ParamSchema<Params>& schema) {
   schema.add("median_types", &Params::median_types,
              "fault type names whose channel takes the median of its last three readings (spikes: one "
              "reading off both neighbours)");
+  schema.add("lower_bound_types", &Params::lower_bound_types,
+             "fault type names whose reading is a lower bound of the quantity (saturation at the top of its "
+             "range): the recovered value is at least the reading, and where it is the reading the channel is "
+             "not substituted; a type here is recovered as its list above says first");
   schema.add("blend_cutoff_hz", &Params::blend_cutoff_hz,
              "cut-off f_c of that low-pass, below 1 / (2 T): the band where the virtual value's own "
              "error lies")
@@ -51,6 +55,7 @@ void FaultRecovery::Params::validate(Diagnostics& diag, std::string_view path) c
   check(substitute_types, "substitute_types");
   check(blend_types, "blend_types");
   check(median_types, "median_types");
+  check(lower_bound_types, "lower_bound_types");
   // A fault type is recovered one way: a later list may not repeat an earlier one's name.
   const std::vector<std::pair<std::string_view, const std::vector<std::string>*>> lists{
       {"substitute_types", &substitute_types}, {"blend_types", &blend_types}, {"median_types", &median_types}};
@@ -81,6 +86,8 @@ FaultRecovery::FaultRecovery(const Params& params, const StageContext& context)
   for (const auto& t : params.substitute_types) mode_by_type_[fault_code_index(t)] = Mode::substitute;
   for (const auto& t : params.blend_types) mode_by_type_[fault_code_index(t)] = Mode::blend;
   for (const auto& t : params.median_types) mode_by_type_[fault_code_index(t)] = Mode::median;
+  lower_bound_.fill(false);
+  for (const auto& t : params.lower_bound_types) lower_bound_[fault_code_index(t)] = true;
   blend_gain_ = low_pass_gain(params.blend_cutoff_hz, context.sample_period_s(), "blend_cutoff_hz");
   const std::size_t dim = context.wired_dim("measured", 1);
   QuantityBounds bounds = quantity_bounds(params.floor, params.ceiling, dim);
@@ -176,6 +183,13 @@ void FaultRecovery::step(const StepIO& io) noexcept {
     if (!std::isfinite(value)) {
       value = last_[j];
       stands_for_nothing = true;
+    }
+    // A clipped reading bounds the value from below: where it is the larger, it is the value,
+    // and stands for itself.
+    if (fault[j] != 0.0 && lower_bound_[static_cast<std::size_t>(t)] && std::isfinite(measured[j]) &&
+        !(value > measured[j])) {
+      value = measured[j];
+      stands_for_nothing = false;
     }
     const double lasting = measured[j] - value;
     if (fault[j] != 0.0) value = std::clamp(value, floor_[j], ceiling_[j]);

@@ -37,6 +37,12 @@ void SignalValidator::Params::describe(ParamSchema<Params>& schema) {
       .unit("s")
       .greater_than(0.0)
       .plausible(0.005, 10.0, "tens of samples: milliseconds to seconds");
+  schema.add("repeat_min_s", &Params::repeat_min_s,
+             "the frozen test's shortest run of repeats (a reading that stays on its level): a driver "
+             "holding its last value through lost packets repeats it for less")
+      .unit("s")
+      .greater_than(0.0)
+      .plausible(0.001, 1.0, "a few ticks to a second");
   schema.add("false_alarm_interval_s", &Params::false_alarm_interval_s,
              "mean time between false alarms of one test on one healthy channel (sets the quantiles)")
       .unit("s")
@@ -172,6 +178,14 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     l.has_rest = std::isfinite(rest[j]);
     l.rest = l.has_rest ? rest[j] : 0.0;
     l.stale_below = 6.0 * sigma2 * static_cast<double>(window_) * low_quantile / (m * m);
+    {
+      // n_r (header): p, the chance that noise of sigma / m leaves a reading on its level.
+      const double stay = std::erf(q * m / (2.0 * std::numbers::sqrt2 * noise_std[j]));
+      const double run = stay > 0.0 ? std::log(alpha) / std::log(std::min(stay, 1.0 - 1e-15)) : 0.0;
+      const double ticks = std::ceil(std::max(params.repeat_min_s / sample_period_s_, run) - 1e-9);
+      l.repeat_ticks = l.stale_test && ticks < static_cast<double>(window_) ? static_cast<std::size_t>(std::max(2.0, ticks))
+                                                                            : 0;
+    }
     l.noise_level = 2.0 * m * std::sqrt(6.0 * own2);
     l.spike_above = spike_z * m * std::sqrt(1.5 * own2);
     l.residual_noise_level = 2.0 * m * std::sqrt(6.0 * residual2);
@@ -271,6 +285,7 @@ void SignalValidator::step(const StepIO& io) noexcept {
       // window then spans more than n + 2 readings: judge it as if one of them were at rest).
       s.x_history = s.y_history = 0;
       s.since_rest = 0;
+      s.repeat_run = 0;
       s.lp_started = false;
       clear(s.lp_signal);
       clear(s.lp_reference);
@@ -290,14 +305,16 @@ void SignalValidator::step(const StepIO& io) noexcept {
       reading_span = x[j] - s.x2;
       push(s.reading_d2, sums_storage_, n, reading_d2 * reading_d2);
     }
+    s.repeat_run = s.x_history > 0 && std::abs(x[j] - s.x1) <= l.half_step ? std::min(s.repeat_run + 1, window_) : 0;
     s.x2 = s.x1;
     s.x1 = x[j];
     s.x_history = std::min(s.x_history + 1, 2);
     // Without gaps the d2 window spans the last n + 2 readings; one of them at rest makes it no
     // evidence (a gap restarts the count, so a window across it waits n + 2 readings too).
     s.since_rest = l.has_rest && std::abs(x[j] - l.rest) <= l.half_step ? 0 : std::min(s.since_rest + 1, n + 2);
-    const bool stuck = found == FaultType::none && frozen_test_ && l.stale_test && s.reading_d2.filled == n &&
-                       s.since_rest >= n + 2 && s.reading_d2.sum < l.stale_below;
+    const bool repeated = l.repeat_ticks > 0 && s.repeat_run >= l.repeat_ticks && s.since_rest > s.repeat_run;
+    const bool stuck = found == FaultType::none && frozen_test_ && l.stale_test &&
+                       (repeated || (s.reading_d2.filled == n && s.since_rest >= n + 2 && s.reading_d2.sum < l.stale_below));
     if (stuck && !s.stuck) {
       // A new stuck episode: at the previous one's value, a clip.
       s.clipped = s.stuck_before && std::abs(x[j] - s.stuck_value) <= l.half_step;

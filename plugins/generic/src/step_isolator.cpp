@@ -23,6 +23,13 @@ void StepIsolator::Params::describe(ParamSchema<Params>& schema) {
            "value applies to all")
       .greater_than(0.0)
       .count_at_least(1);
+  schema
+      .add("guard_step_std", &Params::guard_step_std,
+           "s_g: how much each fault-free residual row moves across a guard (the mean of 10 ms after it less "
+           "that before it; standard deviation, in its unit): with `guard`, a step inside a guard is judged "
+           "after it against this; 0 (the default) leaves such steps unjudged; one value applies to all")
+      .at_least(0.0)
+      .count_at_least(1);
   schema.add("false_alarm_interval_s", &Params::false_alarm_interval_s,
              "mean time between wrong namings the tests' z = Phi^-1(1 - T / (2 interval)) aims at")
       .unit("s")
@@ -40,10 +47,13 @@ void StepIsolator::Params::describe(ParamSchema<Params>& schema) {
              "also judge a step on a row whose alarm was up before it, with nothing named here: for rows of "
              "readings corrected for the faults already found (plane_fit_residual with `correction`), whose "
              "level is then their fault-free one, so a step away from it begins a fault");
+  schema.add("correction", &Params::correction,
+             "adds input correction (nonzero: the channel's reading is corrected in the rows, a fault already "
+             "found, so a step on it is not blamed)");
 }
 
 StepIsolator::StepIsolator(const Params& params, const StageContext& context)
-    : guard_wired_(params.guard), judge_raised_rows_(params.judge_raised_rows) {
+    : guard_wired_(params.guard), correction_wired_(params.correction), judge_raised_rows_(params.judge_raised_rows) {
   const std::size_t dim = context.wired_dim("signal", params.noise_std.size());
   const double period = context.sample_period_s();
   window_ = step_window_ticks(period);
@@ -65,6 +75,9 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context)
   const auto resolution = channel_values(params.resolution, dim, "resolution");
   const auto residual_step = channel_values(params.residual_step_std, dim, "residual_step_std");
   const auto virtual_step = channel_values(params.virtual_step_std, dim, "virtual_step_std");
+  const auto guard_step = channel_values(params.guard_step_std, dim, "guard_step_std");
+  guard_bar_.resize(dim);
+  guard_match_bound_.resize(dim);
   jump_bound_.resize(dim);
   jump_match_bound_.resize(dim);
   residual_bound_.resize(dim);
@@ -77,6 +90,10 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context)
     residual_bound_[j] = z_ * residual_step[j];
     release_bound_[j] = z_ * std::sqrt(2.0) * residual_step[j];
     inv_virtual_step_[j] = 1.0 / virtual_step[j];
+    const bool judged = guard_wired_ && guard_step[j] > 0.0;
+    judge_in_guard_ = judge_in_guard_ || judged;
+    guard_bar_[j] = judged ? z_ * guard_step[j] : std::numeric_limits<double>::infinity();
+    guard_match_bound_[j] = z_ * std::sqrt(jump_variance + guard_step[j] * guard_step[j]);
   }
   ports_.add_input(PortSpec{"signal", dim, std::string(kAnyUnit), "the readings x_j"}.sized_by("as wired"));
   ports_.add_input(PortSpec{"residual", dim, std::string(kAnyUnit),
@@ -89,6 +106,12 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context)
   if (guard_wired_) {
     ports_.add_input(PortSpec{"guard", dim, std::string(kDimensionless),
                               "nonzero on ticks not judged (a landing's transient)"}
+                         .sized_by("as `signal`"));
+  }
+  if (correction_wired_) {
+    ports_.add_input(PortSpec{"correction", dim, std::string(kAnyUnit),
+                              "the correction each reading carries in the rows (nonzero, or NaN: corrected; "
+                              "not blamed by a step)"}
                          .sized_by("as `signal`"));
   }
   ports_.add_output(PortSpec{"fault", dim, std::string(kDimensionless), "1 while the channel is blamed, else 0"}
@@ -112,6 +135,13 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context)
   step_.assign(dim, 0.0);
   level_.assign(dim, 0.0);
   cost_.assign(dim, 0.0);
+  finite_run_.assign(dim, 0);
+  was_guarded_.assign(dim, 0);
+  guard_before_.assign(dim, std::numeric_limits<double>::quiet_NaN());
+  pending_.assign(dim, 0);
+  pending_raised_.assign(dim, 0);
+  pending_jump_.assign(dim, 0.0);
+  window_guarded_.assign(dim, 0);
 }
 
 void StepIsolator::reset() noexcept {
@@ -125,6 +155,13 @@ void StepIsolator::reset() noexcept {
   std::fill(step_.begin(), step_.end(), 0.0);
   std::fill(cost_.begin(), cost_.end(), 0.0);
   std::fill(level_.begin(), level_.end(), 0.0);
+  std::fill(finite_run_.begin(), finite_run_.end(), 0);
+  std::fill(was_guarded_.begin(), was_guarded_.end(), 0);
+  std::fill(guard_before_.begin(), guard_before_.end(), std::numeric_limits<double>::quiet_NaN());
+  std::fill(pending_.begin(), pending_.end(), 0);
+  std::fill(pending_raised_.begin(), pending_raised_.end(), 0);
+  std::fill(pending_jump_.begin(), pending_jump_.end(), 0.0);
+  std::fill(window_guarded_.begin(), window_guarded_.end(), 0);
 }
 
 void StepIsolator::release(std::size_t j) noexcept {
@@ -146,7 +183,21 @@ void StepIsolator::step(const StepIO& io) noexcept {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t j = 0; j < n; ++j) {
     const bool guarded = guard_wired_ && io.in(kGuard)[j] != 0.0;  // NaN is nonzero: unknown is guarded
-    const bool usable = std::isfinite(x[j]) && std::isfinite(r[j]) && !guarded;
+    const bool finite = std::isfinite(x[j]) && std::isfinite(r[j]);
+    const bool usable = finite && !guarded;
+    if (judge_in_guard_) {
+      if (guarded && was_guarded_[j] == 0) {
+        // A guard begins: the row's level over the W usable ticks before it is what a step
+        // inside it is judged against; a candidate still pending from the guard before is
+        // dropped unjudged (its move would span two landings).
+        double before = 0.0;
+        for (std::size_t k = 1; k <= w; ++k) before += r_ring_[j * span_ + slot(k)];
+        guard_before_[j] = usable_run_[j] >= w ? before * inv_w : nan;
+        pending_[j] = 0;
+      }
+      was_guarded_[j] = guarded ? 1 : 0;
+      finite_run_[j] = finite ? std::min(finite_run_[j] + 1, span_) : 0;
+    }
     x_ring_[j * span_ + next_] = x[j];
     r_ring_[j * span_ + next_] = r[j];
     raised_ring_[j * span_ + next_] = std::isfinite(alarm[j]) && alarm[j] != 0.0 ? 1 : 0;
@@ -154,7 +205,12 @@ void StepIsolator::step(const StepIO& io) noexcept {
     since_named_[j] = std::min(since_named_[j] + 1, w);
     step_[j] = nan;
     cost_[j] = nan;
-    if (usable_run_[j] < span_) continue;
+    window_guarded_[j] = 0;
+    if (usable_run_[j] < span_) {
+      // A window with guarded samples is judged only for a candidate (below), when asked.
+      if (!judge_in_guard_ || finite_run_[j] < span_) continue;
+      window_guarded_[j] = 1;
+    }
     const double* xs = &x_ring_[j * span_];
     const double* rs = &r_ring_[j * span_];
     // The 2W samples oldest first, wrapping once at the ring's end (no modulo per sample).
@@ -174,35 +230,82 @@ void StepIsolator::step(const StepIO& io) noexcept {
     level_[j] = r_after * inv_w;
     cost_[j] = std::abs(dr) > residual_bound_[j] ? (dv * inv_virtual_step_[j]) * (dv * inv_virtual_step_[j]) : nan;
   }
-  // The rows that stepped (cost_ finite): the least costly is named when it stands apart.
-  std::size_t best = n;
-  double best_cost = std::numeric_limits<double>::infinity();
-  double runner_up = std::numeric_limits<double>::infinity();
-  for (std::size_t j = 0; j < n; ++j) {
-    if (!std::isfinite(cost_[j])) continue;
-    if (cost_[j] < best_cost) {
-      runner_up = best_cost;
-      best_cost = cost_[j];
-      best = j;
-    } else {
-      runner_up = std::min(runner_up, cost_[j]);
+  // The rows that stepped on unguarded windows (cost_ finite): the least costly is named when it
+  // stands apart.
+  const double margin = z_ * z_;
+  const std::size_t t = w - 1;  // the step's tick, W - 1 ticks back
+  const auto least_costly = [&]() {
+    std::size_t best = n;
+    double best_cost = std::numeric_limits<double>::infinity();
+    double runner_up = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < n; ++j) {
+      if (!std::isfinite(cost_[j]) || window_guarded_[j] != 0) continue;
+      if (cost_[j] < best_cost) {
+        runner_up = best_cost;
+        best_cost = cost_[j];
+        best = j;
+      } else {
+        runner_up = std::min(runner_up, cost_[j]);
+      }
+    }
+    return best < n && best_cost <= margin && runner_up - best_cost >= margin && since_named_[best] >= w ? best : n;
+  };
+  // The reading's jump on the step's tick, when it is beyond its noise and what its row stepped
+  // (a spike of a few ticks jumps by far more than the window's mean moves); NaN otherwise.
+  const auto matched_jump = [&](std::size_t j) {
+    const double* xs = &x_ring_[j * span_];
+    const double second_difference = xs[slot(t)] - 2.0 * xs[slot(t + 1)] + xs[slot(t + 2)];
+    return std::abs(second_difference) > jump_bound_[j] &&
+                   std::abs(second_difference - step_[j]) <= jump_match_bound_[j]
+               ? second_difference
+               : nan;
+  };
+  const bool blamed_any = std::any_of(blamed_.begin(), blamed_.end(), [](char b) { return b != 0; });
+  // A reading corrected in the rows: its step is its found fault changing or ending.
+  const auto corrected = [&](std::size_t j) { return correction_wired_ && io.in(kCorrection)[j] != 0.0; };
+  if (judge_in_guard_) {
+    // Inside a guard loads move fast (a landing foot rolls onto its pads), so a row's cost tells
+    // less than the tick's jump: the candidate is the one row within the cost bound whose reading
+    // jumped by what its row stepped; none, or two, leave no candidate.
+    std::size_t candidate = n;
+    double candidate_jump = nan;
+    int jumpers = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (!(cost_[j] <= margin)) continue;
+      const double jump = matched_jump(j);
+      if (!std::isfinite(jump)) continue;
+      ++jumpers;
+      candidate = j;
+      candidate_jump = jump;
+    }
+    // Nor when another reading jumped on the step's tick or the next (its own jump or the return
+    // of one a tick before): pads that move together there are a foot's load shifting, which
+    // leaves no one jump to judge.
+    bool alone = jumpers == 1;
+    for (std::size_t i = 0; i < n && alone; ++i) {
+      if (i == candidate) continue;
+      const double* xs = &x_ring_[i * span_];
+      for (std::size_t back = t - 1; back <= t && alone; ++back) {
+        const double second_difference = xs[slot(back)] - 2.0 * xs[slot(back + 1)] + xs[slot(back + 2)];
+        alone = !(std::abs(second_difference) > jump_bound_[i]);
+      }
+    }
+    if (alone && window_guarded_[candidate] != 0 && blamed_[candidate] == 0 && since_named_[candidate] >= w &&
+        std::isfinite(guard_bar_[candidate])) {
+      since_named_[candidate] = 0;
+      pending_[candidate] = 1;
+      pending_jump_[candidate] = candidate_jump;
+      pending_raised_[candidate] = raised_ring_[candidate * span_ + slot(t + 1)];
     }
   }
-  const double margin = z_ * z_;
-  if (best < n && best_cost <= margin && runner_up - best_cost >= margin && since_named_[best] >= w) {
-    const double* xs = &x_ring_[best * span_];
-    const std::size_t t = w - 1;  // the step's tick, W - 1 ticks back
-    const double second_difference = xs[slot(t)] - 2.0 * xs[slot(t + 1)] + xs[slot(t + 2)];
-    // The reading jumped, and by what its row stepped: a spike of a few ticks jumps by far more
-    // than the window's mean moves.
-    const bool blamed_any = std::any_of(blamed_.begin(), blamed_.end(), [](char b) { return b != 0; });
-    if (std::abs(second_difference) > jump_bound_[best] &&
-        std::abs(second_difference - step_[best]) <= jump_match_bound_[best]) {
+  const std::size_t best = least_costly();
+  if (best < n) {
+    if (std::isfinite(matched_jump(best))) {
       since_named_[best] = 0;
       if (blamed_[best] != 0) {
         size_[best] += step_[best];
         if (std::abs(size_[best]) <= release_bound_[best]) release(best);
-      } else if (std::abs(level_[best]) > std::abs(level_[best] - step_[best]) &&
+      } else if (!corrected(best) && std::abs(level_[best]) > std::abs(level_[best] - step_[best]) &&
                  (judge_raised_rows_ || raised_ring_[best * span_ + slot(t + 1)] == 0 || blamed_any)) {
         // Blamed only for a step away from the row's fault-free level (one towards it ends a
         // fault nobody named, or another channel's), and not on a row raised before the step
@@ -212,6 +315,24 @@ void StepIsolator::step(const StepIO& io) noexcept {
         age_[best] = 0;
         alarm_seen_[best] = 0;
       }
+    }
+  }
+  // Candidates from inside a guard, once W unguarded ticks have followed it.
+  for (std::size_t j = 0; j < n && judge_in_guard_; ++j) {
+    if (pending_[j] == 0 || usable_run_[j] < w) continue;
+    pending_[j] = 0;
+    double after = 0.0;
+    for (std::size_t k = 0; k < w; ++k) after += r_ring_[j * span_ + slot(k)];
+    const double level = after * inv_w;
+    const double moved = level - guard_before_[j];
+    if (blamed_[j] == 0 && !corrected(j) && std::abs(moved) > guard_bar_[j] &&
+        std::abs(moved - pending_jump_[j]) <= std::min(guard_match_bound_[j], 0.5 * std::abs(pending_jump_[j])) &&
+        std::abs(level) > std::abs(level - moved) &&
+        (judge_raised_rows_ || pending_raised_[j] == 0 || blamed_any)) {
+      blamed_[j] = 1;
+      size_[j] = moved;
+      age_[j] = 0;
+      alarm_seen_[j] = 0;
     }
   }
   const auto fault = io.out(kFault);

@@ -9,6 +9,15 @@
 //                                                     fault_type.hpp's codes counts as invalid)
 //   recovered_j = virtual_j + LP(measured_j - virtual_j)   when the type is one of `blend_types`
 //                                                     (default: none; a noise burst)
+//   recovered_j = max(measured_j, the value above)    when the type is also one of
+//                                                     `lower_bound_types` (default: none;
+//                                                     saturation at the top of a range: the
+//                                                     true value is at least the clipped
+//                                                     reading, and where the reading is the
+//                                                     larger it stands for itself, not
+//                                                     substituted: a relation's other channels
+//                                                     take that bound, which a virtual value
+//                                                     that cannot part two unknowns lacks)
 //   recovered_j = median(x_t, x_{t-1}, x_{t-2})       when the type is one of `median_types`
 //                                                     (default: none; spikes), the last three
 //                                                     finite readings in a row (a gap restarts
@@ -80,6 +89,7 @@ class FaultRecovery {
                                               std::string(to_string(FaultType::invalid))};
     std::vector<std::string> blend_types;
     std::vector<std::string> median_types;
+    std::vector<std::string> lower_bound_types;
     double blend_cutoff_hz = 10.0;
     std::vector<double> floor{};
     std::vector<double> ceiling{};
@@ -102,6 +112,7 @@ class FaultRecovery {
   Ports ports_;
   Correction correction_;
   std::array<Mode, kFaultTypes.size()> mode_by_type_{};  // indexed by the type's code
+  std::array<bool, kFaultTypes.size()> lower_bound_{};   // the reading bounds the value from below
   double blend_gain_ = 0.0;                   // a = 1 - exp(-2 pi f_c T)
   std::vector<double> difference_lp_;         // LP(measured - virtual), per channel
   std::vector<unsigned char> difference_seen_;  // a finite difference has initialised the LP

@@ -32,6 +32,14 @@
 //               in the middle of a step reads one level for ever), and the noise may be as low as
 //               sigma / m (the bound's chi-square quantile assumes Gaussian d2, which a reading
 //               that takes two or three levels is not).
+//               And sooner where the sensor's noise shows on every tick: a reading that stays on
+//               its level (within q / 2 of the reading before) for n_r ticks in a row, n_r =
+//               max(repeat_min_s / T, ln alpha / ln p), p = erf(q m / (2 sqrt(2) sigma)) the chance
+//               that noise of sigma / m leaves a reading at its level's centre on that level (0
+//               for a continuous reading: any run of exact repeats past repeat_min_s; a driver that
+//               holds its last value through a few lost packets repeats it healthily for less),
+//               and only when n_r < n: a clipped or frozen output is flagged within tens of
+//               milliseconds, before the window fills with its silence.
 //               Nor while the window holds a reading at the sensor's rest value (`rest_value`,
 //               within q / 2): a driver that clamps an unloaded sensor there (a foot force
 //               sensor reporting exactly 0 N in the air) repeats it exactly while healthy, so a
@@ -121,6 +129,7 @@ class SignalValidator {
     std::vector<double> lower_limit{};
     std::vector<double> rest_value{};
     double window_s = 0.1;
+    double repeat_min_s = 0.02;
     double false_alarm_interval_s = 86400.0;
     bool reference = false;
     bool guard = false;
@@ -154,6 +163,7 @@ class SignalValidator {
     double rest = 0.0;                // the value the driver clamps an unloaded sensor to
     bool has_rest = false;
     double stale_below = 0.0;         // sum(d2^2) of the reading below this: frozen
+    std::size_t repeat_ticks = 0;     // n_r: a run of repeats this long is frozen (0: off)
     double noise_level = 0.0;         // |d2| of the reading above this counts for noise
     double spike_above = 0.0;         // |D| of the reading above this: spike
     double residual_noise_level = 0.0;  // the same for x - r, with a reference (sigma_r^2 added)
@@ -172,6 +182,7 @@ class SignalValidator {
     double x1 = 0.0, x2 = 0.0;  // previous two readings
     int y_history = 0, x_history = 0;  // consecutive finite values seen, up to 2
     std::size_t since_rest = 0;        // ticks since the reading was last at its rest value
+    std::size_t repeat_run = 0;        // ticks in a row the reading stayed within q / 2 of the one before
     bool stuck = false;                // the frozen test failed on the previous tick
     bool clipped = false;              // the present stuck episode sits where the previous one did
     double stuck_value = 0.0;          // the value of the last stuck episode

@@ -51,8 +51,27 @@
 //     the residual no longer holds a fault;
 //   - that detector has not risen within confirm_s of the naming: no lasting change followed
 //     the step (a transient), so nothing is held on one step's word.
+// A step inside a guard (`guard_step_std` s_g > 0, calibrated as how much a fault-free row moves
+// across a guard: guard_step_noise.hpp) is judged once the guard is over. Inside it, the tests
+// above run on the finite samples as if unguarded; a channel they would name there becomes its
+// row's candidate (the latest wins; a new guard drops one still pending), with its jump e_j.
+// Once W unguarded ticks have followed, its row's move across the guard,
+//
+//   Delta = mean(r[n-W+1 .. n]) - mean(r over the W unguarded ticks before the guard began),
+//
+// must be beyond the guards' own (|Delta| > z s_g) and be the jump (|Delta - e_j| <= z sqrt(6
+// sigma_j^2 + q_j^2 / 2 + s_g^2)): the landing's transient, which the guard hides, moves the row
+// by about s_g and leaves no lasting step. The candidate is then blamed with b_j = Delta, under
+// the verdict's rules below (away from zero, the row's detector down on the tick before the
+// step). With s_g = 0 (the default) a step inside a guard is not judged. With input `correction`
+// (the corrections the rows' readings carry, e.g. the recovery's of the tick before), a channel
+// whose reading is corrected is not blamed by a step: its row holds a fault already found, and
+// its step is that fault changing or ending (a drift's end steps a corrected row away from zero),
+// which the part that found it judges.
+//
 // Known limits: two channels that step on one tick leave each other's virtual sensors moving
-// (neither is named; the isolator and validators judge them); a step inside a guard is not seen;
+// (neither is named; the isolator and validators judge them); a step inside a guard without s_g
+// is not seen;
 // a fault without a step (a drift, a frozen output, a gain begun in the air) is left to the
 // signature isolator and the classifier. Units: any; a channel's reading and residual share one.
 // Allocation-free: the rings are sized at construction; a tick costs O(n W).
@@ -72,7 +91,7 @@ class StepIsolator {
   static constexpr std::string_view summary =
       "blames the channel whose reading and own residual stepped while its virtual sensor did not";
   // For the config reference's port table and the schema (plugin.hpp): input guard is optional.
-  static constexpr std::string_view example_params = R"([{}, {"guard": true}])";
+  static constexpr std::string_view example_params = R"([{}, {"guard": true, "correction": true}])";
 
   // `ftsense calibrate` measures each reading's white noise and quantisation step, and the
   // fault-free window steps of each residual row and of each virtual sensor x - r.
@@ -81,6 +100,7 @@ class StepIsolator {
       {"resolution", "signal", FaultFreeStatistic::resolution},
       {"residual_step_std", "residual", FaultFreeStatistic::window_step},
       {"virtual_step_std", "signal", FaultFreeStatistic::window_step, "residual"},
+      {"guard_step_std", "residual", FaultFreeStatistic::guard_step, {}, "guard"},
   });
 
   struct Params {
@@ -88,14 +108,16 @@ class StepIsolator {
     std::vector<double> resolution{0.0};
     std::vector<double> residual_step_std{1.0};
     std::vector<double> virtual_step_std{1.0};
+    std::vector<double> guard_step_std{0.0};
     double false_alarm_interval_s = 86400.0;
     double confirm_s = 0.5;
     bool guard = false;
     bool judge_raised_rows = false;
+    bool correction = false;
     static void describe(ParamSchema<Params>& schema);
   };
 
-  enum Input : std::size_t { kSignal, kResidual, kAlarm, kGuard };
+  enum Input : std::size_t { kSignal, kResidual, kAlarm, kGuard, kCorrection };
   enum Output : std::size_t { kFault, kFaultType, kFaultEstimate };
 
   StepIsolator(const Params& params, const StageContext& context);
@@ -112,6 +134,7 @@ class StepIsolator {
 
   Ports ports_;
   bool guard_wired_;
+  bool correction_wired_;
   bool judge_raised_rows_;
   std::size_t window_;       // W
   std::size_t span_;         // max(2W, W + 2): the samples a judgement rests on
@@ -122,6 +145,17 @@ class StepIsolator {
   std::vector<double> residual_bound_;  // z s_r
   std::vector<double> release_bound_;   // z sqrt(2) s_r
   std::vector<double> inv_virtual_step_;
+  // Steps inside a guard (the header's s_g > 0 on some row).
+  bool judge_in_guard_ = false;
+  std::vector<double> guard_bar_;          // z s_g (infinite where s_g = 0: not judged)
+  std::vector<double> guard_match_bound_;  // z sqrt(6 sigma^2 + q^2 / 2 + s_g^2)
+  std::vector<std::size_t> finite_run_;    // ticks in a row with x, r finite, guarded or not, up to span_
+  std::vector<char> was_guarded_;          // the guard on the tick before
+  std::vector<double> guard_before_;       // the row's mean over the W usable ticks before the guard (NaN: unknown)
+  std::vector<char> pending_;              // a candidate named inside the guard, to judge after it
+  std::vector<char> pending_raised_;       // its row's alarm on the tick before its step
+  std::vector<double> pending_jump_;       // its jump e_j
+  std::vector<char> window_guarded_;       // work: this tick's D r and c rest on guarded samples
   // Rings of span_ ticks, channel-major: reading and residual.
   std::vector<double> x_ring_, r_ring_;
   std::vector<char> raised_ring_;  // the alarm on each row, 1 raised
