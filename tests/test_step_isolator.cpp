@@ -47,8 +47,8 @@ constexpr double kSharedLoad = 300.0;
 
 // Three loaded channels that share kSharedLoad, the load swaying between them at 1 Hz (300 N/s at
 // most: a window step of up to 3 N in each virtual sensor).
-double swaying_load(std::size_t j, int k) {
-  const double phase = 2.0 * M_PI * 1.0 * k * kStepPeriod + 2.0 * M_PI * static_cast<double>(j) / 3.0;
+double swaying_load(std::size_t j, int k, double period = kStepPeriod) {
+  const double phase = 2.0 * M_PI * 1.0 * k * period + 2.0 * M_PI * static_cast<double>(j) / 3.0;
   return kSharedLoad / 3.0 + 50.0 * std::sin(phase);
 }
 
@@ -64,6 +64,7 @@ struct StepTrace {
   int alarm_from = 505, alarm_to = 100000;  // the detector on every row raised on [from, to)
   double shift = 0.0;      // load moved from channel 2 to channel 0 from the onset (the sum keeps it)
   int corrected_from = 100000;  // input correction nonzero on the faulty channel from this tick
+  double period = kStepPeriod;  // T: W = round(10 ms / T)
 };
 
 struct StepVerdicts {
@@ -75,7 +76,7 @@ StepVerdicts run_isolator(const StepTrace& trace, StepIsolator::Params p = {}) {
   p.residual_step_std = {0.1};
   p.virtual_step_std = {2.0};
   p.guard = true;
-  StepIsolator iso(p, StageContext(kStepPeriod, "step", {{"signal", 3}}));
+  StepIsolator iso(p, StageContext(trace.period, "step", {{"signal", 3}}));
   iso.reset();
   std::vector<double> x(3), r(3), alarm(3), guard(3), correction(3), fault(3), type(3), estimate(3);
   const std::span<const double> ins[] = {x, r, alarm, guard, correction};
@@ -84,7 +85,7 @@ StepVerdicts run_isolator(const StepTrace& trace, StepIsolator::Params p = {}) {
   for (int k = 0; k < 1200; ++k) {
     double sum = 0.0;
     for (std::size_t j = 0; j < 3; ++j) {
-      x[j] = swaying_load(j, k) + (j == trace.channel && k >= trace.onset && k < trace.end ? trace.size : 0.0);
+      x[j] = swaying_load(j, k, trace.period) + (j == trace.channel && k >= trace.onset && k < trace.end ? trace.size : 0.0);
       if (k >= trace.onset) x[j] += j == 0 ? trace.shift : j == 2 ? -trace.shift : 0.0;
       sum += x[j];
       correction[j] = j == trace.channel && k >= trace.corrected_from ? 1.0 : 0.0;
@@ -95,7 +96,7 @@ StepVerdicts run_isolator(const StepTrace& trace, StepIsolator::Params p = {}) {
       alarm[j] = k >= trace.alarm_from && k < trace.alarm_to ? 1.0 : 0.0;
       guard[j] = k >= trace.guard_from && k < trace.guard_to ? 1.0 : 0.0;
     }
-    iso.step(StepIO{k * kStepPeriod, ins, outs});
+    iso.step(StepIO{k * trace.period, ins, outs});
     out.fault.push_back(fault);
     out.estimate.push_back(estimate);
     for (std::size_t j = 0; j < 3; ++j) {
@@ -232,6 +233,40 @@ TEST(StepIsolator, WithGuardStepStdAStepInsideAGuardIsNamedOnceTheGuardIsOver) {
     EXPECT_EQ(r.fault[k][0] + r.fault[k][2], 0.0) << "tick " << k;
   }
   EXPECT_NEAR(r.estimate[524][1], 30.0, 1e-9);
+}
+
+TEST(StepIsolator, AStepJustBeforeAGuardIsMeasuredFromTheRowBeforeTheStep) {
+  // The step at 500, three ticks before the guard (503-519): its windows complete inside the guard
+  // (tick 509), and the guard's baseline (493-502) already holds three ticks of it; the move is
+  // taken from the row before the step (490-499), so it is named on tick 529 at its full 30 N.
+  StepTrace t;
+  t.guard_from = 503;
+  t.guard_to = 520;
+  const StepVerdicts r = run_isolator(t, judged_in_guard());
+  EXPECT_EQ(r.fault[528][1], 0.0);
+  EXPECT_EQ(r.fault[529][1], 1.0);
+  EXPECT_NEAR(r.estimate[529][1], 30.0, 1e-9);
+}
+
+TEST(StepIsolator, AStepInsideAGuardIsJudgedAlikeAt200HzAnd50Hz) {
+  // At T = 5 ms (W = 2) the step at tick 500 inside the guard (495-514) is named on tick 516, the
+  // second unguarded tick, and its end at 800 on tick 801; at T = 20 ms (W = 1) on tick 515 and
+  // 800. At 50 Hz the lone-jump rule looks at the step's own tick: 40 N moving from channel 2 to 0
+  // on it leaves nobody named.
+  for (const double period : {0.005, 0.02}) {
+    StepTrace t;
+    t.period = period;
+    t.guard_from = 495;
+    t.guard_to = 515;
+    const int first = period == 0.005 ? 516 : 515, last = period == 0.005 ? 801 : 800;
+    const StepVerdicts r = run_isolator(t, judged_in_guard());
+    for (int k = 0; k < 1200; ++k) {
+      EXPECT_EQ(r.fault[k][1], k >= first && k < last ? 1.0 : 0.0) << "T " << period << ", tick " << k;
+      EXPECT_EQ(r.fault[k][0] + r.fault[k][2], 0.0) << "T " << period << ", tick " << k;
+    }
+    t.shift = 40.0;
+    expect_nobody_blamed(run_isolator(t, judged_in_guard()));
+  }
 }
 
 TEST(StepIsolator, AStepInsideAGuardThatEndsThereIsNotNamed) {
@@ -383,6 +418,10 @@ TEST(GuardStepNoise, StepsAcrossGuardsOfASmallSequenceAreExact) {
   feed({{1.0, true}, {13.0, false}, {13.0, false}});
   EXPECT_EQ(g.count(), 2u);
   EXPECT_DOUBLE_EQ(g.standard_deviation(), 4.0 / 0.6744897501960817);  // median of 3 and 5
+  // A gap inside a guard is skipped: (19 + 19) / 2 - (13 + 13) / 2 = 6, median of 3, 5, 6.
+  feed({{2.0, true}, {std::nan(""), true}, {19.0, false}, {19.0, false}});
+  EXPECT_EQ(g.count(), 3u);
+  EXPECT_DOUBLE_EQ(g.standard_deviation(), 5.0 / 0.6744897501960817);
   generic::GuardStepNoise empty(0.001);
   EXPECT_TRUE(std::isnan(empty.standard_deviation()));
 }

@@ -291,8 +291,10 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
   if (!measure(pipeline, first, true)) return kExitRuntime;
 
   // The run's values, or what refuses them.
+  std::vector<std::string> notes;  // values written with a caveat (the last run's, printed once)
   const auto conclude = [&](Run& run) {
     std::vector<std::string> refusals;
+    notes.clear();
     // Refuse what cannot honestly be calibrated: a threshold from no data, from a burst, or that
     // overflows would pass as a number and silently blind (or deafen) the detector.
     constexpr double kBurstRatio = 1000.0;  // max |s| / median |s| of a fault-free residual is tens
@@ -374,12 +376,17 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
                              " consecutive finite samples after the warm-up (two windows of " +
                              format_number(generic::kStepWindowS) + " s); calibrate on a log where they are, or give "
                              "it in the config");
-        } else if (m.spec.statistic == FaultFreeStatistic::guard_step && m.guard_step[j].count() == 0) {
-          refusals.push_back(what + "no guard (input " + std::string(m.spec.guard_input) + " nonzero) with " +
-                             std::to_string(m.guard_step[j].window_ticks()) +
-                             " finite unguarded samples on each side after the warm-up; calibrate on a log with "
-                             "guards (a walk's landings), or give it in the config (0: a step inside a guard is not "
-                             "judged)");
+        } else if (m.spec.statistic == FaultFreeStatistic::guard_step && !(value > 0.0)) {
+          // 0 is the parameter's own "not judged": a log without guards leaves steps inside one
+          // unjudged rather than refuse the rest of the calibration.
+          value = 0.0;
+          notes.push_back(what + (m.guard_step[j].count() == 0
+                                      ? "no guard (input " + std::string(m.spec.guard_input) + " nonzero) with " +
+                                            std::to_string(m.guard_step[j].window_ticks()) +
+                                            " finite unguarded samples on each side after the warm-up"
+                                      : "the signal did not move across its guards") +
+                          "; written as 0: a step inside a guard is not judged (calibrate on a log with guards, a "
+                          "walk's landings, or give it in the config)");
         } else if (!std::isfinite(value)) {
           refusals.push_back(what + "is not a finite number (" + format_number(value) +
                              "): the log holds absurd values; calibrate on a fault-free log");
@@ -509,6 +516,7 @@ int calibrate_command(const std::vector<std::string>& args, const Context& conte
     calibrated = std::move(second);
   }
   const Json out = calibration_json(calibrated, true);
+  for (const auto& note : notes) std::cerr << "warning: " << note << '\n';
   std::optional<io::OutputFile> file;
   try {
     file.emplace(options.at("output"), read_files, "thresholds");

@@ -32,6 +32,8 @@
 //                       `guard_input` is nonzero): the mean of W finite unguarded ticks after it
 //                       less that of the W before it, median(|.|) / 0.67449 (generic/guard_step_noise.hpp)
 //
+// A guard_step of 0 (a log without guards, or none the signal moved across) is written as 0 with a
+// warning: for step_isolator's guard_step_std, 0 means steps inside a guard are not judged.
 // A parameter is written as its plugin's schema takes it: a list of one value per channel, or,
 // for a parameter of one number (a correlation time, a noise level every channel shares), the
 // largest over the channels. Largest is the side on which no channel's healthy samples exceed

@@ -322,6 +322,42 @@ sed 's/"plugin": "signal_validator",/"plugin": "signal_validator", "params": {"n
 check calibrate_keeps_what_the_config_gives 0 $? "^ftsense calibrate: validate: noise_std given in the config, kept$" "$work/out"
 grep -q '"validate"' "$work/given_cal.json" && { failures=$((failures + 1)); echo "FAIL calibrate_keeps_writes_no_entry"; } \
   || { passes=$((passes + 1)); echo "ok   calibrate_keeps_writes_no_entry"; }
+# A step isolator with a guard (step_isolator.hpp): calibrate measures how far each residual row
+# moves across the guards (guard_step_std). A log with no guard writes 0 (steps inside a guard
+# are not judged) with a warning, rather than refusing the rest.
+guard_log() {  # guard_log PERIOD_TICKS FILE: the clean log with a guard on every channel, on for
+  # 50 ticks of every PERIOD_TICKS (0: never)
+  awk -F, -v period="$1" 'NR == 1 { print $0 ",guard/c1,guard/c2,guard/c3"; next }
+    { k = NR - 2; g = (period > 0 && k % period < 50) ? 1 : 0; print $0 "," g "," g "," g }' "$work/stat_clean.csv" > "$2"
+}
+guard_log 0 "$work/guard_never.csv"; guard_log 500 "$work/guard_often.csv"
+cat > "$work/guarded.json" <<'JSON'
+{
+ "sample_period_s": 0.001,
+ "inputs": {
+  "cell": {"columns": ["cell/c1/force_N", "cell/c2/force_N", "cell/c3/force_N"], "unit": "N"},
+  "model": {"columns": ["model/c1/force_N", "model/c2/force_N", "model/c3/force_N"], "unit": "N"},
+  "guard": {"columns": ["guard/c1", "guard/c2", "guard/c3"], "unit": "1"}
+ },
+ "stages": [
+  {"name": "residual", "plugin": "difference_residual", "inputs": {"measured": "input.cell", "virtual": "input.model"}},
+  {"name": "detect", "plugin": "threshold_detector", "inputs": {"signal": "residual.residual"}},
+  {"name": "step", "plugin": "step_isolator", "params": {"guard": true},
+   "inputs": {"signal": "input.cell", "residual": "residual.residual", "alarm": "detect.fault", "guard": "input.guard"}}
+ ],
+ "monitor": {"channels": ["c1", "c2", "c3"], "measured": "input.cell", "virtual": "input.model",
+             "fault_estimate": "step.fault_estimate", "recovered": "input.model", "fault": "step.fault",
+             "fault_type": "step.fault_type"}
+}
+JSON
+"$ftsense" calibrate --config "$work/guarded.json" --input "$work/guard_never.csv" --output "$work/guard_never_cal.json" > "$work/out" 2> "$work/err"
+check calibrate_without_guards_writes_zero 0 $? \
+  "^warning: ftsense calibrate: step guard_step_std channel 0: no guard \(input guard nonzero\) with 10 finite unguarded samples on each side after the warm-up; written as 0" "$work/err" \
+  "^ftsense calibrate: step: guard_step_std 0 0 0$" "$work/out"
+"$ftsense" calibrate --config "$work/guarded.json" --input "$work/guard_often.csv" --output "$work/guard_often_cal.json" > "$work/out" 2> "$work/err"
+check calibrate_with_guards_measures_them 0 $? "^ftsense calibrate: step: guard_step_std [0-9.]+ [0-9.]+ [0-9.]+$" "$work/out"
+grep -q "guard_step_std 0 " "$work/out" && { failures=$((failures + 1)); echo "FAIL calibrate_with_guards_nonzero"; } \
+  || { passes=$((passes + 1)); echo "ok   calibrate_with_guards_nonzero"; }
 # Calibrated on a second run with the first run's values in place: a range test at its default
 # noise (1 N) flags a healthy 3 N reading at rest below its floor (0 N) on about 0.2 % of the
 # ticks, which a CUSUM watching those flags would take for their centre; on the second run, with

@@ -26,7 +26,8 @@ void FaultRecovery::Params::describe(ParamSchema<Params>& schema) {
   schema.add("lower_bound_types", &Params::lower_bound_types,
              "fault type names whose reading is a lower bound of the quantity (saturation at the top of its "
              "range): the recovered value is at least the reading, and where it is the reading the channel is "
-             "not substituted; a type here is recovered as its list above says first");
+             "not substituted; a type here is recovered as its list above says first. Only where the type means "
+             "the top of the range (a force pad's clip): a clip at the bottom bounds from above");
   schema.add("blend_cutoff_hz", &Params::blend_cutoff_hz,
              "cut-off f_c of that low-pass, below 1 / (2 T): the band where the virtual value's own "
              "error lies")

@@ -13,7 +13,9 @@ GuardStepNoise::GuardStepNoise(double sample_period_s)
 
 void GuardStepNoise::add(double r, bool guarded) {
   if (!std::isfinite(r)) {
-    break_sequence();
+    // Inside a guard no sample is used: a gap there leaves the guard measurable (as the
+    // isolator still judges it); before or after it, it breaks the window.
+    if (phase_ != Phase::inside || !guarded) break_sequence();
     return;
   }
   if (guarded) {

@@ -141,6 +141,9 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context)
   pending_.assign(dim, 0);
   pending_raised_.assign(dim, 0);
   pending_jump_.assign(dim, 0.0);
+  pending_before_.assign(dim, 0.0);
+  guard_age_.assign(dim, span_);  // no guard yet
+  level_before_.assign(dim, 0.0);
   window_guarded_.assign(dim, 0);
 }
 
@@ -161,6 +164,9 @@ void StepIsolator::reset() noexcept {
   std::fill(pending_.begin(), pending_.end(), 0);
   std::fill(pending_raised_.begin(), pending_raised_.end(), 0);
   std::fill(pending_jump_.begin(), pending_jump_.end(), 0.0);
+  std::fill(pending_before_.begin(), pending_before_.end(), 0.0);
+  std::fill(guard_age_.begin(), guard_age_.end(), span_);
+  std::fill(level_before_.begin(), level_before_.end(), 0.0);
   std::fill(window_guarded_.begin(), window_guarded_.end(), 0);
 }
 
@@ -194,6 +200,9 @@ void StepIsolator::step(const StepIO& io) noexcept {
         for (std::size_t k = 1; k <= w; ++k) before += r_ring_[j * span_ + slot(k)];
         guard_before_[j] = usable_run_[j] >= w ? before * inv_w : nan;
         pending_[j] = 0;
+        guard_age_[j] = 0;
+      } else {
+        guard_age_[j] = std::min(guard_age_[j] + 1, span_);
       }
       was_guarded_[j] = guarded ? 1 : 0;
       finite_run_[j] = finite ? std::min(finite_run_[j] + 1, span_) : 0;
@@ -228,6 +237,7 @@ void StepIsolator::step(const StepIO& io) noexcept {
     const double dv = ((x_after - r_after) - (x_before - r_before)) * inv_w;
     step_[j] = dr;
     level_[j] = r_after * inv_w;
+    level_before_[j] = r_before * inv_w;
     cost_[j] = std::abs(dr) > residual_bound_[j] ? (dv * inv_virtual_step_[j]) * (dv * inv_virtual_step_[j]) : nan;
   }
   // The rows that stepped on unguarded windows (cost_ finite): the least costly is named when it
@@ -285,9 +295,11 @@ void StepIsolator::step(const StepIO& io) noexcept {
     for (std::size_t i = 0; i < n && alone; ++i) {
       if (i == candidate) continue;
       const double* xs = &x_ring_[i * span_];
-      for (std::size_t back = t - 1; back <= t && alone; ++back) {
+      // (At W = 1 the step's tick is this one: the next is not seen yet.)
+      for (std::size_t back = t > 0 ? t - 1 : 0; back <= t && alone; ++back) {
         const double second_difference = xs[slot(back)] - 2.0 * xs[slot(back + 1)] + xs[slot(back + 2)];
-        alone = !(std::abs(second_difference) > jump_bound_[i]);
+        // A reading without a value there may have jumped: not alone.
+        alone = std::abs(second_difference) <= jump_bound_[i];
       }
     }
     if (alone && window_guarded_[candidate] != 0 && blamed_[candidate] == 0 && since_named_[candidate] >= w &&
@@ -295,6 +307,11 @@ void StepIsolator::step(const StepIO& io) noexcept {
       since_named_[candidate] = 0;
       pending_[candidate] = 1;
       pending_jump_[candidate] = candidate_jump;
+      // The level the move is measured from: the row before the guard, or, for a step on one of
+      // the W - 1 ticks before the guard began (its window completes inside it), the row before
+      // the step (the guard's baseline already holds part of the step).
+      pending_before_[candidate] =
+          guard_age_[candidate] + 1 < w ? level_before_[candidate] : guard_before_[candidate];
       pending_raised_[candidate] = raised_ring_[candidate * span_ + slot(t + 1)];
     }
   }
@@ -324,7 +341,7 @@ void StepIsolator::step(const StepIO& io) noexcept {
     double after = 0.0;
     for (std::size_t k = 0; k < w; ++k) after += r_ring_[j * span_ + slot(k)];
     const double level = after * inv_w;
-    const double moved = level - guard_before_[j];
+    const double moved = level - pending_before_[j];
     if (blamed_[j] == 0 && !corrected(j) && std::abs(moved) > guard_bar_[j] &&
         std::abs(moved - pending_jump_[j]) <= std::min(guard_match_bound_[j], 0.5 * std::abs(pending_jump_[j])) &&
         std::abs(level) > std::abs(level - moved) &&

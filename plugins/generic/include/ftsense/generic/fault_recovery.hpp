@@ -17,7 +17,12 @@
 //                                                     larger it stands for itself, not
 //                                                     substituted: a relation's other channels
 //                                                     take that bound, which a virtual value
-//                                                     that cannot part two unknowns lacks)
+//                                                     that cannot part two unknowns lacks).
+//                                                     List a type here only where it means the
+//                                                     top of the range: a clip at the bottom
+//                                                     bounds from above, and signal_validator
+//                                                     also types saturation a reading stuck
+//                                                     twice at one value (its clip rule)
 //   recovered_j = median(x_t, x_{t-1}, x_{t-2})       when the type is one of `median_types`
 //                                                     (default: none; spikes), the last three
 //                                                     finite readings in a row (a gap restarts

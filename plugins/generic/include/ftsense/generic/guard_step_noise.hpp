@@ -13,8 +13,9 @@
 // differs before and after a landing: larger than a window step inside a stance (window_step),
 // whose two windows are 10 ms apart, and it is that difference a fault's onset inside a guard
 // must exceed (step_isolator.hpp). A guard is counted when W finite unguarded ticks precede it
-// and W follow it before the next guard; a non-finite sample or a reset breaks the sequence (the
-// guard it falls in, or next to, is not counted). For calibration, not for the per-tick path:
+// and W follow it before the next guard; a non-finite sample inside a guard is skipped (no
+// sample there is used), one outside it, or a reset, breaks the sequence (the guard next to it is
+// not counted). For calibration, not for the per-tick path:
 // it keeps one |Delta_g| per guard and judges them at the end.
 
 #include <cstddef>

@@ -33,8 +33,9 @@
 //               sigma / m (the bound's chi-square quantile assumes Gaussian d2, which a reading
 //               that takes two or three levels is not).
 //               And sooner where the sensor's noise shows on every tick: a reading that stays on
-//               its level (within q / 2 of the reading before) for n_r ticks in a row, n_r =
-//               max(repeat_min_s / T, ln alpha / ln p), p = erf(q m / (2 sqrt(2) sigma)) the chance
+//               its level (within q / 2 of the reading before) for n_r ticks in a row (n_r + 1
+//               readings), n_r = max(2, ceil(max(repeat_min_s / T, ln alpha / ln p))),
+//               p = erf(q m / (2 sqrt(2) sigma)) the chance
 //               that noise of sigma / m leaves a reading at its level's centre on that level (0
 //               for a continuous reading: any run of exact repeats past repeat_min_s; a driver that
 //               holds its last value through a few lost packets repeats it healthily for less),

@@ -52,22 +52,31 @@
 //   - that detector has not risen within confirm_s of the naming: no lasting change followed
 //     the step (a transient), so nothing is held on one step's word.
 // A step inside a guard (`guard_step_std` s_g > 0, calibrated as how much a fault-free row moves
-// across a guard: guard_step_noise.hpp) is judged once the guard is over. Inside it, the tests
-// above run on the finite samples as if unguarded; a channel they would name there becomes its
-// row's candidate (the latest wins; a new guard drops one still pending), with its jump e_j.
-// Once W unguarded ticks have followed, its row's move across the guard,
+// across a guard: guard_step_noise.hpp) is judged once the guard is over. Inside it, loads move
+// fast (a landing foot rolls onto its pads), so a row's cost tells less than the tick's jump, and
+// the candidate is not the least costly row but the one row whose windows hold a guarded tick, with
+// c_j <= z^2 and a jump that matches its step (`jumped` above), when no other row within that
+// cost bound matches, no other reading's second difference exceeds its jump bound on the step's
+// tick or the next (nor lacks a value there: a foot's pads that jump together are its load
+// shifting, which leaves no one jump to judge; at W = 1 only the step's tick is seen), and the
+// channel is not blamed. The latest candidate of a row wins; a new guard drops one still pending.
+// Once W unguarded ticks have followed (input guard 0), its row's move,
 //
-//   Delta = mean(r[n-W+1 .. n]) - mean(r over the W unguarded ticks before the guard began),
+//   Delta = mean(r[n-W+1 .. n]) - mean(r over the W usable ticks before the guard began)
+//           (for a step on one of the W - 1 ticks before the guard began, whose windows complete
+//           inside it: less mean(r over the W ticks before the step) instead),
 //
-// must be beyond the guards' own (|Delta| > z s_g) and be the jump (|Delta - e_j| <= z sqrt(6
-// sigma_j^2 + q_j^2 / 2 + s_g^2)): the landing's transient, which the guard hides, moves the row
-// by about s_g and leaves no lasting step. The candidate is then blamed with b_j = Delta, under
-// the verdict's rules below (away from zero, the row's detector down on the tick before the
-// step). With s_g = 0 (the default) a step inside a guard is not judged. With input `correction`
+// must be beyond the guards' own, |Delta| > z s_g, and be the jump: |Delta - e_j| <= min(z sqrt(6
+// sigma_j^2 + q_j^2 / 2 + s_g^2), |e_j| / 2) (a move twice the jump holds something else too, a
+// second fault's onset or a gain's load, which the z bound alone lets pass when s_g is large).
+// The landing's transient, which the guard hides, moves the row by about s_g and leaves no lasting
+// step. The candidate is then blamed with b_j = Delta, under the verdict's rules (above: away from
+// zero, the row's detector down on the tick before the step, or some channel blamed here). With
+// s_g = 0 (the default) a step inside a guard is not judged. With input `correction`
 // (the corrections the rows' readings carry, e.g. the recovery's of the tick before), a channel
-// whose reading is corrected is not blamed by a step: its row holds a fault already found, and
-// its step is that fault changing or ending (a drift's end steps a corrected row away from zero),
-// which the part that found it judges.
+// whose reading is corrected (nonzero or NaN) is not blamed by a step: its row holds a fault
+// already found, and its step is that fault changing or ending (a drift's end steps a corrected
+// row away from zero), which the part that found it judges.
 //
 // Known limits: two channels that step on one tick leave each other's virtual sensors moving
 // (neither is named; the isolator and validators judge them); a step inside a guard without s_g
@@ -155,6 +164,9 @@ class StepIsolator {
   std::vector<char> pending_;              // a candidate named inside the guard, to judge after it
   std::vector<char> pending_raised_;       // its row's alarm on the tick before its step
   std::vector<double> pending_jump_;       // its jump e_j
+  std::vector<double> pending_before_;     // the row's level its move is measured from
+  std::vector<std::size_t> guard_age_;     // ticks since the present (or last) guard began, up to span_
+  std::vector<double> level_before_;       // work: mean(r[n-2W+1 .. n-W])
   std::vector<char> window_guarded_;       // work: this tick's D r and c rest on guarded samples
   // Rings of span_ ticks, channel-major: reading and residual.
   std::vector<double> x_ring_, r_ring_;
