@@ -19,6 +19,7 @@
 #include "ftsense/biped/frames.hpp"
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/chi_square.hpp"
+#include "ftsense/generic/level_run.hpp"
 #include "ftsense/generic/median_of_three.hpp"
 #include "ftsense/plausible_ranges.hpp"
 
@@ -219,9 +220,8 @@ ContactForceFdi::ContactForceFdi(const Params& params, const StageContext& conte
                   params_.noise_factor;
   foot_noise_N_ = tick_noise_N_ * std::sqrt(static_cast<double>(feet_points_));
   {
-    const double stay = std::erf(params.resolution_N / (2.0 * std::sqrt(2.0) * params.noise_std_N));
     const double alpha = std::min(0.5, context.sample_period_s() / params.false_alarm_interval_s);
-    const double run = stay > 0.0 ? std::log(alpha) / std::log(std::min(stay, 1.0 - 1e-15)) : 0.0;
+    const double run = generic::healthy_level_run_ticks(params.resolution_N, params.noise_std_N, alpha);
     const double ticks = std::max(params.frozen_min_s / context.sample_period_s(), run);
     // Beyond kMaxWindowTicks a healthy reading may sit on one level longer than any window: its
     // quantiser is coarser than its noise can dither (10 N steps under 0.7 N of noise: p = 1 -

@@ -10,6 +10,7 @@
 #include "ftsense/fault_type.hpp"
 #include "ftsense/generic/chi_square.hpp"
 #include "ftsense/generic/false_alarm_target.hpp"
+#include "ftsense/generic/level_run.hpp"
 
 namespace ftsense::generic {
 
@@ -179,9 +180,8 @@ SignalValidator::SignalValidator(const Params& params, const StageContext& conte
     l.rest = l.has_rest ? rest[j] : 0.0;
     l.stale_below = 6.0 * sigma2 * static_cast<double>(window_) * low_quantile / (m * m);
     {
-      // n_r (header): p, the chance that noise of sigma / m leaves a reading on its level.
-      const double stay = std::erf(q * m / (2.0 * std::numbers::sqrt2 * noise_std[j]));
-      const double run = stay > 0.0 ? std::log(alpha) / std::log(std::min(stay, 1.0 - 1e-15)) : 0.0;
+      // n_r (header), for noise as low as sigma / m.
+      const double run = healthy_level_run_ticks(q, noise_std[j] / m, alpha);
       const double ticks = std::ceil(std::max(params.repeat_min_s / sample_period_s_, run) - 1e-9);
       l.repeat_ticks = l.stale_test && ticks < static_cast<double>(window_) ? static_cast<std::size_t>(std::max(2.0, ticks))
                                                                             : 0;

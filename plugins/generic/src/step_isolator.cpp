@@ -144,7 +144,6 @@ StepIsolator::StepIsolator(const Params& params, const StageContext& context)
   pending_before_.assign(dim, 0.0);
   guard_age_.assign(dim, span_);  // no guard yet
   level_before_.assign(dim, 0.0);
-  window_guarded_.assign(dim, 0);
 }
 
 void StepIsolator::reset() noexcept {
@@ -167,7 +166,6 @@ void StepIsolator::reset() noexcept {
   std::fill(pending_before_.begin(), pending_before_.end(), 0.0);
   std::fill(guard_age_.begin(), guard_age_.end(), span_);
   std::fill(level_before_.begin(), level_before_.end(), 0.0);
-  std::fill(window_guarded_.begin(), window_guarded_.end(), 0);
 }
 
 void StepIsolator::release(std::size_t j) noexcept {
@@ -214,12 +212,9 @@ void StepIsolator::step(const StepIO& io) noexcept {
     since_named_[j] = std::min(since_named_[j] + 1, w);
     step_[j] = nan;
     cost_[j] = nan;
-    window_guarded_[j] = 0;
-    if (usable_run_[j] < span_) {
-      // A window with guarded samples is judged only for a candidate (below), when asked.
-      if (!judge_in_guard_ || finite_run_[j] < span_) continue;
-      window_guarded_[j] = 1;
-    }
+    // A window with guarded samples (a usable run shorter than the span, the samples finite) is
+    // judged only for a candidate inside a guard (below), when asked.
+    if (usable_run_[j] < span_ && (!judge_in_guard_ || finite_run_[j] < span_)) continue;
     const double* xs = &x_ring_[j * span_];
     const double* rs = &r_ring_[j * span_];
     // The 2W samples oldest first, wrapping once at the ring's end (no modulo per sample).
@@ -244,12 +239,19 @@ void StepIsolator::step(const StepIO& io) noexcept {
   // stands apart.
   const double margin = z_ * z_;
   const std::size_t t = w - 1;  // the step's tick, W - 1 ticks back
+  // Row j's window rests on guarded samples (it was judged with a usable run short of the span).
+  const auto guarded_window = [&](std::size_t j) { return usable_run_[j] < span_; };
+  // Reading j's second difference on the tick `back` ticks before this one.
+  const auto second_difference = [&](std::size_t j, std::size_t back) {
+    const double* xs = &x_ring_[j * span_];
+    return xs[slot(back)] - 2.0 * xs[slot(back + 1)] + xs[slot(back + 2)];
+  };
   const auto least_costly = [&]() {
     std::size_t best = n;
     double best_cost = std::numeric_limits<double>::infinity();
     double runner_up = std::numeric_limits<double>::infinity();
     for (std::size_t j = 0; j < n; ++j) {
-      if (!std::isfinite(cost_[j]) || window_guarded_[j] != 0) continue;
+      if (!std::isfinite(cost_[j]) || guarded_window(j)) continue;
       if (cost_[j] < best_cost) {
         runner_up = best_cost;
         best_cost = cost_[j];
@@ -263,12 +265,8 @@ void StepIsolator::step(const StepIO& io) noexcept {
   // The reading's jump on the step's tick, when it is beyond its noise and what its row stepped
   // (a spike of a few ticks jumps by far more than the window's mean moves); NaN otherwise.
   const auto matched_jump = [&](std::size_t j) {
-    const double* xs = &x_ring_[j * span_];
-    const double second_difference = xs[slot(t)] - 2.0 * xs[slot(t + 1)] + xs[slot(t + 2)];
-    return std::abs(second_difference) > jump_bound_[j] &&
-                   std::abs(second_difference - step_[j]) <= jump_match_bound_[j]
-               ? second_difference
-               : nan;
+    const double jump = second_difference(j, t);
+    return std::abs(jump) > jump_bound_[j] && std::abs(jump - step_[j]) <= jump_match_bound_[j] ? jump : nan;
   };
   const bool blamed_any = std::any_of(blamed_.begin(), blamed_.end(), [](char b) { return b != 0; });
   // A reading corrected in the rows: its step is its found fault changing or ending.
@@ -294,15 +292,13 @@ void StepIsolator::step(const StepIO& io) noexcept {
     bool alone = jumpers == 1;
     for (std::size_t i = 0; i < n && alone; ++i) {
       if (i == candidate) continue;
-      const double* xs = &x_ring_[i * span_];
-      // (At W = 1 the step's tick is this one: the next is not seen yet.)
+      // (At W = 1 the step's tick is this one: the next is not seen yet.) A reading without a
+      // value there may have jumped: not alone.
       for (std::size_t back = t > 0 ? t - 1 : 0; back <= t && alone; ++back) {
-        const double second_difference = xs[slot(back)] - 2.0 * xs[slot(back + 1)] + xs[slot(back + 2)];
-        // A reading without a value there may have jumped: not alone.
-        alone = std::abs(second_difference) <= jump_bound_[i];
+        alone = std::abs(second_difference(i, back)) <= jump_bound_[i];
       }
     }
-    if (alone && window_guarded_[candidate] != 0 && blamed_[candidate] == 0 && since_named_[candidate] >= w &&
+    if (alone && guarded_window(candidate) && blamed_[candidate] == 0 && since_named_[candidate] >= w &&
         std::isfinite(guard_bar_[candidate])) {
       since_named_[candidate] = 0;
       pending_[candidate] = 1;

@@ -167,7 +167,6 @@ class StepIsolator {
   std::vector<double> pending_before_;     // the row's level its move is measured from
   std::vector<std::size_t> guard_age_;     // ticks since the present (or last) guard began, up to span_
   std::vector<double> level_before_;       // work: mean(r[n-2W+1 .. n-W])
-  std::vector<char> window_guarded_;       // work: this tick's D r and c rest on guarded samples
   // Rings of span_ ticks, channel-major: reading and residual.
   std::vector<double> x_ring_, r_ring_;
   std::vector<char> raised_ring_;  // the alarm on each row, 1 raised
